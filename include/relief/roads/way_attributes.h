@@ -1,0 +1,50 @@
+#pragma once
+// Road attributes taken from OSM way tags, normalised: one-ways point forward (oneway=-1 ways
+// are reversed by the reader), lanes are per direction, units are SI.
+
+#include <map>
+#include <optional>
+#include <string>
+#include <string_view>
+
+#include "relief/roads/highway_class.h"
+
+namespace relief {
+
+struct WayAttributes {
+  HighwayClass highway = HighwayClass::residential;
+  bool oneway = false;            ///< traffic only in the way's (normalised) direction
+  int lanes_forward = 1;          ///< lanes in the direction of the way
+  int lanes_backward = 1;         ///< lanes against it (0 for one-ways)
+  bool lanes_tagged = false;      ///< lanes came from tags, not class defaults
+  double lane_width_m = 3.0;      ///< from `width` / total lanes, else the class default
+  bool width_tagged = false;
+  bool bridge = false;            ///< bridge=* other than "no"
+  bool tunnel = false;            ///< tunnel=* other than "no"
+  int layer = 0;
+  std::optional<double> maxspeed_mps;  ///< from `maxspeed` ("25 mph", "50", "50 km/h")
+  std::string name;
+  bool roundabout = false;        ///< junction=roundabout (or circular)
+
+  friend bool operator==(const WayAttributes&, const WayAttributes&) = default;
+};
+
+/// Result of interpreting one way's tags.
+struct ParsedWay {
+  WayAttributes attributes;
+  bool reversed = false;  ///< oneway=-1: the node list must be reversed
+};
+
+/// Interprets the tags of a way that has a `highway` tag relief models. `tags` maps key -> value.
+/// Returns nullopt when the highway value is not modelled. Unparseable values (lanes=foo,
+/// width=wide) fall back to defaults; `warnings` receives one short text per such value.
+[[nodiscard]] std::optional<ParsedWay> parse_way_tags(
+    const std::map<std::string, std::string, std::less<>>& tags, std::string* warnings = nullptr);
+
+/// Parses a speed: "25 mph" -> 11.176, "50" (km/h) -> 13.889, "50 km/h", "10 knots"; nullopt for
+/// "none", "signals", "walk", "US:urban" and anything unparseable.
+[[nodiscard]] std::optional<double> parse_speed_mps(std::string_view value);
+/// Parses a length: "3.5", "3.5 m", "12'", "12 ft", "12'6\"" -> metres; nullopt when unparseable.
+[[nodiscard]] std::optional<double> parse_length_m(std::string_view value);
+
+}  // namespace relief

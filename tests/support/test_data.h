@@ -1,0 +1,25 @@
+#pragma once
+// Paths of test data: the real San Francisco data in ../shared/data (beside the project root)
+// and a per-test scratch directory. Tests that need shared data skip when it is absent.
+
+#include <filesystem>
+#include <string>
+
+namespace relief::test {
+
+/// ../shared/data/<relative> next to the source tree (or $RELIEF_SHARED_DATA/<relative>).
+[[nodiscard]] std::filesystem::path shared_data(const std::string& relative);
+/// True when the shared data folder exists.
+[[nodiscard]] bool have_shared_data();
+/// <source>/fixtures/<relative>.
+[[nodiscard]] std::filesystem::path fixture(const std::string& relative);
+/// A fresh empty directory for the current test (removed and recreated on each call).
+[[nodiscard]] std::filesystem::path scratch_dir(const std::string& name);
+
+}  // namespace relief::test
+
+/// Skips the current test when ../shared/data is not present.
+#define RELIEF_REQUIRE_SHARED_DATA()                                        \
+  do {                                                                      \
+    if (!::relief::test::have_shared_data()) GTEST_SKIP() << "no ../shared/data"; \
+  } while (0)

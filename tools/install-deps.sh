@@ -1,0 +1,30 @@
+#!/usr/bin/env bash
+# Installs relief's build and test dependencies from Debian 12 packages.
+# Idempotent: packages already present are skipped; waits for the apt/dpkg lock.
+set -euo pipefail
+
+packages=(
+  build-essential cmake ninja-build pkg-config
+  libcgal-dev libeigen3-dev libgmp-dev libmpfr-dev libboost-dev
+  libproj-dev proj-data proj-bin
+  libosmium2-dev libprotozero-dev libexpat1-dev libbz2-dev zlib1g-dev
+  libgdal-dev gdal-bin
+  libassimp-dev assimp-utils
+  libgtest-dev libgmock-dev libbenchmark-dev
+  nlohmann-json3-dev libcli11-dev
+  libxml2-utils sumo sumo-tools python3-xmlschema
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+[ ${#missing[@]} -eq 0 ] && exit 0
+
+sudo=""
+[ "$(id -u)" -ne 0 ] && sudo="sudo"
+apt_opts=(-o DPkg::Lock::Timeout=600 -y -q)
+export DEBIAN_FRONTEND=noninteractive
+echo "install-deps: installing ${missing[*]}" >&2
+$sudo apt-get "${apt_opts[@]}" update >/dev/null
+$sudo apt-get "${apt_opts[@]}" install --no-install-recommends "${missing[@]}" >/dev/null
