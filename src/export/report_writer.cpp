@@ -1,1 +1,137 @@
-// placeholder
+#include "relief/export/report_writer.h"
+
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+
+#include "relief/export/geojson_writer.h"
+
+namespace relief {
+namespace {
+
+using Json = nlohmann::ordered_json;
+
+// Rounds a figure for the report: millimetres, hundredths of a percent.
+double round_to(double value, double step) { return std::round(value / step) * step; }
+
+Json error_json(const ErrorStats& e) {
+  return {{"mae_m", round_to(e.mae_m, 1e-4)}, {"rmse_m", round_to(e.rmse_m, 1e-4)},
+          {"max_m", round_to(e.max_m, 1e-4)}, {"bias_m", round_to(e.bias_m, 1e-4)}, {"n", e.n}};
+}
+
+Json dem_json(const DemInfo& d) {
+  Json j = {{"path", d.path},
+            {"crs", d.crs},
+            {"size_px", {d.width, d.height}},
+            {"pixel_size", {d.pixel_size.x(), d.pixel_size.y()}},
+            {"vertical_unit", to_string(d.unit)},
+            {"unit_source", d.unit_stated_by_user ? "user" : d.unit_from_metadata ? "metadata" : "assumed"},
+            {"nodata", d.nodata ? Json(*d.nodata) : Json(nullptr)},
+            {"transform", d.transform_name},
+            {"transform_accuracy_m", d.transform_accuracy_m ? Json(*d.transform_accuracy_m) : Json(nullptr)}};
+  if (!d.missing_grids.empty()) j["missing_grids"] = d.missing_grids;
+  if (d.extent_wgs84) {
+    j["extent_wgs84"] = {d.extent_wgs84->min_lon, d.extent_wgs84->min_lat, d.extent_wgs84->max_lon,
+                         d.extent_wgs84->max_lat};
+  }
+  return j;
+}
+
+Json optional_int(const std::optional<int>& v) { return v ? Json(*v) : Json(nullptr); }
+
+}  // namespace
+
+std::string relief_version() { return "0.1.0"; }
+
+std::string report_json(const RunReport& r) {
+  Json j;
+  j["relief_version"] = relief_version();
+  j["name"] = r.name;
+  j["created_utc"] = r.created_utc;
+  j["attribution"] = kOsmAttribution;
+  j["frame"] = {{"crs", r.frame.crs()},
+                {"origin", {r.frame.origin().x(), r.frame.origin().y()}},
+                {"proj", r.frame.proj_string()},
+                {"note", "local = CRS coordinates - origin; z in metres"}};
+  Json dems = Json::array(), refs = Json::array();
+  for (const auto& d : r.dems) dems.push_back(dem_json(d));
+  for (const auto& d : r.reference_dems) refs.push_back(dem_json(d));
+  j["inputs"] = {{"osm", r.osm_path}, {"dems", dems}, {"reference_dems", refs}};
+  j["settings"] = {{"interpolation", to_string(r.interpolation)},
+                   {"spacing_m", r.spacing_m},
+                   {"nodata_fill", r.nodata_fill}};
+
+  const NetworkStats& n = r.network;
+  Json km_by_class = Json::object();
+  for (const auto& [cls, km] : n.km_by_class) km_by_class[cls] = round_to(km, 1e-3);
+  j["network"] = {{"roads", n.roads},
+                  {"junctions", n.junctions},
+                  {"intersections", n.intersections},
+                  {"attribute_changes", n.attribute_changes},
+                  {"dead_ends", n.dead_ends},
+                  {"roundabouts", n.roundabouts},
+                  {"traffic_signals", n.traffic_signals},
+                  {"bridges", n.bridges},
+                  {"tunnels", n.tunnels},
+                  {"length_km", round_to(n.length_km, 1e-3)},
+                  {"bridge_km", round_to(n.bridge_km, 1e-3)},
+                  {"tunnel_km", round_to(n.tunnel_km, 1e-3)},
+                  {"km_by_class", km_by_class}};
+
+  Json vs_dem = error_json(r.heights.vs_dem);
+  vs_dem["error_3d_mean_m"] = round_to(r.heights.error_3d_mean_m, 1e-4);
+  vs_dem["error_3d_max_m"] = round_to(r.heights.error_3d_max_m, 1e-4);
+  vs_dem["measured_at"] = "midpoints between samples";
+  j["elevation"] = {{"samples", r.samples},
+                    {"void_samples", r.void_samples},
+                    {"uncovered_samples", r.uncovered_samples},
+                    {"roads_without_height", r.roads_without_height},
+                    {"vs_dem", vs_dem},
+                    {"vs_reference", r.heights.vs_reference ? error_json(*r.heights.vs_reference)
+                                                            : Json(nullptr)}};
+
+  Json by_class = Json::object();
+  for (const auto& [cls, c] : r.gradient.by_class) {
+    by_class[cls] = {{"length_km", round_to(c.length_km, 1e-3)},
+                     {"limit_percent", c.limit_percent},
+                     {"compliance_percent", round_to(c.compliance_percent, 1e-2)},
+                     {"max_percent", round_to(c.max_percent, 1e-2)},
+                     {"p99_percent", round_to(c.p99_percent, 1e-2)}};
+  }
+  j["gradient"] = {{"compliance_percent", round_to(r.gradient.compliance_percent, 1e-2)},
+                   {"max_percent", round_to(r.gradient.max_percent, 1e-2)},
+                   {"p99_percent", round_to(r.gradient.p99_percent, 1e-2)},
+                   {"steepest_road", optional_int(r.gradient.steepest_road)},
+                   {"by_class", by_class}};
+  j["junctions"] = {{"max_gap_m", round_to(r.junctions.max_gap_m, 1e-4)},
+                    {"worst_junction", optional_int(r.junctions.worst_junction)},
+                    {"over_bound", r.junctions.over_bound},
+                    {"bound_m", r.junctions.bound_m},
+                    {"checked", r.junctions.checked}};
+
+  Json diag = {{"total", 0}, {"counts", Json::object()}, {"messages", Json::array()}};
+  if (r.diagnostics) {
+    diag["total"] = r.diagnostics->total();
+    for (const auto& [code, count] : r.diagnostics->counts()) diag["counts"][code] = count;
+    for (const Diagnostic& d : r.diagnostics->kept()) {
+      Json m = {{"severity", to_string(d.severity)}, {"code", d.code}, {"message", d.message}};
+      if (d.osm_way_id) m["osm_way_id"] = *d.osm_way_id;
+      if (d.osm_node_id) m["osm_node_id"] = *d.osm_node_id;
+      if (d.road_id) m["road_id"] = *d.road_id;
+      diag["messages"].push_back(m);
+    }
+  }
+  j["diagnostics"] = diag;
+  Json timings = Json::object();
+  double total = 0.0;
+  for (const auto& [stage, s] : r.timings_s) {
+    timings[stage] = round_to(s, 1e-4);
+    total += s;
+  }
+  timings["total"] = round_to(total, 1e-4);
+  j["timings_s"] = timings;
+  j["outputs"] = r.outputs;
+  return j.dump(2) + "\n";
+}
+
+}  // namespace relief

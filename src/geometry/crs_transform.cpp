@@ -43,7 +43,10 @@ ContextPtr make_context() {
 }
 
 PjPtr make_crs(PJ_CONTEXT* ctx, std::string_view definition) {
-  PjPtr crs(proj_create(ctx, std::string(definition).c_str()));
+  // A bare PROJ string ("+proj=tmerc ...", as in OpenDRIVE geoReference) names a CRS here.
+  std::string text(definition);
+  if (text.rfind("+proj=", 0) == 0 && text.find("+type=crs") == std::string::npos) text += " +type=crs";
+  PjPtr crs(proj_create(ctx, text.c_str()));
   if (!crs) {
     throw ProjectionError("unknown coordinate reference system '" + std::string(definition) +
                           "': " + last_error(ctx));
@@ -121,7 +124,11 @@ CrsTransform::CrsTransform(std::string_view from, std::string_view to, std::opti
   }
   impl_->name = proj_get_name(chosen.get()) ? proj_get_name(chosen.get()) : "";
   const double acc = proj_coordoperation_get_accuracy(ctx, chosen.get());
-  if (acc >= 0.0) impl_->accuracy = acc;
+  if (acc >= 0.0) {
+    impl_->accuracy = acc;
+  } else if (proj_get_type(chosen.get()) == PJ_TYPE_CONVERSION) {
+    impl_->accuracy = 0.0;  // a map projection on one datum is exact
+  }
   if (!best_missing_grids.empty() && (!impl_->accuracy || best_missing_accuracy < *impl_->accuracy)) {
     impl_->better_missing = true;
     impl_->missing_grids = best_missing_grids;

@@ -1,1 +1,205 @@
-// placeholder
+#include "relief/roads/elevation_sampling.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "relief/core/errors.h"
+#include "relief/geometry/polyline.h"
+
+namespace relief {
+namespace {
+
+std::string describe_road(const Road& road) {
+  std::ostringstream out;
+  out << "road " << road.id;
+  if (!road.osm_way_ids.empty()) out << " (OSM way " << road.osm_way_ids.front() << ")";
+  if (!road.attributes.name.empty()) out << " '" << road.attributes.name << "'";
+  return out.str();
+}
+
+// Fills the missing heights of one profile: ends from the junction heights when known, then
+// linear interpolation in s between valid samples, then the nearest valid sample at the ends.
+// Returns false when no height at all could be found.
+bool fill_profile(RoadProfile& p, const std::vector<std::uint8_t>& valid,
+                  std::optional<double> start_height, std::optional<double> end_height) {
+  std::vector<std::uint8_t> known = valid;
+  const std::size_t n = p.size();
+  if (!known.front() && start_height) {
+    p.z.front() = *start_height;
+    known.front() = 1;
+  }
+  if (!known.back() && end_height) {
+    p.z.back() = *end_height;
+    known.back() = 1;
+  }
+  std::optional<std::size_t> prev;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!known[i]) continue;
+    if (prev && i > *prev + 1) {
+      const double s0 = p.s[*prev], s1 = p.s[i], z0 = p.z[*prev], z1 = p.z[i];
+      for (std::size_t k = *prev + 1; k < i; ++k) p.z[k] = z0 + (z1 - z0) * (p.s[k] - s0) / (s1 - s0);
+    }
+    prev = i;
+  }
+  if (!prev) return false;
+  const auto first = static_cast<std::size_t>(std::find(known.begin(), known.end(), 1) - known.begin());
+  for (std::size_t k = 0; k < first; ++k) p.z[k] = p.z[first];
+  for (std::size_t k = *prev + 1; k < n; ++k) p.z[k] = p.z[*prev];
+  return true;
+}
+
+}  // namespace
+
+std::optional<NodataFill> parse_nodata_fill(std::string_view text) {
+  if (text == "interpolate") return NodataFill::interpolate;
+  if (text == "error") return NodataFill::error;
+  return std::nullopt;
+}
+
+std::string_view to_string(NodataFill fill) {
+  return fill == NodataFill::interpolate ? "interpolate" : "error";
+}
+
+RoadProfile make_stations(const Road& road, double spacing_m) {
+  const std::vector<double> cumulative = cumulative_length(road.points);
+  RoadProfile p;
+  p.s = sample_stations(cumulative.back(), spacing_m, cumulative);
+  p.xy.reserve(p.s.size());
+  p.at_node.assign(p.s.size(), 0);
+  // Stations and vertices are both sorted: mark the stations that are vertices in one sweep.
+  std::size_t v = 0;
+  for (std::size_t i = 0; i < p.s.size(); ++i) {
+    p.xy.push_back(point_at(road.points, cumulative, p.s[i]));
+    while (v < cumulative.size() && cumulative[v] < p.s[i] - 1e-6) ++v;
+    if (v < cumulative.size() && std::abs(cumulative[v] - p.s[i]) <= 1e-6) p.at_node[i] = 1;
+  }
+  p.z.assign(p.s.size(), 0.0);
+  p.filled.assign(p.s.size(), 0);
+  return p;
+}
+
+ElevationSamples sample_elevation(const RoadNetwork& network, const DemSampler& dem,
+                                  const SamplingOptions& options, Diagnostics& diagnostics) {
+  if (!(options.spacing_m > 0.0)) throw InvalidInput("sample spacing must be positive");
+  ElevationSamples result;
+  result.profiles.reserve(network.roads.size());
+  std::vector<std::size_t> offset(network.roads.size() + 1, 0);
+  for (const Road& road : network.roads) {
+    result.profiles.push_back(make_stations(road, options.spacing_m));
+    offset[result.profiles.size()] = offset[result.profiles.size() - 1] + result.profiles.back().size();
+  }
+  result.samples = offset.back();
+
+  // One batched DEM query for every sample of every road.
+  std::vector<Vec2> points;
+  points.reserve(result.samples);
+  for (const auto& p : result.profiles) points.insert(points.end(), p.xy.begin(), p.xy.end());
+  std::vector<std::optional<double>> heights(points.size());
+  dem.heights_at(points, heights);
+
+  const Aabb2 coverage = dem.coverage_bounds();
+  std::vector<std::vector<std::uint8_t>> valid(network.roads.size());
+  std::optional<std::size_t> first_uncovered;
+  for (std::size_t r = 0; r < network.roads.size(); ++r) {
+    RoadProfile& p = result.profiles[r];
+    valid[r].assign(p.size(), 0);
+    std::size_t voids = 0, uncovered = 0;
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      const auto& h = heights[offset[r] + i];
+      if (h) {
+        p.z[i] = *h;
+        valid[r][i] = 1;
+      } else {
+        p.filled[i] = 1;
+        if (coverage.contains(p.xy[i])) {
+          ++voids;
+        } else {
+          ++uncovered;
+          if (!first_uncovered) first_uncovered = offset[r] + i;
+        }
+      }
+    }
+    result.void_samples += voids;
+    result.uncovered_samples += uncovered;
+    const Road& road = network.roads[r];
+    if (voids > 0) {
+      if (options.nodata_fill == NodataFill::error) {
+        throw InvalidInput("the DEM has no height (a void) under " + describe_road(road) + ": " +
+                           std::to_string(voids) + " of " + std::to_string(p.size()) +
+                           " samples; use --nodata-fill interpolate to fill along the road");
+      }
+      Diagnostic d;
+      d.code = "elevation.void";
+      d.road_id = road.id;
+      if (!road.osm_way_ids.empty()) d.osm_way_id = road.osm_way_ids.front();
+      d.message = describe_road(road) + ": " + std::to_string(voids) + " of " +
+                  std::to_string(p.size()) + " samples in a DEM void, filled along the road";
+      diagnostics.report(std::move(d));
+    }
+    if (uncovered > 0 && options.allow_partial) {
+      Diagnostic d;
+      d.code = "elevation.uncovered";
+      d.road_id = road.id;
+      if (!road.osm_way_ids.empty()) d.osm_way_id = road.osm_way_ids.front();
+      d.message = describe_road(road) + ": " + std::to_string(uncovered) + " of " +
+                  std::to_string(p.size()) + " samples outside every DEM, filled along the road";
+      diagnostics.report(std::move(d));
+    }
+  }
+
+  if (result.uncovered_samples > 0 && !options.allow_partial) {
+    const double percent = 100.0 * static_cast<double>(result.uncovered_samples) /
+                           static_cast<double>(result.samples);
+    std::ostringstream msg;
+    msg.precision(3);
+    msg << "the DEM does not cover the roads: " << result.uncovered_samples << " of "
+        << result.samples << " road samples (" << percent << " %) lie outside every DEM";
+    if (first_uncovered) {
+      const Vec2 at = points[*first_uncovered];
+      msg << ", e.g. at local (" << at.x() << ", " << at.y() << ") m";
+    }
+    msg << "; give a DEM that covers them, clip with --bbox, or accept it with --allow-partial";
+    throw CoverageError(msg.str(), percent);
+  }
+
+  // Junction heights from the valid road ends, for filling ends that have none.
+  std::vector<double> junction_sum(network.junctions.size(), 0.0);
+  std::vector<int> junction_n(network.junctions.size(), 0);
+  for (std::size_t r = 0; r < network.roads.size(); ++r) {
+    const RoadProfile& p = result.profiles[r];
+    const Road& road = network.roads[r];
+    if (valid[r].front()) {
+      junction_sum[road.start_junction] += p.z.front();
+      ++junction_n[road.start_junction];
+    }
+    if (valid[r].back()) {
+      junction_sum[road.end_junction] += p.z.back();
+      ++junction_n[road.end_junction];
+    }
+  }
+  const auto junction_height = [&](int j) -> std::optional<double> {
+    if (j < 0 || junction_n[j] == 0) return std::nullopt;
+    return junction_sum[j] / junction_n[j];
+  };
+  for (std::size_t r = 0; r < network.roads.size(); ++r) {
+    RoadProfile& p = result.profiles[r];
+    if (std::all_of(valid[r].begin(), valid[r].end(), [](auto v) { return v != 0; })) continue;
+    const Road& road = network.roads[r];
+    if (!fill_profile(p, valid[r], junction_height(road.start_junction),
+                      junction_height(road.end_junction))) {
+      p.has_height = false;
+      ++result.roads_without_height;
+      Diagnostic d;
+      d.severity = Severity::error;
+      d.code = "elevation.road_without_height";
+      d.road_id = road.id;
+      if (!road.osm_way_ids.empty()) d.osm_way_id = road.osm_way_ids.front();
+      d.message = describe_road(road) + " has no height anywhere; it is left out of the outputs";
+      diagnostics.report(std::move(d));
+    }
+  }
+  return result;
+}
+
+}  // namespace relief

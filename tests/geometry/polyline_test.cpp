@@ -1,1 +1,50 @@
+#include "relief/geometry/polyline.h"
+
 #include <gtest/gtest.h>
+
+#include "relief/core/errors.h"
+
+namespace relief {
+namespace {
+
+TEST(Polyline, CumulativeLengthOfAnLShape) {
+  const Polyline2 line{{0, 0}, {3, 0}, {3, 4}};
+  const auto s = cumulative_length(line);
+  ASSERT_EQ(s.size(), 3u);
+  EXPECT_DOUBLE_EQ(s[1], 3.0);
+  EXPECT_DOUBLE_EQ(s[2], 7.0);
+  EXPECT_DOUBLE_EQ(length_m(line), 7.0);
+}
+
+TEST(Polyline, PointAtInterpolatesAndClamps) {
+  const Polyline2 line{{0, 0}, {3, 0}, {3, 4}};
+  const auto s = cumulative_length(line);
+  EXPECT_TRUE(point_at(line, s, 1.5).isApprox(Vec2(1.5, 0)));
+  EXPECT_TRUE(point_at(line, s, 5.0).isApprox(Vec2(3, 2)));
+  EXPECT_TRUE(point_at(line, s, -1.0).isApprox(Vec2(0, 0)));
+  EXPECT_TRUE(point_at(line, s, 99.0).isApprox(Vec2(3, 4)));
+  EXPECT_THROW((void)point_at({}, {}, 0.0), InvalidInput);
+}
+
+TEST(Polyline, StraightHundredMetreRoadHas101StationsAtOneMetre) {
+  const auto st = sample_stations(100.0, 1.0, {0.0, 100.0});
+  ASSERT_EQ(st.size(), 101u);
+  for (std::size_t i = 0; i < st.size(); ++i) EXPECT_NEAR(st[i], static_cast<double>(i), 1e-12);
+}
+
+TEST(Polyline, StationsIncludeVerticesAndEnd) {
+  const auto st = sample_stations(10.5, 2.0, {0.0, 3.3, 4.0, 10.5});
+  const std::vector<double> expected{0.0, 2.0, 3.3, 4.0, 6.0, 8.0, 10.0, 10.5};
+  ASSERT_EQ(st.size(), expected.size());
+  for (std::size_t i = 0; i < st.size(); ++i) EXPECT_NEAR(st[i], expected[i], 1e-12);
+  EXPECT_THROW((void)sample_stations(10.0, 0.0, {}), InvalidInput);
+}
+
+TEST(Polyline, DedupeDropsRepeatedVertices) {
+  const Polyline2 line{{0, 0}, {0, 0}, {1, 0}, {1, 1e-9}, {2, 0}};
+  const auto kept = dedupe_vertices(line, 1e-6);
+  EXPECT_EQ(kept, (std::vector<std::size_t>{0, 2, 4}));
+}
+
+}  // namespace
+}  // namespace relief

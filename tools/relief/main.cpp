@@ -1,1 +1,28 @@
-int main(){}
+// relief: elevation-aware 3D road networks from OpenStreetMap and DEMs.
+// Exit codes: 0 done, 1 internal error, 2 bad usage, 3 bad input.
+#include <iostream>
+
+#include "commands.h"
+#include "relief/export/report_writer.h"
+
+int main(int argc, char** argv) {
+  using namespace relief::cli;
+  CLI::App app{"relief " + relief::relief_version() +
+               ": elevation-aware 3D road networks from OpenStreetMap and DEMs\n"
+               "Exit codes: 0 done, 1 internal error, 2 bad usage, 3 bad input."};
+  app.set_version_flag("--version", relief::relief_version());
+  app.require_subcommand(1);
+  const Runner build = add_build_command(app);
+  const Runner info = add_info_command(app);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::Success& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    app.exit(e);
+    return kUsage;
+  }
+  if (app.got_subcommand("build")) return build();
+  if (app.got_subcommand("info")) return info();
+  return kUsage;
+}

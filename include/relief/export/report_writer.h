@@ -1,0 +1,54 @@
+#pragma once
+// report.json: what was built, from what, and how good it is (the seed paper's validation
+// figures), with the frame needed to map every output back to lon/lat.
+
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "relief/core/diagnostics.h"
+#include "relief/geometry/geo_frame.h"
+#include "relief/roads/validation.h"
+#include "relief/terrain/dem_source.h"
+
+namespace relief {
+
+struct RunReport {
+  std::string name;
+  std::string created_utc;             ///< ISO 8601
+  GeoFrame frame;
+  std::string osm_path;
+  std::vector<DemInfo> dems;
+  std::vector<DemInfo> reference_dems;
+  Interpolation interpolation = Interpolation::bilinear;
+  double spacing_m = 1.0;
+  std::string nodata_fill;
+  NetworkStats network;
+  std::size_t samples = 0;
+  std::size_t void_samples = 0;
+  std::size_t uncovered_samples = 0;
+  std::size_t roads_without_height = 0;
+  HeightValidation heights;
+  GradeStats gradient;
+  JunctionGapStats junctions;
+  std::vector<std::pair<std::string, double>> timings_s;  ///< stage -> seconds, in order
+  std::vector<std::string> outputs;                       ///< file names written
+  const Diagnostics* diagnostics = nullptr;
+};
+
+/// The report as pretty-printed JSON. Keys (stable): relief_version, name, created_utc,
+/// attribution, frame{crs, origin, proj}, inputs{osm, dems[], reference_dems[]},
+/// settings{interpolation, spacing_m, nodata_fill}, network{roads, junctions, intersections,
+/// attribute_changes, dead_ends, roundabouts, traffic_signals, bridges, tunnels, length_km,
+/// bridge_km, tunnel_km, km_by_class}, elevation{samples, void_samples, uncovered_samples,
+/// roads_without_height, vs_dem{mae_m, rmse_m, max_m, bias_m, n, error_3d_mean_m,
+/// error_3d_max_m}, vs_reference{...} | null}, gradient{compliance_percent, max_percent,
+/// p99_percent, steepest_road, by_class{class: {length_km, limit_percent, compliance_percent,
+/// max_percent, p99_percent}}}, junctions{max_gap_m, worst_junction, over_bound, bound_m,
+/// checked}, diagnostics{total, counts{code: n}, messages[]}, timings_s{stage: s}, outputs[].
+[[nodiscard]] std::string report_json(const RunReport& report);
+
+/// relief's version string ("0.1.0").
+[[nodiscard]] std::string relief_version();
+
+}  // namespace relief

@@ -1,0 +1,56 @@
+#pragma once
+// The main job: OSM + DEM(s) -> 3D road network and its outputs, as one library call that the
+// CLI (and any other program) strings together: read, project, build the network, sample the
+// DEM, validate, write.
+
+#include <filesystem>
+#include <optional>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "relief/core/diagnostics.h"
+#include "relief/export/report_writer.h"
+#include "relief/roads/elevation_sampling.h"
+#include "relief/roads/osm_reader.h"
+#include "relief/roads/validation.h"
+#include "relief/terrain/dem_sampler.h"
+
+namespace relief {
+
+/// Outputs `build` can write into the output directory.
+enum class Output { geojson, report };
+[[nodiscard]] std::optional<Output> parse_output(std::string_view text);
+[[nodiscard]] std::string_view to_string(Output output);
+
+struct BuildOptions {
+  std::filesystem::path osm_path;
+  std::vector<std::string> dem_paths;            ///< >= 1, mosaic in the order given
+  std::vector<std::string> reference_dem_paths;  ///< optional independent check
+  std::filesystem::path out_dir;
+  std::string name;                              ///< default: the OSM file's stem
+  std::optional<std::string> crs;                ///< default: the WGS84 UTM zone of the data
+  OsmReadOptions osm;
+  DemOptions dem;
+  DemOptions reference_dem;
+  SamplingOptions sampling;
+  GradeLimits grade_limits = GradeLimits::paper();
+  std::set<Output> outputs = {Output::geojson, Output::report};
+};
+
+struct BuildResult {
+  RunReport report;                               ///< what report.json says
+  std::vector<std::filesystem::path> written;     ///< final paths of the outputs
+};
+
+/// Runs the whole job. Outputs are written to temporaries and renamed only when everything
+/// succeeded: a failed run leaves no output. Throws IoError, InvalidInput (incl.
+/// CoverageError), ProjectionError with messages that name the file and the problem.
+/// `diagnostics` collects data defects; `progress` is told each stage.
+[[nodiscard]] BuildResult build(const BuildOptions& options, Diagnostics& diagnostics,
+                                const ProgressFn& progress = {});
+
+/// "sf-potrero" for "…/sf-potrero.osm.gz" (all of .osm, .osm.gz, .osm.bz2, .osm.pbf, .pbf).
+[[nodiscard]] std::string default_name(const std::filesystem::path& osm_path);
+
+}  // namespace relief

@@ -1,0 +1,63 @@
+#pragma once
+// Elevation assignment (the seed paper's Algorithm 1): every road sampled every `spacing_m`
+// along its centreline plus at every OSM node, each sample's height taken from the DEM.
+
+#include <cstdint>
+#include <vector>
+
+#include "relief/core/diagnostics.h"
+#include "relief/roads/road_network.h"
+#include "relief/terrain/dem_sampler.h"
+
+namespace relief {
+
+/// What to do with samples where the DEM has no valid height (a void with no valid corner).
+enum class NodataFill {
+  interpolate,  ///< linear along the road between the nearest valid samples (ends: nearest valid,
+                ///< or the height of the junction from the other roads there)
+  error,        ///< refuse: throw InvalidInput naming the first road with a void
+};
+[[nodiscard]] std::optional<NodataFill> parse_nodata_fill(std::string_view text);
+[[nodiscard]] std::string_view to_string(NodataFill fill);
+
+struct SamplingOptions {
+  double spacing_m = 1.0;  ///< > 0
+  NodataFill nodata_fill = NodataFill::interpolate;
+  /// Accept roads partly or wholly outside every DEM (filled like voids; roads with no height
+  /// at all are marked has_height = false). Without it, any uncovered sample is a CoverageError.
+  bool allow_partial = false;
+};
+
+/// Heights along one road. All vectors have one entry per sample.
+struct RoadProfile {
+  std::vector<double> s;             ///< arc length from the road's start (m), s[0] = 0
+  std::vector<Vec2> xy;              ///< local frame
+  std::vector<double> z;             ///< metres
+  std::vector<std::uint8_t> at_node; ///< 1 where the sample is an OSM node of the road
+  std::vector<std::uint8_t> filled;  ///< 1 where the DEM had no height and z was filled
+  bool has_height = true;            ///< false: no height could be found for any sample
+
+  [[nodiscard]] std::size_t size() const { return s.size(); }
+};
+
+struct ElevationSamples {
+  std::vector<RoadProfile> profiles;  ///< parallel to RoadNetwork::roads
+  std::size_t samples = 0;
+  std::size_t void_samples = 0;       ///< inside the DEM extent but nodata (filled)
+  std::size_t uncovered_samples = 0;  ///< outside every DEM (filled, only with allow_partial)
+  std::size_t roads_without_height = 0;
+};
+
+/// Stations along a road: every spacing_m plus every vertex (a 100 m straight road at 1 m
+/// spacing gives 101 samples).
+[[nodiscard]] RoadProfile make_stations(const Road& road, double spacing_m);
+
+/// Samples every road. Throws CoverageError when samples fall outside every DEM and
+/// !allow_partial (the message gives the uncovered share and a location); InvalidInput under
+/// NodataFill::error when a sample is a void. Voids and fills are reported to `diagnostics`
+/// ("elevation.void", "elevation.uncovered", "elevation.road_without_height").
+[[nodiscard]] ElevationSamples sample_elevation(const RoadNetwork& network, const DemSampler& dem,
+                                                const SamplingOptions& options,
+                                                Diagnostics& diagnostics);
+
+}  // namespace relief

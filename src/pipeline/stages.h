@@ -1,0 +1,51 @@
+#pragma once
+// Stages shared by `build` and `info`: timing, reading the OSM file and building the network.
+
+#include <chrono>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "relief/core/diagnostics.h"
+#include "relief/pipeline/build.h"
+#include "relief/roads/road_network.h"
+
+namespace relief {
+
+/// Runs named stages, reports them to the progress callback and records their wall time.
+class StageTimer {
+ public:
+  explicit StageTimer(ProgressFn progress) : progress_(std::move(progress)) {}
+
+  template <typename F>
+  auto run(const std::string& stage, F&& f) {
+    if (progress_) progress_(stage, 0.0);
+    const auto t0 = std::chrono::steady_clock::now();
+    auto value = f();
+    const std::chrono::duration<double> dt = std::chrono::steady_clock::now() - t0;
+    timings_.emplace_back(stage, dt.count());
+    if (progress_) progress_(stage, 1.0);
+    return value;
+  }
+
+  [[nodiscard]] const std::vector<std::pair<std::string, double>>& timings() const { return timings_; }
+
+ private:
+  ProgressFn progress_;
+  std::vector<std::pair<std::string, double>> timings_;
+};
+
+struct LoadedNetwork {
+  OsmRoads osm;
+  RoadNetwork network;
+};
+
+/// Reads the OSM file, picks the frame (options.crs or the UTM zone of the roads' centre) and
+/// builds the network.
+[[nodiscard]] LoadedNetwork load_network(const BuildOptions& options, Diagnostics& diagnostics,
+                                         StageTimer& timer);
+
+/// Bounding box of every road point (local frame).
+[[nodiscard]] Aabb2 network_bounds(const RoadNetwork& network);
+
+}  // namespace relief

@@ -1,0 +1,19 @@
+#pragma once
+// Sub-commands of the relief CLI. Each registers its options on the parent app and returns a
+// runner that is called after parsing; runners return the process exit code.
+
+#include <CLI/CLI.hpp>
+
+#include <functional>
+
+namespace relief::cli {
+
+/// Documented exit codes.
+enum ExitCode : int { kOk = 0, kInternalError = 1, kUsage = 2, kBadInput = 3 };
+
+using Runner = std::function<int()>;
+
+Runner add_build_command(CLI::App& app);
+Runner add_info_command(CLI::App& app);
+
+}  // namespace relief::cli
