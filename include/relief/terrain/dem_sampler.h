@@ -30,21 +30,42 @@ struct DemOptions {
 /// Mosaic rule: rasters are tried in the order given; the first one that yields a valid height
 /// at a point wins (a void in the first falls through to the next).
 ///
-/// Interpolation between cell centres:
+/// Interpolation between cell centres, in the raster's own index space (fractional pixel
+/// coordinates; for a geographic raster that is bilinear in lon/lat):
 /// - bilinear: weights of the four surrounding cell centres; nodata corners are dropped and the
-///   remaining weights renormalised; no valid corner -> no height.
+///   remaining weights renormalised; no valid corner -> no height. (A point exactly at the
+///   centre of a void cell has no height: its valid neighbours all have weight 0.)
 /// - idw: the seed paper's inverse-distance weighting of the same four cells, weight 1/d^2
-///   (d to each cell centre, exact hit returns that cell).
+///   (d to each cell centre in the raster's CRS units, degrees for a geographic raster; an
+///   exact hit on a valid cell returns that cell).
 /// - nearest: the cell containing the point.
 /// Within half a pixel of the raster border, the border cells are used (clamped). Outside the
-/// raster: no height.
+/// raster: no height. Heights are band values * scale + offset, converted to metres; the band's
+/// nodata value and NaN are voids.
+///
+/// Only `area` + margin_m (+ 2 pixels) of each raster is read: a point farther out may have no
+/// height even where a raster covers it. Inside that area, frame -> raster CRS coordinates come
+/// from a grid of PROJ-transformed nodes interpolated bilinearly, kept only when it agrees with
+/// PROJ to 1e-4 pixel at every cell centre (1 mm on a 10 m DEM); other points go through PROJ.
+///
+/// Queries are const but share PROJ state: use one DemSampler per thread.
 class DemSampler {
  public:
-  /// Opens every raster in `paths` and reads the part covering `area` (local frame) plus
-  /// options.margin_m. Throws IoError (missing/unreadable file: the message names it),
-  /// InvalidInput (no georeferencing, a raster that is all nodata in the area), ProjectionError.
-  /// Reports a warning to `diagnostics` when a more accurate datum transformation needs a grid
-  /// that is not installed.
+  /// Opens every raster in `paths` (any GDAL path, /vsizip/... included) and reads the part
+  /// covering `area` (local frame) plus options.margin_m. A raster that does not reach the area
+  /// or is all nodata there contributes nothing. Throws
+  /// - IoError: a missing or unreadable file ("cannot open DEM '<path>': <GDAL's reason>");
+  /// - InvalidInput: a readable file that is not a raster GDAL knows (a text file named .tif),
+  ///   no geotransform, no CRS, a rotated/sheared geotransform, a band unit type relief does not
+  ///   know (state options.unit), no path, an empty area, margin_m < 0; and when no raster has a
+  ///   valid height over the area because they are all nodata there ("... is all nodata over
+  ///   the roads' area");
+  /// - CoverageError (uncovered_percent() == 100) when no raster intersects the area at all
+  ///   (the message gives the DEM extents and the area in lon/lat);
+  /// - ProjectionError: a CRS PROJ does not know, no transformation to a raster's CRS.
+  /// Reports a warning "dem.datum_grid_missing" to `diagnostics` when a more accurate datum
+  /// transformation needs a grid that is not installed (naming the grid and the accuracy of
+  /// the operation used instead).
   DemSampler(const std::vector<std::string>& paths, const GeoFrame& frame, const Aabb2& area,
              const DemOptions& options = {}, Diagnostics* diagnostics = nullptr);
   ~DemSampler();
@@ -53,15 +74,19 @@ class DemSampler {
 
   /// Height at one point, or nullopt where no raster has a valid value.
   [[nodiscard]] std::optional<double> height_at(const Vec2& local) const;
-  /// Heights at many points (much faster: one PROJ call per raster). out.size() == points.size().
+  /// Heights at many points (much faster than one by one). out.size() == points.size(), else
+  /// InvalidInput. Non-finite points get no height.
   void heights_at(std::span<const Vec2> points, std::span<std::optional<double>> out) const;
   /// Gradient dz/dx, dz/dy (dimensionless) of the interpolated surface at a point, by central
-  /// differences over `step_m`; nullopt where any of the four probes has no height.
+  /// differences over `step_m` (> 0, else InvalidInput); nullopt where any of the four probes
+  /// has no height.
   [[nodiscard]] std::optional<Vec2> gradient_at(const Vec2& local, double step_m = 0.5) const;
 
+  /// Every raster given, in order, with the transformation used for it.
   [[nodiscard]] const std::vector<DemInfo>& sources() const;
   [[nodiscard]] Interpolation interpolation() const;
-  /// Area (local frame) covered by the union of the rasters' extents (bounding box).
+  /// Area (local frame) covered by the union of the extents of the rasters that contribute
+  /// heights (bounding box of their edges transformed back to the frame).
   [[nodiscard]] Aabb2 coverage_bounds() const;
 
  private:
@@ -69,7 +94,8 @@ class DemSampler {
   std::unique_ptr<Impl> impl_;
 };
 
-/// Opens a raster and reports what relief would use, without reading its pixels.
+/// Opens a raster and reports what relief would use, without reading its pixels (the
+/// transform_* and missing_grids fields stay empty: they depend on a frame).
 /// Throws IoError / InvalidInput like DemSampler.
 [[nodiscard]] DemInfo inspect_dem(const std::string& path, const DemOptions& options = {});
 

@@ -15,7 +15,8 @@ enum class VerticalUnit { metre, foot, us_survey_foot };
 [[nodiscard]] double metres_per_unit(VerticalUnit unit);
 /// "m", "ft", "us-ft".
 [[nodiscard]] std::string to_string(VerticalUnit unit);
-/// Parses "m", "metre", "meter", "ft", "foot", "feet", "us-ft", "us_survey_foot" (case-insensitive).
+/// Parses "m", "metre", "meter", "ft", "foot", "feet", "us-ft", "us_survey_foot" (case-insensitive;
+/// also plurals, "US survey foot" and "ftUS" as GDAL may report them). nullopt otherwise.
 [[nodiscard]] std::optional<VerticalUnit> parse_vertical_unit(std::string_view text);
 
 enum class Interpolation { bilinear, idw, nearest };
@@ -25,22 +26,24 @@ enum class Interpolation { bilinear, idw, nearest };
 /// What relief learned about one raster when opening it.
 struct DemInfo {
   std::string path;
-  std::string crs;             ///< "EPSG:4269" or the CRS name
-  std::string crs_wkt;         ///< full WKT as GDAL reports it
-  int width = 0;               ///< pixels
-  int height = 0;              ///< pixels
-  Vec2 pixel_size{0.0, 0.0};   ///< in CRS units (degrees or metres), both positive
-  Aabb2 extent;                ///< raster extent in its own CRS (x = lon/easting)
+  std::string crs;                        ///< "EPSG:4269" or the CRS name
+  std::string crs_wkt;                    ///< full WKT as GDAL reports it
+  int width = 0;                          ///< pixels
+  int height = 0;                         ///< pixels
+  Vec2 pixel_size{0.0, 0.0};              ///< in CRS units (degrees or metres), both positive
+  Aabb2 extent;                           ///< raster extent in its own CRS (x = lon/easting)
   std::optional<LonLatBox> extent_wgs84;  ///< the same, in WGS84 degrees
   VerticalUnit unit = VerticalUnit::metre;
-  bool unit_from_metadata = false;  ///< false: the raster said nothing and metres were assumed, or the user stated it
+  /// false: the raster said nothing and metres were assumed, or the user stated it.
+  bool unit_from_metadata = false;
   bool unit_stated_by_user = false;
-  std::optional<double> nodata;      ///< raw nodata value of band 1
-  double scale = 1.0;                ///< band scale (applied before the unit)
-  double offset = 0.0;               ///< band offset
-  std::string transform_name;        ///< PROJ operation used from the local frame to this CRS
+  std::optional<double> nodata;  ///< raw nodata value of band 1
+  double scale = 1.0;            ///< band scale (applied before the unit)
+  double offset = 0.0;           ///< band offset
+  /// PROJ operation used from the local frame to this CRS (set by DemSampler).
+  std::string transform_name;
   std::optional<double> transform_accuracy_m;
-  std::string missing_grids;         ///< grids of a more accurate operation that are not installed
+  std::string missing_grids;  ///< grids of a more accurate operation that are not installed
 };
 
 }  // namespace relief

@@ -15,15 +15,15 @@ namespace relief {
 /// y in [y0 - (row+1)*dy, y0 - row*dy]; its value applies at the cell centre.
 struct DemGrid {
   std::string crs = "EPSG:32610";
-  double x0 = 0.0;   ///< west edge (CRS units)
-  double y0 = 0.0;   ///< north edge (CRS units)
-  double dx = 1.0;   ///< pixel width, > 0
-  double dy = 1.0;   ///< pixel height, > 0
+  double x0 = 0.0;  ///< west edge (CRS units)
+  double y0 = 0.0;  ///< north edge (CRS units)
+  double dx = 1.0;  ///< pixel width, > 0
+  double dy = 1.0;  ///< pixel height, > 0
   int width = 0;
   int height = 0;
-  std::vector<double> values;        ///< row-major, row 0 is the northernmost
-  std::optional<double> nodata;      ///< written as the band's nodata value
-  std::string unit_type;             ///< band unit type ("m", "ft", or empty: unstated)
+  std::vector<double> values;    ///< row-major, row 0 is the northernmost
+  std::optional<double> nodata;  ///< written as the band's nodata value
+  std::string unit_type;         ///< band unit type ("m", "ft", or empty: unstated)
 
   /// Centre of cell (col, row) in CRS units.
   [[nodiscard]] Vec2 cell_centre(int col, int row) const {
@@ -31,12 +31,16 @@ struct DemGrid {
   }
 };
 
-/// Grid whose value at each cell centre is f(x, y) (CRS units).
+/// Grid whose value at each cell centre is f(x, y) (CRS units). Throws InvalidInput unless
+/// dx, dy, width and height are > 0.
 [[nodiscard]] DemGrid make_dem_grid(std::string crs, double x0, double y0, double dx, double dy,
                                     int width, int height,
                                     const std::function<double(double, double)>& f);
 
-/// Writes `grid` as a Float64 GeoTIFF (atomically). Throws IoError / ProjectionError.
+/// Writes `grid` as a Float64 GeoTIFF (atomically: to `path`.tmp-N.tif, then renamed; the
+/// temporary is removed on failure). Throws IoError (cannot create, write or rename),
+/// ProjectionError (grid.crs unknown), InvalidInput (values.size() != width * height, or a
+/// non-positive size).
 void write_geotiff(const std::string& path, const DemGrid& grid);
 
 }  // namespace relief
