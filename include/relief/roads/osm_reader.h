@@ -18,7 +18,9 @@ struct OsmReadOptions {
   /// Also build footways, paths, cycleways, steps, pedestrian streets, tracks, bridleways.
   bool include_non_motor = false;
   /// Clip to this box (WGS84): ways are cut where they cross its edge, with a new node at the
-  /// crossing; the parts outside are dropped.
+  /// crossing; the parts outside are dropped and each inside run becomes its own OsmWay with
+  /// the way's id. A crossing node gets a negative synthetic id (below every node id of the
+  /// file), the same for every way through the same segment, so clipped ways stay connected.
   std::optional<LonLatBox> bbox;
 };
 
@@ -44,7 +46,11 @@ struct OsmRoads {
 
 /// Reads `path`. Ways whose nodes are missing from the file are split at the missing nodes and
 /// the parts with two or more nodes kept, each missing node reported to `diagnostics`
-/// ("osm.missing_node"). Throws IoError (missing/unreadable file) and InvalidInput (malformed or
+/// ("osm.missing_node"). Ways with fewer than two distinct nodes are skipped
+/// ("osm.degenerate_way"); tag values that fall back to defaults are reported once per way
+/// ("osm.tag_value"). Consecutive repeats of a node in a way are collapsed.
+/// The format follows the extension (.osm, .osm.gz, .osm.bz2, .osm.pbf).
+/// Throws IoError (missing/unreadable file) and InvalidInput (unknown extension, malformed or
 /// truncated file, no road ways at all); messages name the file.
 [[nodiscard]] OsmRoads read_osm(const std::filesystem::path& path, const OsmReadOptions& options,
                                 Diagnostics& diagnostics);

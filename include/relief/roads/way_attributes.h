@@ -20,11 +20,11 @@ struct WayAttributes {
   double lane_width_m = 3.0;      ///< from `width` / total lanes, else the class default
   bool width_tagged = false;
   bool bridge = false;            ///< bridge=* other than "no"
-  bool tunnel = false;            ///< tunnel=* other than "no"
+  bool tunnel = false;            ///< tunnel=* other than "no" (building_passage, culvert count)
   int layer = 0;
   std::optional<double> maxspeed_mps;  ///< from `maxspeed` ("25 mph", "50", "50 km/h")
   std::string name;
-  bool roundabout = false;        ///< junction=roundabout (or circular)
+  bool roundabout = false;        ///< junction=roundabout (or circular); implies oneway
 
   friend bool operator==(const WayAttributes&, const WayAttributes&) = default;
 };
@@ -37,7 +37,15 @@ struct ParsedWay {
 
 /// Interprets the tags of a way that has a `highway` tag relief models. `tags` maps key -> value.
 /// Returns nullopt when the highway value is not modelled. Unparseable values (lanes=foo,
-/// width=wide) fall back to defaults; `warnings` receives one short text per such value.
+/// width=wide) fall back to defaults; `warnings` receives one short text per such value
+/// (appended, "; "-separated).
+/// - oneway: yes/true/1; -1/reverse (reversed = true); no/false/0. Absent: implied by
+///   highway=motorway and junction=roundabout|circular.
+/// - lanes: lanes:forward / lanes:backward (swapped for oneway=-1; a missing one is `lanes`
+///   minus the other), else `lanes` (one-way: all forward; two-way: forward (n+1)/2, backward
+///   n/2, at least 1 each), else default_lanes_per_direction (one-ways: 0 backward).
+/// - lane_width_m: `width` / total lanes when that gives 2..6 m, else the class default.
+/// - bridge / tunnel: any value but "no"; layer: integer, else 0 with a warning.
 [[nodiscard]] std::optional<ParsedWay> parse_way_tags(
     const std::map<std::string, std::string, std::less<>>& tags, std::string* warnings = nullptr);
 
