@@ -5,6 +5,7 @@
 #include <cmath>
 #include <iomanip>
 
+#include "relief/core/number_format.h"
 #include "relief/geometry/crs_transform.h"
 #include "relief/geometry/polyline.h"
 #include "relief/roads/validation.h"
@@ -28,6 +29,7 @@ void write_geojson(std::ostream& out, const RoadNetwork& network,
       << "],\"proj\":" << quoted(network.frame.proj_string()) << "},\n\"features\":[";
   bool first = true;
   std::vector<Vec2> lonlat;
+  std::string coords;
   for (std::size_t r = 0; r < network.roads.size(); ++r) {
     const Road& road = network.roads[r];
     const RoadProfile& p = profiles[r];
@@ -59,10 +61,17 @@ void write_geojson(std::ostream& out, const RoadNetwork& network,
         << ",\"end_junction\":" << road.end_junction << ",\"osm_way_ids\":[";
     for (std::size_t i = 0; i < road.osm_way_ids.size(); ++i) out << (i ? "," : "") << road.osm_way_ids[i];
     out << "]},\"geometry\":{\"type\":\"LineString\",\"coordinates\":[";
+    coords.clear();
     for (std::size_t i = 0; i < lonlat.size(); ++i) {
-      out << (i ? "," : "") << '[' << std::setprecision(7) << lonlat[i].x() << ',' << lonlat[i].y()
-          << ',' << std::setprecision(3) << p.z[i] << ']';
+      coords += i ? ",[" : "[";
+      append_fixed(coords, lonlat[i].x(), 7);
+      coords += ',';
+      append_fixed(coords, lonlat[i].y(), 7);
+      coords += ',';
+      append_fixed(coords, p.z[i], 3);
+      coords += ']';
     }
+    out << coords;
     out << "]}}";
   }
   out << "\n]}\n";

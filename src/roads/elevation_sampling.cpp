@@ -61,6 +61,16 @@ std::string_view to_string(NodataFill fill) {
   return fill == NodataFill::interpolate ? "interpolate" : "error";
 }
 
+double height_at_station(const RoadProfile& p, double s) {
+  if (p.s.empty()) throw InvalidInput("height_at_station: empty profile");
+  if (s <= p.s.front()) return p.z.front();
+  if (s >= p.s.back()) return p.z.back();
+  const auto it = std::upper_bound(p.s.begin(), p.s.end(), s);
+  const auto i = static_cast<std::size_t>(it - p.s.begin());
+  const double t = (s - p.s[i - 1]) / (p.s[i] - p.s[i - 1]);
+  return p.z[i - 1] + t * (p.z[i] - p.z[i - 1]);
+}
+
 RoadProfile make_stations(const Road& road, double spacing_m) {
   const std::vector<double> cumulative = cumulative_length(road.points);
   RoadProfile p;

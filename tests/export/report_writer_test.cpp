@@ -1,1 +1,44 @@
+#include "relief/export/report_writer.h"
+
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+namespace relief {
+namespace {
+
+TEST(ReportWriter, CarriesTheDocumentedKeys) {
+  RunReport r;
+  r.name = "t";
+  r.frame = GeoFrame("EPSG:32610", Vec2(552000, 4178600));
+  r.network.roads = 3;
+  r.network.junctions = 1;
+  r.network.length_km = 0.3;
+  r.heights.vs_dem = ErrorStats{0.01, 0.02, 0.05, 0.0, 200};
+  r.gradient.max_percent = 12.345;
+  r.gradient.by_class["residential"] = GradeClassStats{0.3, 15.0, 100.0, 12.345, 11.0};
+  r.junctions.max_gap_m = 0.0;
+  r.timings_s = {{"read OSM", 0.25}, {"build network", 0.5}};
+  Diagnostics d;
+  d.report(Severity::warning, "osm.missing_node", "way 1 misses node 2");
+  r.diagnostics = &d;
+  const auto j = nlohmann::json::parse(report_json(r));
+  EXPECT_EQ(j["network"]["roads"], 3);
+  EXPECT_EQ(j["network"]["junctions"], 1);
+  EXPECT_DOUBLE_EQ(j["network"]["length_km"].get<double>(), 0.3);
+  EXPECT_DOUBLE_EQ(j["elevation"]["vs_dem"]["rmse_m"].get<double>(), 0.02);
+  EXPECT_EQ(j["elevation"]["vs_dem"]["n"], 200);
+  EXPECT_TRUE(j["elevation"]["vs_reference"].is_null());
+  EXPECT_DOUBLE_EQ(j["gradient"]["max_percent"].get<double>(), 12.35);
+  EXPECT_DOUBLE_EQ(j["gradient"]["by_class"]["residential"]["limit_percent"].get<double>(), 15.0);
+  EXPECT_TRUE(j["gradient"].contains("compliance_percent"));
+  EXPECT_TRUE(j["gradient"].contains("p99_percent"));
+  EXPECT_DOUBLE_EQ(j["junctions"]["max_gap_m"].get<double>(), 0.0);
+  EXPECT_DOUBLE_EQ(j["timings_s"]["total"].get<double>(), 0.75);
+  EXPECT_EQ(j["diagnostics"]["counts"]["osm.missing_node"], 1);
+  EXPECT_EQ(j["frame"]["crs"], "EPSG:32610");
+  EXPECT_DOUBLE_EQ(j["frame"]["origin"][0].get<double>(), 552000.0);
+  EXPECT_NE(j["attribution"].get<std::string>().find("ODbL"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace relief

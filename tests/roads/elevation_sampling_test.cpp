@@ -1,1 +1,112 @@
+#include "relief/roads/elevation_sampling.h"
+
 #include <gtest/gtest.h>
+
+#include "relief/core/errors.h"
+#include "support/synthetic.h"
+
+namespace relief {
+namespace {
+
+const auto plane = [](double x, double y) { return 50.0 + 0.04 * x - 0.03 * y; };
+
+DemSampler sampler(const std::string& path, const RoadNetwork& net) {
+  Aabb2 area;
+  for (const Road& r : net.roads)
+    for (const Vec2& p : r.points) area.extend(p);
+  return DemSampler({path}, net.frame, area);
+}
+
+TEST(ElevationSampling, StraightHundredMetreRoadGives101Samples) {
+  const RoadNetwork net = test::make_network({{{0, 0}, {100, 0}}});
+  const RoadProfile p = make_stations(net.roads[0], 1.0);
+  ASSERT_EQ(p.size(), 101u);
+  EXPECT_EQ(p.at_node.front(), 1);
+  EXPECT_EQ(p.at_node.back(), 1);
+  EXPECT_EQ(std::count(p.at_node.begin(), p.at_node.end(), 1), 2);
+  EXPECT_NEAR(p.xy[37].x(), 37.0, 1e-12);
+}
+
+TEST(ElevationSampling, OsmNodesBetweenStationsAreSampledToo) {
+  const RoadNetwork net = test::make_network({{{0, 0}, {50.5, 0}, {100, 0}}});
+  const RoadProfile p = make_stations(net.roads[0], 1.0);
+  ASSERT_EQ(p.size(), 102u);
+  EXPECT_NEAR(p.s[51], 50.5, 1e-12);
+  EXPECT_EQ(p.at_node[51], 1);
+}
+
+TEST(ElevationSampling, HeightsOnAPlaneAreExact) {
+  const std::string dem = test::write_local_dem("es_plane", 300, 10, plane);
+  const RoadNetwork net = test::make_network({{{-100, -50}, {120, 80}}, {{120, 80}, {120, -90}}});
+  Diagnostics d;
+  const ElevationSamples s = sample_elevation(net, sampler(dem, net), {}, d);
+  ASSERT_EQ(s.profiles.size(), 2u);
+  EXPECT_EQ(s.void_samples, 0u);
+  EXPECT_EQ(d.total(), 0u);
+  for (const RoadProfile& p : s.profiles) {
+    for (std::size_t i = 0; i < p.size(); ++i) EXPECT_NEAR(p.z[i], plane(p.xy[i].x(), p.xy[i].y()), 1e-6);
+  }
+}
+
+TEST(ElevationSampling, VoidsAreFilledAlongTheRoadAndReported) {
+  // A nodata band 60 m wide across the road (x in [-30, 30]).
+  const auto holed = [](double x, double y) { return std::abs(x) < 30.0 ? -9999.0 : plane(x, y); };
+  const std::string dem = test::write_local_dem("es_void", 300, 10, holed, -9999.0);
+  const RoadNetwork net = test::make_network({{{-150, 0}, {150, 0}}});
+  Diagnostics d;
+  const ElevationSamples s = sample_elevation(net, sampler(dem, net), {}, d);
+  EXPECT_GT(s.void_samples, 40u);
+  EXPECT_EQ(d.count("elevation.void"), 1u);
+  const RoadProfile& p = s.profiles[0];
+  // Away from the void the DEM's plane; within a cell of its edge the renormalised bilinear
+  // value of the valid corners; inside, a straight line between the last valid samples.
+  std::size_t first_filled = p.size(), last_filled = 0;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    if (std::abs(p.xy[i].x()) >= 35.0) EXPECT_NEAR(p.z[i], plane(p.xy[i].x(), 0.0), 1e-6) << p.s[i];
+    if (p.filled[i]) {
+      first_filled = std::min(first_filled, i);
+      last_filled = i;
+    }
+  }
+  ASSERT_LT(first_filled, last_filled);
+  const std::size_t a = first_filled - 1, b = last_filled + 1;
+  for (std::size_t i = first_filled; i <= last_filled; ++i) {
+    EXPECT_EQ(p.filled[i], 1);
+    const double t = (p.s[i] - p.s[a]) / (p.s[b] - p.s[a]);
+    EXPECT_NEAR(p.z[i], p.z[a] + t * (p.z[b] - p.z[a]), 1e-9);
+  }
+
+  SamplingOptions strict;
+  strict.nodata_fill = NodataFill::error;
+  EXPECT_THROW((void)sample_elevation(net, sampler(dem, net), strict, d), InvalidInput);
+}
+
+TEST(ElevationSampling, RoadsOutsideTheDemAreACoverageError) {
+  const std::string dem = test::write_local_dem("es_small", 100, 10, plane);
+  const RoadNetwork net = test::make_network({{{0, 0}, {300, 0}}});
+  Diagnostics d;
+  const DemSampler dem_sampler({dem}, net.frame, Aabb2{Vec2(-100, -100), Vec2(100, 100)});
+  try {
+    (void)sample_elevation(net, dem_sampler, {}, d);
+    FAIL() << "expected CoverageError";
+  } catch (const CoverageError& e) {
+    // 200 of the 301 samples lie beyond x = 100 (give or take the border cell).
+    EXPECT_NEAR(e.uncovered_percent(), 100.0 * 200.0 / 301.0, 2.0);
+    EXPECT_NE(std::string(e.what()).find("--allow-partial"), std::string::npos);
+  }
+  SamplingOptions partial;
+  partial.allow_partial = true;
+  const ElevationSamples s = sample_elevation(net, dem_sampler, partial, d);
+  EXPECT_GT(s.uncovered_samples, 150u);
+  EXPECT_EQ(d.count("elevation.uncovered"), 1u);
+  EXPECT_TRUE(s.profiles[0].has_height);
+}
+
+TEST(ElevationSampling, ParseFillPolicy) {
+  EXPECT_EQ(parse_nodata_fill("interpolate"), NodataFill::interpolate);
+  EXPECT_EQ(parse_nodata_fill("error"), NodataFill::error);
+  EXPECT_FALSE(parse_nodata_fill("zero"));
+}
+
+}  // namespace
+}  // namespace relief

@@ -52,6 +52,9 @@ struct ElevationSamples {
 /// spacing gives 101 samples).
 [[nodiscard]] RoadProfile make_stations(const Road& road, double spacing_m);
 
+/// Height at arc length `s` along a profile, linear between stations (clamped to the ends).
+[[nodiscard]] double height_at_station(const RoadProfile& profile, double s);
+
 /// Samples every road. Throws CoverageError when samples fall outside every DEM and
 /// !allow_partial (the message gives the uncovered share and a location); InvalidInput under
 /// NodataFill::error when a sample is a void. Voids and fills are reported to `diagnostics`

@@ -1,0 +1,132 @@
+#!/usr/bin/env bash
+# End-to-end checks of the relief CLI: a good build, and every bad input with its documented
+# exit code (0 done, 1 internal, 2 usage, 3 bad input), a message that names the file and the
+# problem, and no output files left behind.
+set -u
+: "${RELIEF:?path of the relief binary}" "${RELIEF_SOURCE_DIR:?}" "${RELIEF_TMP:?}"
+rm -rf "$RELIEF_TMP" && mkdir -p "$RELIEF_TMP"
+fix="$RELIEF_SOURCE_DIR/fixtures/hill"
+failures=0
+passed=0
+
+check() {  # check NAME CONDITION-COMMAND...
+  local name=$1; shift
+  if "$@"; then passed=$((passed + 1)); else echo "FAIL: $name"; failures=$((failures + 1)); fi
+}
+
+# run EXPECTED_CODE OUTDIR ARGS... : runs relief, keeps stderr in $RELIEF_TMP/err
+run() {
+  local expected=$1 out=$2; shift 2
+  "$RELIEF" "$@" >"$RELIEF_TMP/stdout" 2>"$RELIEF_TMP/err"
+  local code=$?
+  if [ "$code" -ne "$expected" ]; then
+    echo "exit $code, expected $expected, for: relief $*"; cat "$RELIEF_TMP/err"; return 1
+  fi
+}
+no_outputs() { [ ! -d "$1" ] || [ -z "$(ls -A "$1")" ]; }
+stderr_has() { grep -q -- "$1" "$RELIEF_TMP/err" || { echo "stderr lacks '$1':"; cat "$RELIEF_TMP/err"; return 1; }; }
+
+# A good build of the synthetic plane: z rises 6 % east and 10 % north.
+out="$RELIEF_TMP/good"
+check "fixture builds" run 0 "$out" build --osm "$fix/hill.osm" --dem "$fix/hill_dem.asc" --out "$out" --quiet
+check "geojson written" test -s "$out/hill.geojson"
+check "report written" test -s "$out/report.json"
+check "report figures" python3 - "$out/report.json" <<'PY'
+import json, sys
+r = json.load(open(sys.argv[1]))
+g = r["gradient"]
+assert abs(g["max_percent"] - 10.0) < 0.15, g            # north-south avenues on a 10 % plane
+assert abs(g["by_class"]["primary"]["max_percent"] - 6.0) < 0.15, g  # east-west street, 6 %
+assert r["junctions"]["max_gap_m"] < 1e-6, r["junctions"]
+assert r["elevation"]["vs_dem"]["max_m"] < 1e-3, r["elevation"]
+assert r["network"]["roads"] > 0 and r["network"]["bridges"] == 1, r["network"]
+assert "OpenStreetMap" in r["attribution"]
+PY
+check "no temporaries" bash -c "! ls '$out' | grep -q tmp"
+
+# Bad usage: exit 2.
+check "unknown option" run 2 "" build --osm "$fix/hill.osm" --dem "$fix/hill_dem.asc" --out "$RELIEF_TMP/x" --frobnicate
+check "bad --interp" run 2 "" build --osm "$fix/hill.osm" --dem "$fix/hill_dem.asc" --out "$RELIEF_TMP/x" --interp cubic
+check "bad --bbox" run 2 "" build --osm "$fix/hill.osm" --dem "$fix/hill_dem.asc" --out "$RELIEF_TMP/x" --bbox 1,2,3
+check "no subcommand" run 2 ""
+check "--help is exit 0" run 0 "" build --help
+
+# Missing OSM file: exit 3, names the file, no outputs.
+out="$RELIEF_TMP/missing"
+check "missing osm" run 3 "$out" build --osm "$RELIEF_TMP/nope.osm" --dem "$fix/hill_dem.asc" --out "$out"
+check "missing osm message" stderr_has "nope.osm"
+check "missing osm no outputs" no_outputs "$out"
+check "missing dem" run 3 "$out" build --osm "$fix/hill.osm" --dem "$RELIEF_TMP/nope.tif" --out "$out"
+check "missing dem message" stderr_has "nope.tif"
+check "missing dem no outputs" no_outputs "$out"
+
+# Truncated OSM (gzip cut in half): exit 3, message, no outputs.
+gzip -c "$fix/hill.osm" > "$RELIEF_TMP/full.osm.gz"
+head -c $(( $(stat -c %s "$RELIEF_TMP/full.osm.gz") / 2 )) "$RELIEF_TMP/full.osm.gz" > "$RELIEF_TMP/truncated.osm.gz"
+out="$RELIEF_TMP/truncated"
+check "truncated osm" run 3 "$out" build --osm "$RELIEF_TMP/truncated.osm.gz" --dem "$fix/hill_dem.asc" --out "$out"
+check "truncated osm message" stderr_has "truncated.osm.gz"
+check "truncated osm no outputs" no_outputs "$out"
+
+# A way whose node is missing: reported and skipped, not fatal.
+sed "s|<nd ref='1011'/>|<nd ref='99999'/>|" "$fix/hill.osm" > "$RELIEF_TMP/missing_node.osm"
+out="$RELIEF_TMP/missing_node"
+check "missing node is not fatal" run 0 "$out" build --osm "$RELIEF_TMP/missing_node.osm" --dem "$fix/hill_dem.asc" --out "$out"
+check "missing node reported" stderr_has "osm.missing_node"
+check "missing node in report" grep -q '"osm.missing_node"' "$out/report.json"
+
+# A DEM that does not cover the roads (the fixture DEM moved 1 degree west): exit 3.
+gdal_translate -q -a_ullr -123.405 37.758 -123.393 37.748 "$fix/hill_dem.asc" "$RELIEF_TMP/elsewhere.tif"
+out="$RELIEF_TMP/uncovered"
+check "uncovered dem" run 3 "$out" build --osm "$fix/hill.osm" --dem "$RELIEF_TMP/elsewhere.tif" --out "$out"
+check "uncovered message" stderr_has "does not cover"
+check "uncovered no outputs" no_outputs "$out"
+
+# A DEM that covers only part of the roads: exit 3 unless --allow-partial.
+gdal_translate -q -srcwin 0 0 30 50 "$fix/hill_dem.asc" "$RELIEF_TMP/half.tif"
+out="$RELIEF_TMP/partial"
+check "partial dem refused" run 3 "$out" build --osm "$fix/hill.osm" --dem "$RELIEF_TMP/half.tif" --out "$out"
+check "partial dem says how much" stderr_has "%"
+check "partial dem no outputs" no_outputs "$out"
+check "partial dem allowed" run 0 "$out" build --osm "$fix/hill.osm" --dem "$RELIEF_TMP/half.tif" --out "$out" --allow-partial
+check "partial dem reported" grep -q '"elevation.uncovered"' "$out/report.json"
+
+# A DEM that is all nodata: exit 3.
+gdal_calc.py --quiet -A "$fix/hill_dem.asc" --calc="A*0-9999" --NoDataValue=-9999 --outfile="$RELIEF_TMP/void.tif" >/dev/null 2>&1 \
+  || gdal_translate -q -scale 0 1000 -9999 -9999 -a_nodata -9999 "$fix/hill_dem.asc" "$RELIEF_TMP/void.tif"
+out="$RELIEF_TMP/void"
+check "all-nodata dem" run 3 "$out" build --osm "$fix/hill.osm" --dem "$RELIEF_TMP/void.tif" --out "$out"
+check "all-nodata message" stderr_has "nodata"
+check "all-nodata no outputs" no_outputs "$out"
+
+# An unreadable raster (text with a .tif name): exit 3.
+echo "not a raster" > "$RELIEF_TMP/text.tif"
+out="$RELIEF_TMP/unreadable"
+check "unreadable dem" run 3 "$out" build --osm "$fix/hill.osm" --dem "$RELIEF_TMP/text.tif" --out "$out"
+check "unreadable message" stderr_has "text.tif"
+check "unreadable no outputs" no_outputs "$out"
+
+# A DEM in feet that does not say so: --dem-unit ft gives the same roads as the metre DEM.
+gdal_translate -q -ot Float64 -scale 0 1 0 3.280839895 "$fix/hill_dem.asc" "$RELIEF_TMP/feet.tif"
+out="$RELIEF_TMP/feet"
+check "feet dem with unit" run 0 "$out" build --osm "$fix/hill.osm" --dem "$RELIEF_TMP/feet.tif" --dem-unit ft --out "$out" --quiet
+check "feet dem grades" python3 - "$out/report.json" <<'PY'
+import json, sys
+r = json.load(open(sys.argv[1]))
+assert abs(r["gradient"]["max_percent"] - 10.0) < 0.15, r["gradient"]
+assert r["inputs"]["dems"][0]["vertical_unit"] == "ft" and r["inputs"]["dems"][0]["unit_source"] == "user"
+PY
+out="$RELIEF_TMP/feet_unstated"
+check "feet dem without unit" run 0 "$out" build --osm "$fix/hill.osm" --dem "$RELIEF_TMP/feet.tif" --out "$out" --quiet
+check "feet dem unstated is 3.28x steeper" python3 - "$out/report.json" <<'PY'
+import json, sys
+r = json.load(open(sys.argv[1]))
+assert abs(r["gradient"]["max_percent"] - 32.81) < 0.5, r["gradient"]
+PY
+
+# info: describes without writing.
+check "info" run 0 "" info --osm "$fix/hill.osm" --dem "$fix/hill_dem.asc"
+check "info coverage" grep -q "100.00 % with height" "$RELIEF_TMP/stdout"
+
+echo "$passed passed, $failures failed"
+[ "$failures" -eq 0 ]

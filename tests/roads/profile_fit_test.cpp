@@ -1,0 +1,168 @@
+#include "relief/roads/profile_fit.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <iostream>
+#include <random>
+
+#include "support/synthetic.h"
+
+namespace relief {
+namespace {
+
+// Raw profiles of every road with z = f(x, y) at 1 m stations.
+std::vector<RoadProfile> drape(const RoadNetwork& net, const std::function<double(const Vec2&)>& f) {
+  std::vector<RoadProfile> out;
+  for (const Road& road : net.roads) {
+    RoadProfile p = make_stations(road, 1.0);
+    for (std::size_t i = 0; i < p.size(); ++i) p.z[i] = f(p.xy[i]);
+    out.push_back(p);
+  }
+  return out;
+}
+
+double max_grade_percent(const std::vector<RoadProfile>& profiles) {
+  double g = 0.0;
+  for (const auto& p : profiles)
+    for (double v : segment_grades_percent(p)) g = std::max(g, v);
+  return g;
+}
+
+WayAttributes with_class(HighwayClass cls) {
+  WayAttributes a;
+  a.highway = cls;
+  return a;
+}
+
+TEST(ProfileFit, NoisyRampIsRecovered) {
+  const RoadNetwork net = test::make_network({{{0, 0}, {500, 0}}});
+  std::mt19937 rng(42);
+  std::normal_distribution<double> noise(0.0, 0.25);
+  const auto truth = [](const Vec2& p) { return 10.0 + 0.05 * p.x(); };
+  auto raw = drape(net, [&](const Vec2& p) { return truth(p) + noise(rng) + 0.3 * std::sin(p.x() / 10.0 * 2 * std::numbers::pi); });
+  Diagnostics d;
+  const ProfileFitResult fit = fit_profiles(net, raw, {}, d);
+  EXPECT_TRUE(fit.converged);
+  double sq = 0.0;
+  const auto& p = fit.profiles[0];
+  for (std::size_t i = 0; i < p.size(); ++i) sq += std::pow(p.z[i] - truth(p.xy[i]), 2);
+  const double rmse = std::sqrt(sq / p.size());
+  EXPECT_LT(rmse, 0.08);
+  // The noise made 1 m grades of tens of percent; the fit is back near the true 5 %.
+  EXPECT_GT(max_grade_percent(raw), 30.0);
+  const std::vector<double> g = segment_grades_percent(p);
+  double worst_inner = 0.0;
+  for (std::size_t i = 20; i + 20 < g.size(); ++i) worst_inner = std::max(worst_inner, std::abs(g[i] - 5.0));
+  std::cout << "noisy ramp: rmse " << rmse << " m, worst inner grade error " << worst_inner << " %, max grade "
+            << max_grade_percent(fit.profiles) << " %, " << fit.iterations << " iterations\n";
+  EXPECT_LT(worst_inner, 1.5);  // white noise of 0.25 m at every metre leaves ~1 % of slope noise
+  EXPECT_NEAR(max_grade_percent(fit.profiles), 5.0, 2.0);  // the free ends are the least certain
+}
+
+TEST(ProfileFit, BumpSteeperThanTheLimitIsCappedUnderDesignAndKeptUnderFidelity) {
+  // A 25 % hill 40 m high on a residential street (limit 15 %).
+  const RoadNetwork net = test::make_network({{{0, 0}, {600, 0}}}, {with_class(HighwayClass::residential)});
+  const auto hill = [](const Vec2& p) {
+    const double x = p.x();
+    if (x < 200) return 0.0;
+    if (x < 360) return 0.25 * (x - 200);
+    if (x < 400) return 40.0;
+    return std::max(0.0, 40.0 - 0.25 * (x - 400));
+  };
+  const auto raw = drape(net, hill);
+  Diagnostics d;
+  ProfileFitOptions design;
+  design.policy = GradePolicy::design;
+  const ProfileFitResult capped = fit_profiles(net, raw, design, d);
+  EXPECT_LE(max_grade_percent(capped.profiles), 15.0 + 1e-4);
+  EXPECT_GT(max_grade_percent(capped.profiles), 14.5);  // moved only as far as needed
+
+  const ProfileFitResult kept = fit_profiles(net, raw, {}, d);
+  EXPECT_GT(max_grade_percent(kept.profiles), 22.0);
+  EXPECT_LE(max_grade_percent(kept.profiles), 35.0 + 1e-4);
+}
+
+TEST(ProfileFit, BridgeOverAValleyStaysASmoothDeck) {
+  // Plateau at 50 m with a V-shaped valley 30 m deep between x = 150 and 350; the middle road
+  // is the bridge.
+  WayAttributes bridge = with_class(HighwayClass::primary);
+  bridge.bridge = true;
+  bridge.layer = 1;
+  const RoadNetwork net = test::make_network({{{0, 0}, {150, 0}}, {{150, 0}, {350, 0}}, {{350, 0}, {500, 0}}},
+                                             {with_class(HighwayClass::primary), bridge, with_class(HighwayClass::primary)});
+  const auto ground = [](const Vec2& p) { return 50.0 - std::max(0.0, 30.0 - 0.3 * std::abs(p.x() - 250.0)); };
+  const auto raw = drape(net, ground);
+  Diagnostics d;
+  const ProfileFitResult fit = fit_profiles(net, raw, {}, d);
+  const RoadProfile& deck = fit.profiles[1];
+  double min_above = 1e9, max_dev = 0.0;
+  for (std::size_t i = 0; i < deck.size(); ++i) {
+    min_above = std::min(min_above, deck.z[i] - ground(deck.xy[i]));
+    max_dev = std::max(max_dev, std::abs(deck.z[i] - 50.0));
+  }
+  EXPECT_GT(deck.z[deck.size() / 2] - ground(deck.xy[deck.size() / 2]), 29.0);  // spans the valley
+  EXPECT_GE(min_above, -0.05);
+  EXPECT_LT(max_dev, 0.1);  // flat between abutments at 50 m
+  EXPECT_LT(max_grade_percent({deck}), 0.5);
+}
+
+TEST(ProfileFit, CrossingLayersKeepTheClearanceAndTheLowerRoadStaysOnTheGround) {
+  WayAttributes upper = with_class(HighwayClass::motorway);
+  upper.bridge = true;
+  upper.layer = 1;
+  // The bridge runs east-west over a north-south street, both on flat ground at 20 m; the
+  // bridge's approaches are ground roads.
+  const RoadNetwork net = test::make_network(
+      {{{-300, 0}, {-60, 0}}, {{-60, 0}, {60, 0}}, {{60, 0}, {300, 0}}, {{0, -200}, {0, 200}}},
+      {with_class(HighwayClass::motorway), upper, with_class(HighwayClass::motorway), with_class(HighwayClass::residential)});
+  const auto raw = drape(net, [](const Vec2&) { return 20.0; });
+  Diagnostics d;
+  const ProfileFitResult fit = fit_profiles(net, raw, {}, d);
+  ASSERT_EQ(fit.separations.size(), 1u);
+  const GradeSeparation& sep = fit.separations[0];
+  EXPECT_EQ(sep.upper_road, 1);
+  EXPECT_EQ(sep.lower_road, 3);
+  EXPECT_NEAR(sep.raw_clearance_m, 0.0, 1e-9);
+  EXPECT_GE(sep.clearance_m, 5.0 - 1e-3);
+  EXPECT_NEAR(height_at_station(fit.profiles[3], sep.s_lower), 20.0, 0.2);  // street stays down
+  EXPECT_LE(max_grade_percent({fit.profiles[0], fit.profiles[1], fit.profiles[2]}), 35.0 + 1e-4);
+}
+
+TEST(ProfileFit, StarJunctionOfFiveRoadsOnASlopeHasNoGapAndNoStep) {
+  std::vector<Polyline2> roads;
+  for (int k = 0; k < 5; ++k) {
+    const double a = 2.0 * std::numbers::pi * k / 5.0;
+    roads.push_back({{0, 0}, {200 * std::cos(a), 200 * std::sin(a)}});
+  }
+  const RoadNetwork net = test::make_network(roads);
+  const auto slope = [](const Vec2& p) { return 30.0 + 0.08 * p.x() + 0.03 * p.y(); };
+  const auto raw = drape(net, slope);
+  Diagnostics d;
+  const ProfileFitResult fit = fit_profiles(net, raw, {}, d);
+  const JunctionGapStats gaps = junction_gaps(net, fit.profiles);
+  EXPECT_EQ(gaps.max_gap_m, 0.0);  // one shared variable: exactly equal
+  const int centre = net.roads[0].start_junction;
+  EXPECT_NEAR(fit.junction_z[centre], 30.0, 0.05);
+  // No step: every road leaves the junction on the plane's own grade along its direction.
+  for (std::size_t r = 0; r < 5; ++r) {
+    const auto& p = fit.profiles[r];
+    const double expected = 100.0 * std::abs(slope(p.xy[1]) - slope(p.xy[0])) / p.s[1];
+    EXPECT_NEAR(segment_grades_percent(p).front(), expected, 0.5) << r;
+  }
+  EXPECT_LT(max_grade_percent(fit.profiles), 8.6);  // the plane's steepest grade is 8.54 %
+}
+
+TEST(ProfileFit, Policies) {
+  EXPECT_EQ(parse_grade_policy("fidelity"), GradePolicy::fidelity);
+  EXPECT_EQ(parse_grade_policy("design"), GradePolicy::design);
+  EXPECT_FALSE(parse_grade_policy("paper"));
+  ProfileFitOptions o;
+  EXPECT_DOUBLE_EQ(grade_limit(o, HighwayClass::motorway), 0.35);
+  o.policy = GradePolicy::design;
+  EXPECT_DOUBLE_EQ(grade_limit(o, HighwayClass::motorway), 0.08);
+  EXPECT_DOUBLE_EQ(grade_limit(o, HighwayClass::tertiary), 0.12);
+}
+
+}  // namespace
+}  // namespace relief
