@@ -24,13 +24,14 @@ wall = [float(open(f"{tmp}/time.{i}").read().split()[0]) for i in range(1, runs 
 rss = [int(open(f"{tmp}/time.{i}").read().split()[1]) for i in range(1, runs + 1)]
 n = reports[0]["network"]
 print(f"relief build, NE set: {n['roads']} roads, {n['intersections']} intersections, "
-      f"{n['length_km']} km, {reports[0]['elevation']['samples']} samples; median of {runs} runs")
+      f"{n['length_km']:.1f} km, {reports[0]['elevation']['samples']} samples; median of {runs} runs")
 for stage in reports[0]["timings_s"]:
     print(f"  {stage:22s} {statistics.median(r['timings_s'][stage] for r in reports):8.3f} s")
 print(f"  {'process wall time':22s} {statistics.median(wall):8.3f} s, peak RSS {max(rss) / 1024:.0f} MiB")
 PY
 
 if command -v netconvert >/dev/null; then
+  export SUMO_HOME=${SUMO_HOME:-/usr/share/sumo}
   # netconvert wants the DEM in WGS84.
   gdalwarp -q -t_srs EPSG:4326 -r bilinear "$data/sf_ne_usgs24k_30m_nad27utm10_m.tif" "$tmp/dem_wgs84.tif"
   best=""

@@ -108,7 +108,7 @@ Runner add_build_command(CLI::App& app) {
       Diagnostics diagnostics;
       print_diagnostics_live(diagnostics, args->quiet);
       const BuildResult result = build(options, diagnostics, stderr_progress(args->quiet));
-      print_diagnostics_summary(diagnostics);
+      if (!args->quiet) print_diagnostics_summary(diagnostics);
       print_summary(result);
       return static_cast<int>(kOk);
     });
