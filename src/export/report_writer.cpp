@@ -39,6 +39,59 @@ Json dem_json(const DemInfo& d) {
 
 Json optional_int(const std::optional<int>& v) { return v ? Json(*v) : Json(nullptr); }
 
+Json vs_dem_json(const HeightValidation& h) {
+  Json j = error_json(h.vs_dem);
+  j["error_3d_mean_m"] = round_to(h.error_3d_mean_m, 1e-4);
+  j["error_3d_max_m"] = round_to(h.error_3d_max_m, 1e-4);
+  j["measured_at"] = "midpoints between samples";
+  return j;
+}
+
+Json gradient_json(const GradeStats& g) {
+  Json by_class = Json::object();
+  for (const auto& [cls, c] : g.by_class) {
+    by_class[cls] = {{"length_km", round_to(c.length_km, 1e-3)},
+                     {"limit_percent", c.limit_percent},
+                     {"compliance_percent", round_to(c.compliance_percent, 1e-2)},
+                     {"max_percent", round_to(c.max_percent, 1e-2)},
+                     {"p99_percent", round_to(c.p99_percent, 1e-2)}};
+  }
+  return {{"compliance_percent", round_to(g.compliance_percent, 1e-2)},
+          {"max_percent", round_to(g.max_percent, 1e-2)},
+          {"p99_percent", round_to(g.p99_percent, 1e-2)},
+          {"steepest_road", optional_int(g.steepest_road)},
+          {"by_class", by_class}};
+}
+
+Json junctions_json(const JunctionGapStats& j) {
+  return {{"max_gap_m", round_to(j.max_gap_m, 1e-4)},
+          {"worst_junction", optional_int(j.worst_junction)},
+          {"over_bound", j.over_bound},
+          {"bound_m", j.bound_m},
+          {"checked", j.checked}};
+}
+
+Json method_json(const MethodReport& m) {
+  return {{"vs_dem", vs_dem_json(m.all)},
+          {"vs_dem_ground", vs_dem_json(m.ground)},
+          {"vs_dem_structures", vs_dem_json(m.structures)},
+          {"vs_reference", m.all.vs_reference ? error_json(*m.all.vs_reference) : Json(nullptr)},
+          {"vs_reference_ground", m.ground.vs_reference ? error_json(*m.ground.vs_reference) : Json(nullptr)},
+          {"gradient", gradient_json(m.gradient)},
+          {"junctions", junctions_json(m.junctions)},
+          {"cut_fill", {{"max_fill_m", round_to(m.cut_fill.max_fill_m, 1e-3)},
+                        {"max_cut_m", round_to(m.cut_fill.max_cut_m, 1e-3)},
+                        {"mean_abs_m", round_to(m.cut_fill.mean_abs_m, 1e-4)},
+                        {"km_over_0_5_m", round_to(m.cut_fill.km_over_0_5_m, 1e-3)},
+                        {"km_over_2_m", round_to(m.cut_fill.km_over_2_m, 1e-3)},
+                        {"worst_road", optional_int(m.cut_fill.worst_road)},
+                        {"worst_s_m", round_to(m.cut_fill.worst_s_m, 1e-2)}}},
+          {"clearance", {{"separations", m.separations},
+                         {"min_m", round_to(m.min_clearance_m, 1e-3)},
+                         {"below_required", m.below_clearance}}},
+          {"seconds", round_to(m.seconds, 1e-4)}};
+}
+
 }  // namespace
 
 std::string relief_version() { return "0.1.0"; }
@@ -78,36 +131,41 @@ std::string report_json(const RunReport& r) {
                   {"tunnel_km", round_to(n.tunnel_km, 1e-3)},
                   {"km_by_class", km_by_class}};
 
-  Json vs_dem = error_json(r.heights.vs_dem);
-  vs_dem["error_3d_mean_m"] = round_to(r.heights.error_3d_mean_m, 1e-4);
-  vs_dem["error_3d_max_m"] = round_to(r.heights.error_3d_max_m, 1e-4);
-  vs_dem["measured_at"] = "midpoints between samples";
   j["elevation"] = {{"samples", r.samples},
                     {"void_samples", r.void_samples},
                     {"uncovered_samples", r.uncovered_samples},
                     {"roads_without_height", r.roads_without_height},
-                    {"vs_dem", vs_dem},
+                    {"profile_method", r.profile_method},
+                    {"vs_dem", vs_dem_json(r.heights)},
                     {"vs_reference", r.heights.vs_reference ? error_json(*r.heights.vs_reference)
                                                             : Json(nullptr)}};
+  j["gradient"] = gradient_json(r.gradient);
+  j["junctions"] = junctions_json(r.junctions);
 
-  Json by_class = Json::object();
-  for (const auto& [cls, c] : r.gradient.by_class) {
-    by_class[cls] = {{"length_km", round_to(c.length_km, 1e-3)},
-                     {"limit_percent", c.limit_percent},
-                     {"compliance_percent", round_to(c.compliance_percent, 1e-2)},
-                     {"max_percent", round_to(c.max_percent, 1e-2)},
-                     {"p99_percent", round_to(c.p99_percent, 1e-2)}};
+  Json profiles = {{"method", r.profile_method}};
+  Json limits = Json::object();
+  for (const auto& [cls, percent] : r.grade_limits.percent) limits[std::string(to_string(cls))] = percent;
+  profiles["grade_limits_percent"] = limits;
+  if (r.fit) {
+    profiles["fit"] = {{"policy", r.fit->policy},
+                       {"iterations", r.fit->iterations},
+                       {"converged", r.fit->converged},
+                       {"variables", r.fit->variables},
+                       {"constraints", r.fit->constraints},
+                       {"max_violation_m", r.fit->max_violation_m},
+                       {"clearance_m", r.fit->clearance_m},
+                       {"cutoff_wavelength_m", r.fit->cutoff_wavelength_m}};
   }
-  j["gradient"] = {{"compliance_percent", round_to(r.gradient.compliance_percent, 1e-2)},
-                   {"max_percent", round_to(r.gradient.max_percent, 1e-2)},
-                   {"p99_percent", round_to(r.gradient.p99_percent, 1e-2)},
-                   {"steepest_road", optional_int(r.gradient.steepest_road)},
-                   {"by_class", by_class}};
-  j["junctions"] = {{"max_gap_m", round_to(r.junctions.max_gap_m, 1e-4)},
-                    {"worst_junction", optional_int(r.junctions.worst_junction)},
-                    {"over_bound", r.junctions.over_bound},
-                    {"bound_m", r.junctions.bound_m},
-                    {"checked", r.junctions.checked}};
+  if (r.paper) {
+    profiles["paper"] = {{"max_iterations", r.paper->max_iterations},
+                         {"roads_not_converged", r.paper->roads_not_converged},
+                         {"not_converged_roads", r.paper->not_converged_roads},
+                         {"max_shift_m", round_to(r.paper->max_shift_m, 1e-3)}};
+  }
+  j["profiles"] = profiles;
+  Json methods = Json::object();
+  for (const MethodReport& m : r.methods) methods[m.method] = method_json(m);
+  j["methods"] = methods;
 
   Json diag = {{"total", 0}, {"counts", Json::object()}, {"messages", Json::array()}};
   if (r.diagnostics) {

@@ -1,6 +1,5 @@
 #include "relief/pipeline/build.h"
 
-#include <chrono>
 #include <ctime>
 #include <iomanip>
 #include <sstream>
@@ -8,7 +7,6 @@
 #include "relief/core/atomic_file.h"
 #include "relief/core/errors.h"
 #include "relief/export/geojson_writer.h"
-#include "relief/roads/network_builder.h"
 #include "pipeline/stages.h"
 
 namespace relief {
@@ -23,7 +21,48 @@ std::string utc_now() {
   return out.str();
 }
 
+// The figures of one method's profiles.
+MethodReport evaluate(std::string method, const RoadNetwork& network, const std::vector<RoadProfile>& profiles,
+                      const std::vector<RoadProfile>& raw, const HeightValidator& validator,
+                      std::vector<GradeSeparation> separations, const BuildOptions& options, double seconds) {
+  MethodReport m;
+  m.method = std::move(method);
+  m.seconds = seconds;
+  const std::vector<std::uint8_t> ground = ground_mask(network);
+  const std::vector<std::uint8_t> structures = ground_mask(network, true);
+  m.all = validator.validate(profiles);
+  m.ground = validator.validate(profiles, ground);
+  m.structures = validator.validate(profiles, structures);
+  m.gradient = grade_stats(network, profiles, options.grade_limits);
+  m.junctions = junction_gaps(network, profiles);
+  m.cut_fill = cut_fill(profiles, raw, ground);
+  update_clearances(separations, profiles);
+  m.separations = separations.size();
+  for (std::size_t k = 0; k < separations.size(); ++k) {
+    const double c = separations[k].clearance_m;
+    m.min_clearance_m = k == 0 ? c : std::min(m.min_clearance_m, c);
+    if (c < options.fit.clearance_m - 1e-3) ++m.below_clearance;
+  }
+  return m;
+}
+
 }  // namespace
+
+std::optional<ProfileMethod> parse_profile_method(std::string_view text) {
+  if (text == "raw" || text == "none") return ProfileMethod::raw;
+  if (text == "paper") return ProfileMethod::paper;
+  if (text == "relief") return ProfileMethod::relief;
+  return std::nullopt;
+}
+
+std::string_view to_string(ProfileMethod method) {
+  switch (method) {
+    case ProfileMethod::raw: return "raw";
+    case ProfileMethod::paper: return "paper";
+    case ProfileMethod::relief: return "relief";
+  }
+  return "unknown";
+}
 
 std::optional<Output> parse_output(std::string_view text) {
   if (text == "geojson") return Output::geojson;
@@ -60,15 +99,17 @@ BuildResult build(const BuildOptions& options, Diagnostics& diagnostics, const P
   report.interpolation = options.dem.interpolation;
   report.spacing_m = options.sampling.spacing_m;
   report.nodata_fill = std::string(to_string(options.sampling.nodata_fill));
+  report.grade_limits = options.grade_limits;
+  report.profile_method = std::string(to_string(options.profile_method));
   report.diagnostics = &diagnostics;
 
   const LoadedNetwork loaded = load_network(options, diagnostics, timer);
   const RoadNetwork& network = loaded.network;
   report.frame = network.frame;
+  report.network = network_stats(network);
 
   const DemSampler dem = timer.run("open DEM", [&] {
-    return DemSampler(options.dem_paths, network.frame, network_bounds(network), options.dem,
-                      &diagnostics);
+    return DemSampler(options.dem_paths, network.frame, network_bounds(network), options.dem, &diagnostics);
   });
   report.dems = dem.sources();
 
@@ -79,20 +120,67 @@ BuildResult build(const BuildOptions& options, Diagnostics& diagnostics, const P
   report.void_samples = samples.void_samples;
   report.uncovered_samples = samples.uncovered_samples;
   report.roads_without_height = samples.roads_without_height;
+  const std::vector<RoadProfile>& raw = samples.profiles;
+
+  // The profiles: the chosen method, and the others when comparing.
+  const auto wanted = [&](ProfileMethod m) { return options.compare_methods || options.profile_method == m; };
+  std::optional<PaperSmoothingResult> paper;
+  double paper_seconds = 0.0, fit_seconds = 0.0;
+  if (wanted(ProfileMethod::paper)) {
+    paper = timer.run("paper smoothing", [&] {
+      PaperSmoothingOptions o;
+      o.limits = options.grade_limits;
+      o.max_iterations = options.paper_max_iterations;
+      return smooth_paper(network, raw, o);
+    });
+    paper_seconds = timer.timings().back().second;
+    report.paper = PaperSummary{options.paper_max_iterations, paper->not_converged_roads.size(),
+                                paper->max_shift_m, paper->not_converged_roads};
+  }
+  std::optional<ProfileFitResult> fit;
+  if (wanted(ProfileMethod::relief)) {
+    fit = timer.run("fit profiles", [&] {
+      ProfileFitOptions o = options.fit;
+      o.limits = options.grade_limits;
+      return fit_profiles(network, raw, o, diagnostics);
+    });
+    fit_seconds = timer.timings().back().second;
+    report.fit = FitSummary{std::string(to_string(options.fit.policy)), fit->iterations, fit->converged,
+                            fit->variables, fit->constraints, fit->max_violation_m, options.fit.clearance_m,
+                            options.fit.cutoff_wavelength_m};
+  }
+  const std::vector<RoadProfile>& profiles = options.profile_method == ProfileMethod::paper    ? paper->profiles
+                                             : options.profile_method == ProfileMethod::relief ? fit->profiles
+                                                                                               : raw;
 
   std::optional<DemSampler> reference;
   if (!options.reference_dem_paths.empty()) {
     reference = timer.run("open reference DEM", [&] {
-      return DemSampler(options.reference_dem_paths, network.frame, network_bounds(network),
-                        options.reference_dem, &diagnostics);
+      return DemSampler(options.reference_dem_paths, network.frame, network_bounds(network), options.reference_dem,
+                        &diagnostics);
     });
     report.reference_dems = reference->sources();
   }
   timer.run("validate", [&] {
-    report.network = network_stats(network);
-    report.heights = validate_heights(samples.profiles, dem, reference ? &*reference : nullptr);
-    report.gradient = grade_stats(network, samples.profiles, options.grade_limits);
-    report.junctions = junction_gaps(network, samples.profiles);
+    const HeightValidator validator(raw, dem, reference ? &*reference : nullptr);
+    const std::vector<GradeSeparation> separations = find_grade_separations(network, raw);
+    if (wanted(ProfileMethod::raw)) {
+      report.methods.push_back(evaluate("raw", network, raw, raw, validator, separations, options, 0.0));
+    }
+    if (paper) {
+      report.methods.push_back(evaluate("paper", network, paper->profiles, raw, validator, separations, options,
+                                        paper_seconds));
+    }
+    if (fit) {
+      report.methods.push_back(evaluate("relief", network, fit->profiles, raw, validator, separations, options,
+                                        fit_seconds));
+    }
+    for (const MethodReport& m : report.methods) {
+      if (m.method != report.profile_method) continue;
+      report.heights = m.all;
+      report.gradient = m.gradient;
+      report.junctions = m.junctions;
+    }
     return 0;
   });
 
@@ -100,14 +188,13 @@ BuildResult build(const BuildOptions& options, Diagnostics& diagnostics, const P
   std::error_code ec;
   std::filesystem::create_directories(options.out_dir, ec);
   if (ec) {
-    throw IoError("cannot create the output directory '" + options.out_dir.string() +
-                  "': " + ec.message());
+    throw IoError("cannot create the output directory '" + options.out_dir.string() + "': " + ec.message());
   }
   OutputSet files;
   const auto path_of = [&](const std::string& suffix) { return options.out_dir / (report.name + suffix); };
   if (options.outputs.count(Output::geojson)) {
     timer.run("write GeoJSON", [&] {
-      files.add(path_of(".geojson"), [&](std::ostream& out) { write_geojson(out, network, samples.profiles); });
+      files.add(path_of(".geojson"), [&](std::ostream& out) { write_geojson(out, network, profiles); });
       return 0;
     });
     report.outputs.push_back(report.name + ".geojson");

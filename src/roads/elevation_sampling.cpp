@@ -74,15 +74,17 @@ double height_at_station(const RoadProfile& p, double s) {
 RoadProfile make_stations(const Road& road, double spacing_m) {
   const std::vector<double> cumulative = cumulative_length(road.points);
   RoadProfile p;
-  p.s = sample_stations(cumulative.back(), spacing_m, cumulative);
+  // Stations closer than a quarter spacing share one (an OSM node wins over a grid station):
+  // slivers of road a few millimetres long would carry meaningless grades.
+  p.s = sample_stations(cumulative.back(), spacing_m, cumulative, 0.25 * spacing_m);
   p.xy.reserve(p.s.size());
   p.at_node.assign(p.s.size(), 0);
   // Stations and vertices are both sorted: mark the stations that are vertices in one sweep.
   std::size_t v = 0;
   for (std::size_t i = 0; i < p.s.size(); ++i) {
     p.xy.push_back(point_at(road.points, cumulative, p.s[i]));
-    while (v < cumulative.size() && cumulative[v] < p.s[i] - 1e-6) ++v;
-    if (v < cumulative.size() && std::abs(cumulative[v] - p.s[i]) <= 1e-6) p.at_node[i] = 1;
+    while (v < cumulative.size() && cumulative[v] < p.s[i] - 1e-9) ++v;
+    if (v < cumulative.size() && std::abs(cumulative[v] - p.s[i]) <= 1e-9) p.at_node[i] = 1;
   }
   p.z.assign(p.s.size(), 0.0);
   p.filled.assign(p.s.size(), 0);

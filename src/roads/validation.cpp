@@ -11,6 +11,10 @@
 namespace relief {
 namespace {
 
+// Grades are compared with their limits to a thousandth of a percent (1 mm per 100 m): a fitted
+// profile sits on its limit up to the solver's rounding.
+constexpr double kGradeTolerancePercent = 1e-3;
+
 // Length-weighted percentile of |grade|: the smallest grade g such that segments with grade <= g
 // make up `fraction` of the length. `items` is (grade, length); sorted in place.
 double weighted_percentile(std::vector<std::pair<double, double>>& items, double fraction) {
@@ -135,7 +139,7 @@ GradeStats grade_stats(const RoadNetwork& network, const std::vector<RoadProfile
       per_class[name].emplace_back(g, len);
       total_len += len;
       class_len[name].first += len;
-      if (g <= limit + 1e-9) {
+      if (g <= limit + kGradeTolerancePercent) {
         compliant_len += len;
         class_len[name].second += len;
       }
@@ -213,58 +217,119 @@ NetworkStats network_stats(const RoadNetwork& network) {
   return s;
 }
 
-HeightValidation validate_heights(const std::vector<RoadProfile>& profiles, const DemSampler& dem,
-                                  const DemSampler* reference) {
-  HeightValidation v;
+std::vector<std::uint8_t> ground_mask(const RoadNetwork& network, bool structures) {
+  std::vector<std::uint8_t> mask;
+  mask.reserve(network.roads.size());
+  for (const Road& road : network.roads) {
+    const bool structure = road.attributes.bridge || road.attributes.tunnel;
+    mask.push_back(structure == structures ? 1 : 0);
+  }
+  return mask;
+}
+
+CutFillStats cut_fill(const std::vector<RoadProfile>& profiles, const std::vector<RoadProfile>& terrain,
+                      std::span<const std::uint8_t> road_mask) {
+  CutFillStats c;
+  double sum = 0.0, len = 0.0, worst = -1.0;
+  for (std::size_t r = 0; r < profiles.size(); ++r) {
+    if (!road_mask.empty() && !road_mask[r]) continue;
+    const RoadProfile& p = profiles[r];
+    const RoadProfile& t = terrain[r];
+    if (!p.has_height || !t.has_height) continue;
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      const double d = p.z[i] - t.z[i];
+      const double w = 0.5 * ((i > 0 ? p.s[i] - p.s[i - 1] : 0.0) + (i + 1 < p.size() ? p.s[i + 1] - p.s[i] : 0.0));
+      c.max_fill_m = std::max(c.max_fill_m, d);
+      c.max_cut_m = std::max(c.max_cut_m, -d);
+      sum += std::abs(d) * w;
+      len += w;
+      if (std::abs(d) > 0.5) c.km_over_0_5_m += w / 1000.0;
+      if (std::abs(d) > 2.0) c.km_over_2_m += w / 1000.0;
+      if (std::abs(d) > worst) {
+        worst = std::abs(d);
+        c.worst_road = static_cast<int>(r);
+        c.worst_s_m = p.s[i];
+      }
+    }
+  }
+  c.mean_abs_m = len > 0.0 ? sum / len : 0.0;
+  return c;
+}
+
+HeightValidator::HeightValidator(const std::vector<RoadProfile>& stations, const DemSampler& dem,
+                                 const DemSampler* reference)
+    : has_reference_(reference != nullptr) {
   // Midpoints of every segment, and four probes around each for the DEM gradient.
   constexpr double step = 0.5;
   std::vector<Vec2> mids;
-  std::vector<double> mid_z;
-  for (const RoadProfile& p : profiles) {
-    if (!p.has_height) continue;
-    for (std::size_t i = 0; i + 1 < p.size(); ++i) {
-      mids.push_back(0.5 * (p.xy[i] + p.xy[i + 1]));
-      mid_z.push_back(0.5 * (p.z[i] + p.z[i + 1]));
-    }
+  first_midpoint_.reserve(stations.size() + 1);
+  first_station_.reserve(stations.size() + 1);
+  std::size_t n_stations = 0;
+  for (const RoadProfile& p : stations) {
+    first_midpoint_.push_back(mids.size());
+    first_station_.push_back(n_stations);
+    n_stations += p.size();
+    for (std::size_t i = 0; i + 1 < p.size(); ++i) mids.push_back(0.5 * (p.xy[i] + p.xy[i + 1]));
   }
+  first_midpoint_.push_back(mids.size());
+  first_station_.push_back(n_stations);
+
+  const std::size_t n = mids.size();
   std::vector<Vec2> probes;
-  probes.reserve(mids.size() * 5);
+  probes.reserve(n * 5);
   probes.insert(probes.end(), mids.begin(), mids.end());
   for (const Vec2& offset : {Vec2(step, 0), Vec2(-step, 0), Vec2(0, step), Vec2(0, -step)}) {
     for (const Vec2& m : mids) probes.push_back(m + offset);
   }
   std::vector<std::optional<double>> heights(probes.size());
   dem.heights_at(probes, heights);
-  const std::span<const std::optional<double>> at_mid(heights.data(), mids.size());
-  v.vs_dem = error_stats(mid_z, at_mid);
-
-  double sum3d = 0.0;
-  std::size_t n3d = 0;
-  const std::size_t n = mids.size();
+  dem_mid_.assign(heights.begin(), heights.begin() + static_cast<std::ptrdiff_t>(n));
+  gradient_mid_.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
-    const auto &h = heights[i], &xp = heights[n + i], &xm = heights[2 * n + i],
-               &yp = heights[3 * n + i], &ym = heights[4 * n + i];
-    if (!h || !xp || !xm || !yp || !ym) continue;
-    const Vec2 grad((*xp - *xm) / (2 * step), (*yp - *ym) / (2 * step));
-    const double d = std::abs(mid_z[i] - *h) / std::sqrt(1.0 + grad.squaredNorm());
-    sum3d += d;
-    ++n3d;
-    v.error_3d_max_m = std::max(v.error_3d_max_m, d);
+    const auto &xp = heights[n + i], &xm = heights[2 * n + i], &yp = heights[3 * n + i], &ym = heights[4 * n + i];
+    if (xp && xm && yp && ym) gradient_mid_[i] = Vec2((*xp - *xm) / (2 * step), (*yp - *ym) / (2 * step));
   }
-  v.error_3d_mean_m = n3d > 0 ? sum3d / static_cast<double>(n3d) : 0.0;
 
   if (reference) {
     std::vector<Vec2> pts;
-    std::vector<double> zs;
-    for (const RoadProfile& p : profiles) {
-      if (!p.has_height) continue;
-      pts.insert(pts.end(), p.xy.begin(), p.xy.end());
-      zs.insert(zs.end(), p.z.begin(), p.z.end());
-    }
-    std::vector<std::optional<double>> ref(pts.size());
-    reference->heights_at(pts, ref);
-    v.vs_reference = error_stats(zs, ref);
+    pts.reserve(n_stations);
+    for (const RoadProfile& p : stations) pts.insert(pts.end(), p.xy.begin(), p.xy.end());
+    reference_.resize(pts.size());
+    reference->heights_at(pts, reference_);
   }
+}
+
+HeightValidation HeightValidator::validate(const std::vector<RoadProfile>& profiles,
+                                           std::span<const std::uint8_t> road_mask) const {
+  HeightValidation v;
+  std::vector<double> mid_z, ref_z;
+  std::vector<std::optional<double>> mid_dem, ref;
+  double sum3d = 0.0;
+  std::size_t n3d = 0;
+  for (std::size_t r = 0; r < profiles.size(); ++r) {
+    const RoadProfile& p = profiles[r];
+    if (!p.has_height || (!road_mask.empty() && !road_mask[r])) continue;
+    for (std::size_t i = 0; i + 1 < p.size(); ++i) {
+      const std::size_t m = first_midpoint_[r] + i;
+      const double z = 0.5 * (p.z[i] + p.z[i + 1]);
+      mid_z.push_back(z);
+      mid_dem.push_back(dem_mid_[m]);
+      if (dem_mid_[m] && gradient_mid_[m]) {
+        const double d = std::abs(z - *dem_mid_[m]) / std::sqrt(1.0 + gradient_mid_[m]->squaredNorm());
+        sum3d += d;
+        ++n3d;
+        v.error_3d_max_m = std::max(v.error_3d_max_m, d);
+      }
+    }
+    if (has_reference_) {
+      ref_z.insert(ref_z.end(), p.z.begin(), p.z.end());
+      ref.insert(ref.end(), reference_.begin() + static_cast<std::ptrdiff_t>(first_station_[r]),
+                 reference_.begin() + static_cast<std::ptrdiff_t>(first_station_[r + 1]));
+    }
+  }
+  v.vs_dem = error_stats(mid_z, mid_dem);
+  v.error_3d_mean_m = n3d > 0 ? sum3d / static_cast<double>(n3d) : 0.0;
+  if (has_reference_) v.vs_reference = error_stats(ref_z, ref);
   return v;
 }
 

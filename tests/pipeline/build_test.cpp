@@ -29,6 +29,12 @@ BuildOptions ne_options(const std::string& out) {
   return o;
 }
 
+const MethodReport& method(const RunReport& r, const std::string& name) {
+  for (const MethodReport& m : r.methods)
+    if (m.method == name) return m;
+  throw std::runtime_error("no method " + name);
+}
+
 void print(const RunReport& r) {
   std::cout << r.name << ": roads " << r.network.roads << ", junctions " << r.network.junctions
             << " (intersections " << r.network.intersections << "), dead ends " << r.network.dead_ends
@@ -74,20 +80,34 @@ TEST(Build, PotreroWithReferenceDem) {
   EXPECT_GT(r.network.roads, 50u);
   EXPECT_GT(r.network.intersections, 20u);
   EXPECT_EQ(r.network.bridges, 1u);  // the US-101 motorway_link bridge (the other is a footbridge)
+  // The three methods are compared in the report; the outputs carry relief's fit.
+  ASSERT_EQ(r.methods.size(), 3u);
+  const MethodReport& raw = method(r, "raw");
+  const MethodReport& paper = method(r, "paper");
+  const MethodReport& fit = method(r, "relief");
+  EXPECT_EQ(r.profile_method, "relief");
   // 10 m vs 30 m USGS products: RMSE ~2.4 m per the data README; a datum error gives far more.
-  ASSERT_TRUE(r.heights.vs_reference);
-  EXPECT_GT(r.heights.vs_reference->rmse_m, 0.5);
-  EXPECT_LT(r.heights.vs_reference->rmse_m, 4.0);
-  EXPECT_LT(std::abs(r.heights.vs_reference->bias_m), 1.5);
-  // Draped on the DEM: the road model departs from it only between its 1 m samples, where the
-  // bilinear surface bends (RMSE 3 mm, max 0.14 m on the steepest cells).
-  EXPECT_LT(r.heights.vs_dem.rmse_m, 0.01);
-  EXPECT_LT(r.heights.vs_dem.max_m, 0.2);
-  EXPECT_LT(r.junctions.max_gap_m, 1e-9);
-  // 24th St on Potrero Hill is ~24 % in reality: the raw drape must show steep streets.
-  EXPECT_GT(r.gradient.max_percent, 20.0);
-  EXPECT_LT(r.gradient.compliance_percent, 100.0);
-  EXPECT_GT(r.gradient.compliance_percent, 50.0);
+  ASSERT_TRUE(raw.ground.vs_reference && fit.ground.vs_reference);
+  EXPECT_GT(raw.ground.vs_reference->rmse_m, 0.5);
+  EXPECT_LT(raw.ground.vs_reference->rmse_m, 4.0);
+  EXPECT_LT(std::abs(raw.ground.vs_reference->bias_m), 1.5);
+  // The fit stays within the DEM's own disagreement with the reference.
+  EXPECT_LT(fit.ground.vs_reference->rmse_m, raw.ground.vs_reference->rmse_m + 0.3);
+  // Draped on the DEM, the road model departs from it only between its 1 m samples, where the
+  // bilinear surface bends; the fit departs by decimetres on the ground.
+  EXPECT_LT(raw.ground.vs_dem.rmse_m, 0.01);
+  EXPECT_LT(fit.ground.vs_dem.rmse_m, 0.5);
+  EXPECT_EQ(fit.junctions.max_gap_m, 0.0);
+  // 24th St on Potrero Hill is ~24 %: the drape has freeway-cut spikes, the fit keeps the hill.
+  EXPECT_GT(raw.gradient.max_percent, 40.0);
+  EXPECT_LE(fit.gradient.max_percent, 35.0 + 1e-3);
+  EXPECT_GT(fit.gradient.by_class.at("residential").max_percent, 20.0);
+  // The paper's moving average cannot bring such streets to 15 %.
+  ASSERT_TRUE(r.paper);
+  EXPECT_GT(r.paper->roads_not_converged, 0u);
+  EXPECT_LT(paper.gradient.compliance_percent, 100.0);
+  ASSERT_TRUE(r.fit);
+  EXPECT_TRUE(r.fit->converged);
 }
 
 TEST(Build, PotreroIdwDiffersFromBilinear) {
@@ -112,8 +132,19 @@ TEST(Build, NortheastQuadrant) {
   EXPECT_GE(r.network.tunnels, 2u);  // Broadway and Stockton tunnels
   EXPECT_GE(r.network.bridges, 1u);
   EXPECT_GT(r.network.traffic_signals, 200u);
-  EXPECT_GT(r.gradient.max_percent, 20.0);  // Jones, Broadway, Filbert, Hyde
-  EXPECT_LT(r.heights.vs_dem.max_m, 0.2);
+  EXPECT_GT(r.gradient.max_percent, 25.0);  // Jones, Broadway, Filbert, Hyde
+  const MethodReport& raw = method(r, "raw");
+  const MethodReport& fit = method(r, "relief");
+  // Every crossing of different layers: flat on the drape, cleared by the fit.
+  EXPECT_GT(raw.separations, 10u);
+  EXPECT_EQ(raw.below_clearance, raw.separations);
+  EXPECT_EQ(fit.below_clearance, 0u);
+  EXPECT_GE(fit.min_clearance_m, 5.0 - 1e-3);
+  // Tunnels under Russian Hill and viaducts over SoMa depart from the DEM by tens of metres;
+  // roads on the ground by decimetres.
+  EXPECT_GT(fit.structures.vs_dem.rmse_m, 5.0);
+  EXPECT_LT(fit.ground.vs_dem.rmse_m, 0.5);
+  EXPECT_EQ(fit.junctions.max_gap_m, 0.0);
 }
 
 TEST(Build, FailedRunLeavesNoOutputs) {

@@ -6,7 +6,10 @@
 #include <iostream>
 #include <random>
 
+#include "relief/roads/network_builder.h"
+#include "relief/roads/osm_reader.h"
 #include "support/synthetic.h"
+#include "support/test_data.h"
 
 namespace relief {
 namespace {
@@ -47,7 +50,7 @@ TEST(ProfileFit, NoisyRampIsRecovered) {
   double sq = 0.0;
   const auto& p = fit.profiles[0];
   for (std::size_t i = 0; i < p.size(); ++i) sq += std::pow(p.z[i] - truth(p.xy[i]), 2);
-  const double rmse = std::sqrt(sq / p.size());
+  const double rmse = std::sqrt(sq / static_cast<double>(p.size()));
   EXPECT_LT(rmse, 0.08);
   // The noise made 1 m grades of tens of percent; the fit is back near the true 5 %.
   EXPECT_GT(max_grade_percent(raw), 30.0);
@@ -75,12 +78,12 @@ TEST(ProfileFit, BumpSteeperThanTheLimitIsCappedUnderDesignAndKeptUnderFidelity)
   ProfileFitOptions design;
   design.policy = GradePolicy::design;
   const ProfileFitResult capped = fit_profiles(net, raw, design, d);
-  EXPECT_LE(max_grade_percent(capped.profiles), 15.0 + 1e-4);
+  EXPECT_LE(max_grade_percent(capped.profiles), 15.0 + 1e-3);
   EXPECT_GT(max_grade_percent(capped.profiles), 14.5);  // moved only as far as needed
 
   const ProfileFitResult kept = fit_profiles(net, raw, {}, d);
   EXPECT_GT(max_grade_percent(kept.profiles), 22.0);
-  EXPECT_LE(max_grade_percent(kept.profiles), 35.0 + 1e-4);
+  EXPECT_LE(max_grade_percent(kept.profiles), 35.0 + 1e-3);
 }
 
 TEST(ProfileFit, BridgeOverAValleyStaysASmoothDeck) {
@@ -126,7 +129,7 @@ TEST(ProfileFit, CrossingLayersKeepTheClearanceAndTheLowerRoadStaysOnTheGround) 
   EXPECT_NEAR(sep.raw_clearance_m, 0.0, 1e-9);
   EXPECT_GE(sep.clearance_m, 5.0 - 1e-3);
   EXPECT_NEAR(height_at_station(fit.profiles[3], sep.s_lower), 20.0, 0.2);  // street stays down
-  EXPECT_LE(max_grade_percent({fit.profiles[0], fit.profiles[1], fit.profiles[2]}), 35.0 + 1e-4);
+  EXPECT_LE(max_grade_percent({fit.profiles[0], fit.profiles[1], fit.profiles[2]}), 10.0 + 1e-3);
 }
 
 TEST(ProfileFit, StarJunctionOfFiveRoadsOnASlopeHasNoGapAndNoStep) {
@@ -158,10 +161,136 @@ TEST(ProfileFit, Policies) {
   EXPECT_EQ(parse_grade_policy("design"), GradePolicy::design);
   EXPECT_FALSE(parse_grade_policy("paper"));
   ProfileFitOptions o;
-  EXPECT_DOUBLE_EQ(grade_limit(o, HighwayClass::motorway), 0.35);
+  EXPECT_DOUBLE_EQ(grade_limit(o, HighwayClass::residential), 0.35);
+  EXPECT_DOUBLE_EQ(grade_limit(o, HighwayClass::motorway), 0.10);
   o.policy = GradePolicy::design;
   EXPECT_DOUBLE_EQ(grade_limit(o, HighwayClass::motorway), 0.08);
   EXPECT_DOUBLE_EQ(grade_limit(o, HighwayClass::tertiary), 0.12);
+}
+
+}  // namespace
+}  // namespace relief
+
+// ---- Real data: the San Francisco sets -------------------------------------------------------
+namespace relief {
+namespace {
+
+struct RealSet {
+  RoadNetwork network;
+  std::vector<RoadProfile> raw;
+};
+
+RealSet load_real(const std::string& osm, const std::string& dem) {
+  Diagnostics d;
+  const OsmRoads roads = read_osm(test::shared_data(osm), {}, d);
+  RealSet set;
+  set.network = build_network(roads, GeoFrame::utm_at(roads.bounds.centre()), d);
+  Aabb2 area;
+  for (const Road& r : set.network.roads)
+    for (const Vec2& p : r.points) area.extend(p);
+  const DemSampler sampler({test::shared_data(dem).string()}, set.network.frame, area);
+  set.raw = sample_elevation(set.network, sampler, {}, d).profiles;
+  return set;
+}
+
+double max_grade_for(const RealSet& set, const std::vector<RoadProfile>& profiles,
+                     const std::function<bool(const Road&)>& which) {
+  double g = 0.0;
+  for (const Road& road : set.network.roads)
+    if (which(road)) g = std::max(g, max_grade_percent({profiles[road.id]}));
+  return g;
+}
+
+bool is_highway(const Road& r) {
+  const HighwayClass c = r.attributes.highway;
+  return c == HighwayClass::motorway || c == HighwayClass::motorway_link || c == HighwayClass::trunk ||
+         c == HighwayClass::trunk_link;
+}
+
+TEST(ProfileFitRealData, PotreroBridgeSpansAndTheGridKeepsItsGrades) {
+  RELIEF_REQUIRE_SHARED_DATA();
+  const RealSet set = load_real("sf-potrero/sf-potrero.osm.gz", "sf-potrero/USGS_13_n38w123-subsection-small-potrero.tif");
+  Diagnostics d;
+  const ProfileFitResult fit = fit_profiles(set.network, set.raw, {}, d);
+  EXPECT_TRUE(fit.converged);
+  EXPECT_LT(fit.max_violation_m, 1e-6);
+  // The 23rd Street bridge over US-101: a deck that does not dip into the freeway cutting.
+  int bridges = 0;
+  for (const Road& road : set.network.roads) {
+    if (!road.attributes.bridge) continue;
+    ++bridges;
+    const RoadProfile& f = fit.profiles[road.id];
+    const RoadProfile& r = set.raw[road.id];
+    double min_above = 1e9, max_above = -1e9;
+    for (std::size_t i = 0; i < f.size(); ++i) {
+      min_above = std::min(min_above, f.z[i] - r.z[i]);
+      max_above = std::max(max_above, f.z[i] - r.z[i]);
+    }
+    std::cout << "Potrero bridge road " << road.id << " '" << road.attributes.name << "': deck "
+              << min_above << " .. " << max_above << " m above the DEM, max grade "
+              << max_grade_percent({f}) << " % (raw " << max_grade_percent({r}) << " %)\n";
+    EXPECT_GT(min_above, -0.5);
+    EXPECT_GT(max_above, 1.0);
+  }
+  EXPECT_EQ(bridges, 1);
+  // Fidelity keeps Potrero Hill's steep residential streets (24th St is ~24 %).
+  const double residential = max_grade_for(set, fit.profiles, [](const Road& r) {
+    return r.attributes.highway == HighwayClass::residential;
+  });
+  std::cout << "Potrero residential max grade after the fit: " << residential << " %\n";
+  EXPECT_GT(residential, 20.0);
+  EXPECT_LE(max_grade_for(set, fit.profiles, [](const Road&) { return true; }), 35.0 + 1e-3);
+  EXPECT_LE(max_grade_for(set, fit.profiles, is_highway), 10.0 + 1e-3);
+  EXPECT_EQ(junction_gaps(set.network, fit.profiles).max_gap_m, 0.0);
+}
+
+TEST(ProfileFitRealData, NortheastTunnelsRunBelowTheTerrainAndNothingIsTooSteep) {
+  RELIEF_REQUIRE_SHARED_DATA();
+  const RealSet set = load_real("sf-ne/sf_ne_drive_2017.osm.gz", "sf-ne/sf_ne_usgs24k_30m_nad27utm10_m.tif");
+  Diagnostics d;
+  const ProfileFitResult fit = fit_profiles(set.network, set.raw, {}, d);
+  EXPECT_TRUE(fit.converged);
+  EXPECT_LT(fit.max_violation_m, 1e-6);
+  int tunnels_checked = 0;
+  for (const Road& road : set.network.roads) {
+    const std::string& name = road.attributes.name;
+    if (!road.attributes.tunnel || (name != "Robert C Levy Tunnel" && name != "Stockton Tunnel")) continue;
+    ++tunnels_checked;
+    const RoadProfile& f = fit.profiles[road.id];
+    const RoadProfile& r = set.raw[road.id];
+    // Between the portals (away from the first and last 15 %), the tunnel is under the hill.
+    double worst = 1e9, deepest = 0.0;
+    for (std::size_t i = 0; i < f.size(); ++i) {
+      if (f.s[i] < 0.15 * f.s.back() || f.s[i] > 0.85 * f.s.back()) continue;
+      worst = std::min(worst, r.z[i] - f.z[i]);
+      deepest = std::max(deepest, r.z[i] - f.z[i]);
+    }
+    std::cout << "NE tunnel road " << road.id << " '" << name << "' (" << f.s.back() << " m): between "
+              << worst << " and " << deepest << " m below the terrain, max grade " << max_grade_percent({f}) << " %\n";
+    EXPECT_GT(worst, 2.0);
+    EXPECT_GT(deepest, 10.0);
+  }
+  EXPECT_EQ(tunnels_checked, 3);  // Broadway (two bores) and Stockton
+  // Every crossing of different layers keeps the clearance.
+  EXPECT_GT(fit.separations.size(), 10u);
+  for (const GradeSeparation& sep : fit.separations) EXPECT_GE(sep.clearance_m, 5.0 - 1e-3);
+  EXPECT_LE(max_grade_for(set, fit.profiles, [](const Road&) { return true; }), 35.0 + 1e-3);
+  EXPECT_LE(max_grade_for(set, fit.profiles, is_highway), 10.0 + 1e-3);
+  // Jones, Broadway, Filbert, Hyde: the real steep streets survive the fit.
+  EXPECT_GT(max_grade_for(set, fit.profiles, [](const Road&) { return true; }), 25.0);
+
+  // Under the design policy every class meets the paper's table.
+  ProfileFitOptions design;
+  design.policy = GradePolicy::design;
+  const ProfileFitResult designed = fit_profiles(set.network, set.raw, design, d);
+  const GradeStats g = grade_stats(set.network, designed.profiles, GradeLimits::paper());
+  std::cout << "NE design policy: " << designed.iterations << " rounds, converged " << designed.converged
+            << ", max violation " << designed.max_violation_m << " m; compliance " << g.compliance_percent << " %, max " << g.max_percent
+            << " %, max departure from the DEM "
+            << cut_fill(designed.profiles, set.raw, ground_mask(set.network)).max_cut_m << " m cut / "
+            << cut_fill(designed.profiles, set.raw, ground_mask(set.network)).max_fill_m << " m fill\n";
+  EXPECT_NEAR(g.compliance_percent, 100.0, 1e-9);
+  EXPECT_LE(g.max_percent, 15.0 + 1e-3);
 }
 
 }  // namespace

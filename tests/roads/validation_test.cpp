@@ -111,7 +111,7 @@ TEST(Validation, HeightsOnAPlaneHaveNoErrorAndAReferenceOffsetShows) {
   Aabb2 area{Vec2(-200, -200), Vec2(200, 200)};
   const DemSampler d({dem}, test::synthetic_frame(), area);
   const DemSampler r({ref}, test::synthetic_frame(), area);
-  const HeightValidation v = validate_heights({p}, d, &r);
+  const HeightValidation v = HeightValidator({p}, d, &r).validate({p});
   EXPECT_EQ(v.vs_dem.n, 200u);
   EXPECT_LT(v.vs_dem.max_m, 1e-9);
   EXPECT_LT(v.error_3d_max_m, 1e-9);
@@ -130,7 +130,7 @@ TEST(Validation, ThreeDErrorIsThePointToSurfaceDistance) {
     p.z.push_back(1.0);
   }
   const DemSampler d({dem}, test::synthetic_frame(), Aabb2{Vec2(-50, -50), Vec2(50, 50)});
-  const HeightValidation v = validate_heights({p}, d, nullptr);
+  const HeightValidation v = HeightValidator({p}, d, nullptr).validate({p});
   EXPECT_NEAR(v.vs_dem.max_m, 1.0, 1e-9);
   EXPECT_NEAR(v.error_3d_max_m, 1.0 / std::sqrt(2.0), 1e-9);
   EXPECT_FALSE(v.vs_reference);

@@ -1,4 +1,5 @@
 // `relief build`: parse, call relief::build, print the summary.
+#include <iomanip>
 #include <iostream>
 #include <memory>
 #include <sstream>
@@ -22,6 +23,14 @@ struct BuildArgs {
   std::string grade_limits;
   std::string outputs = "all";
   bool quiet = false;
+  std::string profiles = "relief";
+  std::string grade_policy = "fidelity";
+  double max_grade_percent = 35.0;
+  double highway_max_grade_percent = 10.0;
+  double clearance_m = 5.0;
+  double wavelength_m = 40.0;
+  double max_curvature = 0.05;
+  bool no_compare = false;
 };
 
 void print_summary(const BuildResult& result) {
@@ -44,6 +53,22 @@ void print_summary(const BuildResult& result) {
     const ErrorStats& e = *r.heights.vs_reference;
     out << "  vs ref DEM MAE " << fixed(e.mae_m, 3) << " m, RMSE " << fixed(e.rmse_m, 3) << " m, max "
         << fixed(e.max_m, 3) << " m, bias " << fixed(e.bias_m, 3) << " m (n = " << e.n << ")\n";
+  }
+  for (const MethodReport& m : r.methods) {
+    out << "  " << (m.method == r.profile_method ? "* " : "  ") << std::left << std::setw(8) << m.method
+        << " ground vs DEM RMSE " << fixed(m.ground.vs_dem.rmse_m, 3) << " m, max grade "
+        << fixed(m.gradient.max_percent, 1) << " %, p99 " << fixed(m.gradient.p99_percent, 1) << " %, compliance "
+        << fixed(m.gradient.compliance_percent, 1) << " %, clearance ok at " << (m.separations - m.below_clearance)
+        << "/" << m.separations << " crossings\n";
+  }
+  if (r.fit) {
+    out << "  fit        " << r.fit->policy << " policy, " << r.fit->variables << " heights, " << r.fit->constraints
+        << " constraints, " << r.fit->iterations << " rounds" << (r.fit->converged ? "" : " (not settled)")
+        << ", largest violation " << fixed(r.fit->max_violation_m, 6) << " m\n";
+  }
+  if (r.paper) {
+    out << "  paper      " << r.paper->roads_not_converged << " roads still over their limit after "
+        << r.paper->max_iterations << " iterations\n";
   }
   out << "  gradient   max " << fixed(r.gradient.max_percent, 1) << " %, p99 " << fixed(r.gradient.p99_percent, 1)
       << " %, compliance with class limits " << fixed(r.gradient.compliance_percent, 1) << " %\n"
@@ -76,6 +101,31 @@ Runner add_build_command(CLI::App& app) {
   cmd->add_option("--outputs", args->outputs, "comma-separated outputs to write: geojson, report, or all")
       ->capture_default_str();
   cmd->add_flag("-q,--quiet", args->quiet, "print only errors and the summary");
+  cmd->add_option("--profiles", args->profiles,
+                  "road profiles the outputs carry: relief (network-wide constrained fit), paper (the seed "
+                  "paper's 3-point moving average), raw (DEM drape)")
+      ->capture_default_str();
+  cmd->add_option("--grade-policy", args->grade_policy,
+                  "fit policy: fidelity (keep real grades, cap at --max-grade) or design (enforce the class limits)")
+      ->capture_default_str();
+  cmd->add_option("--max-grade", args->max_grade_percent, "fidelity: grade cap for streets, percent")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--highway-max-grade", args->highway_max_grade_percent,
+                  "fidelity: grade cap for motorways, trunks and their links, percent")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--clearance", args->clearance_m, "minimum vertical clearance where roads on different layers cross, m")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--smoothing-wavelength", args->wavelength_m,
+                  "height variations shorter than this are DEM noise to the fit, m")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--max-curvature", args->max_curvature, "bound on vertical curvature |z''|, 1/m (0: none)")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_flag("--no-compare", args->no_compare, "run only the chosen profile method (no comparison in the report)");
 
   return [args] {
     return run_reporting_errors([&] {
@@ -94,6 +144,18 @@ Runner add_build_command(CLI::App& app) {
       if (!fill) throw CLI::ValidationError("--nodata-fill", "'" + args->nodata_fill + "' is not interpolate or error");
       options.sampling.nodata_fill = *fill;
       options.sampling.allow_partial = args->allow_partial;
+      const auto method = parse_profile_method(args->profiles);
+      if (!method) throw CLI::ValidationError("--profiles", "'" + args->profiles + "' is not one of relief, paper, raw");
+      options.profile_method = *method;
+      const auto policy = parse_grade_policy(args->grade_policy);
+      if (!policy) throw CLI::ValidationError("--grade-policy", "'" + args->grade_policy + "' is not fidelity or design");
+      options.fit.policy = *policy;
+      options.fit.fidelity_max_grade_percent = args->max_grade_percent;
+      options.fit.fidelity_highway_max_grade_percent = args->highway_max_grade_percent;
+      options.fit.clearance_m = args->clearance_m;
+      options.fit.cutoff_wavelength_m = args->wavelength_m;
+      options.fit.max_curvature_per_m = args->max_curvature;
+      options.compare_methods = !args->no_compare;
       if (!args->grade_limits.empty()) options.grade_limits.apply_overrides(args->grade_limits);
       if (args->outputs != "all") {
         options.outputs.clear();

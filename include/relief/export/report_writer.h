@@ -2,6 +2,7 @@
 // report.json: what was built, from what, and how good it is (the seed paper's validation
 // figures), with the frame needed to map every output back to lon/lat.
 
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -12,6 +13,41 @@
 #include "relief/terrain/dem_source.h"
 
 namespace relief {
+
+/// The figures of one way of making the profiles (raw drape, the paper's smoothing, relief's fit).
+struct MethodReport {
+  std::string method;            ///< "raw", "paper", "relief"
+  HeightValidation all;          ///< every road
+  HeightValidation ground;       ///< roads on the ground
+  HeightValidation structures;   ///< bridges and tunnels
+  GradeStats gradient;
+  JunctionGapStats junctions;
+  CutFillStats cut_fill;         ///< departure from the DEM drape, roads on the ground
+  std::size_t separations = 0;   ///< crossings of roads on different layers
+  double min_clearance_m = 0.0;  ///< smallest upper-minus-lower height at those crossings
+  std::size_t below_clearance = 0;
+  double seconds = 0.0;          ///< time to make the profiles
+};
+
+/// relief's fit, as run.
+struct FitSummary {
+  std::string policy;
+  int iterations = 0;
+  bool converged = false;
+  std::size_t variables = 0;
+  std::size_t constraints = 0;
+  double max_violation_m = 0.0;
+  double clearance_m = 0.0;
+  double cutoff_wavelength_m = 0.0;
+};
+
+/// The paper's smoothing, as run.
+struct PaperSummary {
+  int max_iterations = 0;
+  std::size_t roads_not_converged = 0;
+  double max_shift_m = 0.0;
+  std::vector<int> not_converged_roads;
+};
 
 struct RunReport {
   std::string name;
@@ -28,9 +64,14 @@ struct RunReport {
   std::size_t void_samples = 0;
   std::size_t uncovered_samples = 0;
   std::size_t roads_without_height = 0;
-  HeightValidation heights;
-  GradeStats gradient;
-  JunctionGapStats junctions;
+  std::string profile_method;   ///< the method whose profiles the outputs carry
+  HeightValidation heights;      ///< of profile_method, every road
+  GradeStats gradient;           ///< of profile_method
+  JunctionGapStats junctions;    ///< of profile_method
+  std::vector<MethodReport> methods;  ///< raw, paper, relief: the comparison
+  std::optional<FitSummary> fit;
+  std::optional<PaperSummary> paper;
+  GradeLimits grade_limits = GradeLimits::paper();
   std::vector<std::pair<std::string, double>> timings_s;  ///< stage -> seconds, in order
   std::vector<std::string> outputs;                       ///< file names written
   const Diagnostics* diagnostics = nullptr;
@@ -45,7 +86,9 @@ struct RunReport {
 /// error_3d_max_m}, vs_reference{...} | null}, gradient{compliance_percent, max_percent,
 /// p99_percent, steepest_road, by_class{class: {length_km, limit_percent, compliance_percent,
 /// max_percent, p99_percent}}}, junctions{max_gap_m, worst_junction, over_bound, bound_m,
-/// checked}, diagnostics{total, counts{code: n}, messages[]}, timings_s{stage: s}, outputs[].
+/// checked}, profiles{method, fit{...}, paper{...}}, methods{raw|paper|relief: {vs_dem,
+/// vs_dem_ground, vs_dem_structures, vs_reference, gradient, junctions, cut_fill, clearance}},
+/// diagnostics{total, counts{code: n}, messages[]}, timings_s{stage: s}, outputs[].
 [[nodiscard]] std::string report_json(const RunReport& report);
 
 /// relief's version string ("0.1.0").

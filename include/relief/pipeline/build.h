@@ -13,10 +13,21 @@
 #include "relief/export/report_writer.h"
 #include "relief/roads/elevation_sampling.h"
 #include "relief/roads/osm_reader.h"
+#include "relief/roads/paper_smoothing.h"
+#include "relief/roads/profile_fit.h"
 #include "relief/roads/validation.h"
 #include "relief/terrain/dem_sampler.h"
 
 namespace relief {
+
+/// How the road profiles that the outputs carry are made.
+enum class ProfileMethod {
+  raw,     ///< the DEM drape as sampled
+  paper,   ///< the seed paper's iterated three-point moving average
+  relief,  ///< relief's network-wide constrained fit (profile_fit.h)
+};
+[[nodiscard]] std::optional<ProfileMethod> parse_profile_method(std::string_view text);
+[[nodiscard]] std::string_view to_string(ProfileMethod method);
 
 /// Outputs `build` can write into the output directory.
 enum class Output { geojson, report };
@@ -34,7 +45,12 @@ struct BuildOptions {
   DemOptions dem;
   DemOptions reference_dem;
   SamplingOptions sampling;
-  GradeLimits grade_limits = GradeLimits::paper();
+  GradeLimits grade_limits = GradeLimits::paper();  ///< compliance table; also the design policy's
+  ProfileMethod profile_method = ProfileMethod::relief;
+  ProfileFitOptions fit;        ///< its `limits` are replaced by grade_limits
+  int paper_max_iterations = 1000;
+  /// Also run the other methods and put the comparison in the report.
+  bool compare_methods = true;
   std::set<Output> outputs = {Output::geojson, Output::report};
 };
 

@@ -49,7 +49,8 @@ struct ElevationSamples {
 };
 
 /// Stations along a road: every spacing_m plus every vertex (a 100 m straight road at 1 m
-/// spacing gives 101 samples).
+/// spacing gives 101 samples). Stations closer than spacing_m / 4 are merged, a vertex winning
+/// over a grid station, so no segment is shorter than that except between two vertices.
 [[nodiscard]] RoadProfile make_stations(const Road& road, double spacing_m);
 
 /// Height at arc length `s` along a profile, linear between stations (clamped to the ends).

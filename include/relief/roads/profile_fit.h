@@ -8,8 +8,9 @@
 // height) and a tangent plane per junction that every road leaves along (the junction is a
 // smooth surface: no step and no kink between its roads, and a plane costs nothing). Bridge and tunnel samples have w = 0, so decks span smoothly
 // between their abutments and portals instead of following the valley or the hill.
-// Solved by ADMM (OSQP-style) on a sparse LDL^T factorisation that is reused between
-// iterations; the cost is linear in the number of samples.
+// Solved by a primal active-set method: exact sparse LDL^T solves (pattern analysed once) with
+// the violated rows enforced as stiff penalties, a few rounds; the cost is linear in the number
+// of samples (the factor of a network of chains between junctions stays sparse).
 
 #include <optional>
 #include <string_view>
@@ -34,21 +35,25 @@ struct ProfileFitOptions {
   GradePolicy policy = GradePolicy::fidelity;
   GradeLimits limits = GradeLimits::paper();  ///< the class table (design policy)
   double fidelity_max_grade_percent = 35.0;   ///< physical cap under the fidelity policy
+  /// Cap for motorways, trunks and their links under the fidelity policy: no freeway climbs
+  /// like a San Francisco street, so a DEM drape that says otherwise (embankments, viaducts,
+  /// cuttings) is an artefact.
+  double fidelity_highway_max_grade_percent = 10.0;
   /// Wavelength below which height variations are treated as DEM noise (m). The smoothing
   /// weight is lambda = (cutoff / 2 pi)^4, where a smoothing spline halves the amplitude.
   double cutoff_wavelength_m = 40.0;
   double max_curvature_per_m = 0.05;          ///< |z''| bound (1/m); 0 disables it
   double clearance_m = 5.0;                   ///< minimum vertical clearance at grade separations
-  double tolerance_m = 1e-4;                  ///< ADMM stopping tolerance on residuals
-  int max_iterations = 4000;
+  double tolerance_m = 1e-6;                  ///< a row counts as violated beyond this (m)
+  int max_iterations = 40;                    ///< active-set rounds
 };
 
 struct ProfileFitResult {
   std::vector<RoadProfile> profiles;  ///< same stations as the input, fitted z
   std::vector<double> junction_z;     ///< height of each junction (m)
   std::vector<GradeSeparation> separations;
-  int iterations = 0;
-  bool converged = false;
+  int iterations = 0;                 ///< active-set rounds
+  bool converged = false;             ///< the active set settled
   double max_violation_m = 0.0;       ///< largest constraint violation left (m)
   std::size_t variables = 0;
   std::size_t constraints = 0;

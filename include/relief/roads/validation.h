@@ -3,6 +3,7 @@
 // independent reference DEM, gradients and their compliance with per-class limits, junction
 // elevation gaps, and network counts.
 
+#include <cstdint>
 #include <map>
 #include <optional>
 #include <span>
@@ -106,8 +107,46 @@ struct HeightValidation {
   std::optional<ErrorStats> vs_reference;
 };
 
-[[nodiscard]] HeightValidation validate_heights(const std::vector<RoadProfile>& profiles,
-                                                const DemSampler& dem,
-                                                const DemSampler* reference);
+/// Validates profiles that share the stations of `stations` (every method of making the
+/// profiles keeps the raw stations). The DEM heights and gradients at the midpoints and the
+/// reference heights at the stations are read once, at construction.
+class HeightValidator {
+ public:
+  HeightValidator(const std::vector<RoadProfile>& stations, const DemSampler& dem,
+                  const DemSampler* reference);
+
+  /// Figures of the roads selected by `road_mask` (one flag per road; empty = all roads).
+  [[nodiscard]] HeightValidation validate(const std::vector<RoadProfile>& profiles,
+                                          std::span<const std::uint8_t> road_mask = {}) const;
+
+ private:
+  std::vector<std::size_t> first_midpoint_;  // per road, index of its first midpoint
+  std::vector<std::optional<double>> dem_mid_;
+  std::vector<std::optional<Vec2>> gradient_mid_;
+  std::vector<std::size_t> first_station_;   // per road, index of its first station
+  std::vector<std::optional<double>> reference_;
+  bool has_reference_ = false;
+};
+
+/// How far a profile departs from the terrain (the raw DEM drape) on roads on the ground:
+/// fill where it runs above the terrain, cut where below.
+struct CutFillStats {
+  double max_fill_m = 0.0;
+  double max_cut_m = 0.0;          ///< as a positive depth
+  double mean_abs_m = 0.0;
+  double km_over_0_5_m = 0.0;      ///< length departing by more than 0.5 m
+  double km_over_2_m = 0.0;        ///< ... by more than 2 m
+  std::optional<int> worst_road;   ///< where the largest departure is
+  double worst_s_m = 0.0;
+};
+
+/// Compares `profiles` with `terrain` (same stations) on the roads where `road_mask` is set.
+[[nodiscard]] CutFillStats cut_fill(const std::vector<RoadProfile>& profiles,
+                                    const std::vector<RoadProfile>& terrain,
+                                    std::span<const std::uint8_t> road_mask = {});
+
+/// 1 for roads on the ground (neither bridge nor tunnel), 0 for structures; `structures`
+/// inverts it.
+[[nodiscard]] std::vector<std::uint8_t> ground_mask(const RoadNetwork& network, bool structures = false);
 
 }  // namespace relief

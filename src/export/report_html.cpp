@@ -1,0 +1,1 @@
+// placeholder: report.html is being written
