@@ -7,6 +7,7 @@
 #include "relief/core/atomic_file.h"
 #include "relief/core/errors.h"
 #include "relief/export/geojson_writer.h"
+#include "relief/export/report_html.h"
 #include "pipeline/stages.h"
 
 namespace relief {
@@ -67,6 +68,7 @@ std::string_view to_string(ProfileMethod method) {
 std::optional<Output> parse_output(std::string_view text) {
   if (text == "geojson") return Output::geojson;
   if (text == "report") return Output::report;
+  if (text == "html") return Output::html;
   return std::nullopt;
 }
 
@@ -74,6 +76,7 @@ std::string_view to_string(Output output) {
   switch (output) {
     case Output::geojson: return "geojson";
     case Output::report: return "report";
+    case Output::html: return "html";
   }
   return "unknown";
 }
@@ -199,6 +202,21 @@ BuildResult build(const BuildOptions& options, Diagnostics& diagnostics, const P
     });
     report.outputs.push_back(report.name + ".geojson");
     result.written.push_back(path_of(".geojson"));
+  }
+  if (options.outputs.count(Output::html)) {
+    report.outputs.push_back("report.html");
+    result.written.push_back(options.out_dir / "report.html");
+    report.timings_s = timer.timings();
+    timer.run("write report.html", [&] {
+      HtmlReportInput in;
+      in.report = &report;
+      in.network = &network;
+      in.raw = &raw;
+      in.paper = paper ? &paper->profiles : nullptr;
+      in.fitted = fit ? &fit->profiles : nullptr;
+      files.add(options.out_dir / "report.html", [&](std::ostream& out) { write_report_html(out, in); });
+      return 0;
+    });
   }
   if (options.outputs.count(Output::report)) {
     report.outputs.push_back("report.json");

@@ -1,9 +1,11 @@
 #include "relief/roads/profile_fit.h"
 
 #include <Eigen/Sparse>
+#include <Eigen/OrderingMethods>
 #include <Eigen/SparseCholesky>
 
 #include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <cmath>
@@ -21,8 +23,26 @@ using SpMat = Eigen::SparseMatrix<double>;
 using Triplet = Eigen::Triplet<double>;
 using Vec = Eigen::VectorXd;
 
+// Prints the time of a stage of the fit to stderr when RELIEF_FIT_TRACE is set (development aid).
+class TraceTimer {
+ public:
+  explicit TraceTimer(const char* what) : what_(what), t0_(std::chrono::steady_clock::now()) {}
+  ~TraceTimer() {
+    if (std::getenv("RELIEF_FIT_TRACE")) {
+      std::fprintf(stderr, "fit: %s %.3f s\n", what_,
+                   std::chrono::duration<double>(std::chrono::steady_clock::now() - t0_).count());
+    }
+  }
+
+ private:
+  const char* what_;
+  std::chrono::steady_clock::time_point t0_;
+};
+
 constexpr double kMinCurvatureSpacing = 0.5;  // m; closer stations are not used for z'' rows
 constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr double kPinnedReach = 30.0;        // m along a road under a crossing
+constexpr double kPinnedStiffness = 1000.0;  // data weight factor there
 
 // Index of every sample's height variable: interior samples own one, road ends share their
 // junction's variable.
@@ -56,6 +76,9 @@ class VariableMap {
   /// junctions with two or more road ends.
   [[nodiscard]] std::size_t gradient(int j) const { return gradient_index_[j]; }
   [[nodiscard]] std::size_t count() const { return count_; }
+  /// Variables from here on belong to junctions (heights and tangent planes); before, to the
+  /// interior stations of the roads, road after road in station order.
+  [[nodiscard]] std::size_t junction_base() const { return junction_base_; }
 
  private:
   const RoadNetwork& network_;
@@ -86,20 +109,32 @@ std::array<double, 3> curvature_row(double h1, double h2) {
   return {2.0 / (h1 * (h1 + h2)), -2.0 / (h1 * h2), 2.0 / (h2 * (h1 + h2))};
 }
 
+bool is_structure(const Road& road) { return road.attributes.bridge || road.attributes.tunnel; }
+
 struct Triple {
   std::size_t a, b, c;
   double h1, h2;
+  double lambda;  // smoothing weight of the road it lies on
 };
 
 // The smoothness triples: consecutive stations of each road.
-std::vector<Triple> smoothness_triples(const std::vector<RoadProfile>& profiles, const VariableMap& vars) {
+// lambda = (cutoff / 2 pi)^4: a smoothing spline halves the amplitude at the cutoff wavelength.
+double smoothing_weight(double cutoff_wavelength_m) {
+  return std::pow(cutoff_wavelength_m / (2.0 * std::numbers::pi), 4.0);
+}
+
+std::vector<Triple> smoothness_triples(const RoadNetwork& network, const std::vector<RoadProfile>& profiles,
+                                       const VariableMap& vars, const ProfileFitOptions& options) {
+  const double ground = smoothing_weight(options.cutoff_wavelength_m);
+  const double structure = smoothing_weight(options.structure_cutoff_wavelength_m);
   std::vector<Triple> triples;
   for (std::size_t r = 0; r < profiles.size(); ++r) {
     const RoadProfile& p = profiles[r];
     const std::size_t n = p.size();
+    const double lambda = is_structure(network.roads[r]) ? structure : ground;
     for (std::size_t i = 1; i + 1 < n; ++i) {
       triples.push_back({vars.of(r, i - 1, n), vars.of(r, i, n), vars.of(r, i + 1, n),
-                         p.s[i] - p.s[i - 1], p.s[i + 1] - p.s[i]});
+                         p.s[i] - p.s[i - 1], p.s[i + 1] - p.s[i], lambda});
     }
   }
   return triples;
@@ -130,8 +165,6 @@ void add_junction_planes(const RoadNetwork& network, const std::vector<RoadProfi
     }
   }
 }
-
-bool is_structure(const Road& road) { return road.attributes.bridge || road.attributes.tunnel; }
 
 // Structures are spans between abutments: a structure takes no data term when it is anchored to
 // ground roads at two or more junctions. One cut off by the data's edge (fewer anchors) has
@@ -178,6 +211,56 @@ std::vector<std::uint8_t> roads_with_data(const RoadNetwork& network, Diagnostic
   return data;
 }
 
+using Permutation = Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int>;
+
+// Fill-reducing elimination order. Road interiors come first, each road in station order: a
+// chain eliminated end to end fills in only its two junctions' variables, so that part costs
+// O(samples). The junction block left behind (heights and tangent planes, coupled along every
+// road and at every grade separation) is small and ordered by AMD. Running AMD on the whole
+// matrix gives the same fill but takes seconds on millions of stations.
+Permutation elimination_order(const RoadNetwork& network, const VariableMap& vars,
+                              const std::vector<GradeSeparation>& separations) {
+  const auto base = static_cast<int>(vars.junction_base());
+  const auto nj = static_cast<int>(vars.count()) - base;
+  // Variables of the junction block that a road couples once its interior is eliminated.
+  const auto road_block = [&](int road, std::vector<int>& out) {
+    for (const int j : {network.roads[road].start_junction, network.roads[road].end_junction}) {
+      out.push_back(static_cast<int>(vars.junction(j)) - base);
+      if (network.junctions[j].ends.size() >= 2) {
+        out.push_back(static_cast<int>(vars.gradient(j)) - base);
+        out.push_back(static_cast<int>(vars.gradient(j)) + 1 - base);
+      }
+    }
+  };
+  std::vector<Triplet> pattern;
+  std::vector<int> block;
+  const auto connect_all = [&] {
+    for (const int a : block)
+      for (const int b : block) pattern.emplace_back(a, b, 1.0);
+  };
+  for (const Road& road : network.roads) {
+    block.clear();
+    road_block(road.id, block);
+    connect_all();
+  }
+  for (const GradeSeparation& sep : separations) {
+    block.clear();
+    road_block(sep.upper_road, block);
+    road_block(sep.lower_road, block);
+    connect_all();
+  }
+  SpMat junction_pattern(nj, nj);
+  junction_pattern.setFromTriplets(pattern.begin(), pattern.end());
+  Permutation amd_inverse;
+  Eigen::AMDOrdering<int>()(junction_pattern, amd_inverse);
+  const Permutation amd = amd_inverse.inverse();  // old junction-block index -> new
+
+  Permutation order(static_cast<int>(vars.count()));
+  for (int i = 0; i < base; ++i) order.indices()[i] = i;
+  for (int k = 0; k < nj; ++k) order.indices()[base + k] = base + amd.indices()[k];
+  return order;
+}
+
 // min 1/2 x'Px + q'x  s.t.  l <= Ax <= u, by a primal active set with exact solves: rows found
 // violated are enforced by a stiff quadratic penalty  mu/2 (a.x - bound)^2,  rows whose penalty
 // pulls the wrong way (the bound is not binding) are released, and the system is refactorised
@@ -190,8 +273,14 @@ struct ActiveSetResult {
   bool converged = false;
 };
 
-ActiveSetResult solve_active_set(const SpMat& P, const Vec& q, const SpMat& A, const Vec& l, const Vec& u,
-                                 double tolerance, int max_rounds) {
+ActiveSetResult solve_active_set(const SpMat& P_original, const Vec& q_original, const SpMat& A_original,
+                                 const Vec& l, const Vec& u, const Permutation& order, double tolerance,
+                                 int max_rounds) {
+  // Work in the elimination order: x_new = order * x.
+  SpMat P;
+  P = P_original.selfadjointView<Eigen::Lower>().twistedBy(order);
+  const Vec q = order * q_original;
+  const SpMat A = A_original * order.transpose();
   const SpMat At = A.transpose();
   // The penalty is stiff against the largest curvature weight, so enforced rows are met to
   // ~1e-7 of the forces involved; polish() does the rest.
@@ -200,11 +289,15 @@ ActiveSetResult solve_active_set(const SpMat& P, const Vec& q, const SpMat& A, c
   Vec weight = Vec::Zero(rows);  // mu on active rows, 0 elsewhere
   Vec bound = Vec::Zero(rows);
 
-  Eigen::SimplicialLDLT<SpMat> ldlt;
-  ldlt.analyzePattern(SpMat(P + At * A));
+  Eigen::SimplicialLDLT<SpMat, Eigen::Lower, Eigen::NaturalOrdering<int>> ldlt;
+  {
+    const TraceTimer t("analyse pattern");
+    ldlt.analyzePattern(SpMat(P + At * A));
+  }
   ActiveSetResult out;
   const int freeze_after = std::clamp(max_rounds / 2, 1, 8);  // then only add rows: no cycling
   for (int round = 1; round <= max_rounds; ++round) {
+    const TraceTimer t("round");
     const SpMat M = P + At * weight.asDiagonal() * A;
     ldlt.factorize(M);
     if (ldlt.info() != Eigen::Success) throw Error("profile fit: the normal equations could not be factorised");
@@ -239,6 +332,7 @@ ActiveSetResult solve_active_set(const SpMat& P, const Vec& q, const SpMat& A, c
       break;
     }
   }
+  out.x = order.transpose() * out.x;
   return out;
 }
 
@@ -305,6 +399,17 @@ ProfileFitResult fit_profiles(const RoadNetwork& network, const std::vector<Road
   Vec initial = Vec::Zero(static_cast<Eigen::Index>(n));
   Vec initial_count = Vec::Zero(static_cast<Eigen::Index>(n));
   const std::vector<std::uint8_t> with_data = roads_with_data(network, diagnostics);
+  ProfileFitResult result;
+  result.separations = find_grade_separations(network, raw);
+  // A road on the ground under a bridge stays on the ground: near a crossing its data term is
+  // much stiffer than the deck, so the clearance is won by lifting the deck.
+  std::vector<std::vector<double>> pinned(raw.size());
+  for (const GradeSeparation& sep : result.separations) pinned[sep.lower_road].push_back(sep.s_lower);
+  const auto stiffness = [&](std::size_t r, double s) {
+    for (double at : pinned[r])
+      if (std::abs(s - at) <= kPinnedReach) return kPinnedStiffness;
+    return 1.0;
+  };
   for (std::size_t r = 0; r < raw.size(); ++r) {
     const RoadProfile& p = raw[r];
     const bool ground = with_data[r] && p.has_height;
@@ -312,7 +417,7 @@ ProfileFitResult fit_profiles(const RoadNetwork& network, const std::vector<Road
       const auto v = static_cast<Eigen::Index>(vars.of(r, i, p.size()));
       const double left = i > 0 ? p.s[i] - p.s[i - 1] : 0.0;
       const double right = i + 1 < p.size() ? p.s[i + 1] - p.s[i] : 0.0;
-      const double w = ground ? 0.5 * (left + right) : 0.0;
+      const double w = ground ? 0.5 * (left + right) * stiffness(r, p.s[i]) : 0.0;
       weight[v] += w;
       target_weight[v] += w * p.z[i];
       initial[v] += p.z[i];
@@ -325,15 +430,15 @@ ProfileFitResult fit_profiles(const RoadNetwork& network, const std::vector<Road
   }
 
   // Smoothness: lambda * sum (z'')^2 ds, with lambda from the cutoff wavelength.
-  const double lambda = std::pow(options.cutoff_wavelength_m / (2.0 * std::numbers::pi), 4.0);
-  const std::vector<Triple> triples = smoothness_triples(raw, vars);
+  const double lambda = smoothing_weight(options.cutoff_wavelength_m);
+  const std::vector<Triple> triples = smoothness_triples(network, raw, vars, options);
   std::vector<Triplet> p_entries;
   p_entries.reserve(n + 9 * triples.size());
   for (std::size_t v = 0; v < n; ++v) p_entries.emplace_back(static_cast<int>(v), static_cast<int>(v), weight[static_cast<Eigen::Index>(v)]);
   Constraints cons;
   for (const Triple& t : triples) {
     const auto c = curvature_row(t.h1, t.h2);
-    const double w = lambda * 0.5 * (std::max(t.h1, kMinCurvatureSpacing) + std::max(t.h2, kMinCurvatureSpacing));
+    const double w = t.lambda * 0.5 * (std::max(t.h1, kMinCurvatureSpacing) + std::max(t.h2, kMinCurvatureSpacing));
     const std::array<std::size_t, 3> idx{t.a, t.b, t.c};
     for (int i = 0; i < 3; ++i)
       for (int k = 0; k < 3; ++k)
@@ -344,7 +449,10 @@ ProfileFitResult fit_profiles(const RoadNetwork& network, const std::vector<Road
   }
   add_junction_planes(network, raw, vars, lambda, p_entries);
   SpMat P(static_cast<int>(n), static_cast<int>(n));
-  P.setFromTriplets(p_entries.begin(), p_entries.end());
+  {
+    const TraceTimer t("assemble P");
+    P.setFromTriplets(p_entries.begin(), p_entries.end());
+  }
   const Vec q = -weight.cwiseProduct(target);
 
   // Grade rows on every segment.
@@ -360,8 +468,6 @@ ProfileFitResult fit_profiles(const RoadNetwork& network, const std::vector<Road
   }
 
   // Clearance rows where roads on different layers cross.
-  ProfileFitResult result;
-  result.separations = find_grade_separations(network, raw);
   for (const GradeSeparation& sep : result.separations) {
     const auto at = [&](int road, double s) {
       const RoadProfile& p = raw[road];
@@ -389,8 +495,13 @@ ProfileFitResult fit_profiles(const RoadNetwork& network, const std::vector<Road
   constexpr double kMargin = 2e-4;  // m
   const Vec l_aim = (l.array() + kMargin).min(0.5 * (l + u).array());
   const Vec u_aim = (u.array() - kMargin).max(0.5 * (l + u).array());
-  ActiveSetResult solution = solve_active_set(P, q, A, l_aim, u_aim, options.tolerance_m, options.max_iterations);
-  result.max_violation_m = polish(A, l, u, solution.x, 1000);
+  const Permutation order = elimination_order(network, vars, result.separations);
+  ActiveSetResult solution =
+      solve_active_set(P, q, A, l_aim, u_aim, order, options.tolerance_m, options.max_iterations);
+  {
+    const TraceTimer t("polish");
+    result.max_violation_m = polish(A, l, u, solution.x, 1000);
+  }
   result.iterations = solution.rounds;
   result.converged = solution.converged;
   result.variables = n;

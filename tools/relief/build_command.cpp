@@ -98,7 +98,7 @@ Runner add_build_command(CLI::App& app) {
   cmd->add_flag("--allow-partial", args->allow_partial, "accept roads partly outside the DEM(s) (filled, reported)");
   cmd->add_option("--grade-limits", args->grade_limits,
                   "override grade limits, e.g. highway=8,arterial=12,local=15,residential=18 (percent)");
-  cmd->add_option("--outputs", args->outputs, "comma-separated outputs to write: geojson, report, or all")
+  cmd->add_option("--outputs", args->outputs, "comma-separated outputs to write: geojson, report (report.json), html (report.html), or all")
       ->capture_default_str();
   cmd->add_flag("-q,--quiet", args->quiet, "print only errors and the summary");
   cmd->add_option("--profiles", args->profiles,
@@ -163,7 +163,7 @@ Runner add_build_command(CLI::App& app) {
         std::string item;
         while (std::getline(in, item, ',')) {
           const auto output = parse_output(item);
-          if (!output) throw CLI::ValidationError("--outputs", "'" + item + "' is not one of geojson, report, all");
+          if (!output) throw CLI::ValidationError("--outputs", "'" + item + "' is not one of geojson, report, html, all");
           options.outputs.insert(*output);
         }
       }

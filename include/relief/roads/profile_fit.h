@@ -42,6 +42,9 @@ struct ProfileFitOptions {
   /// Wavelength below which height variations are treated as DEM noise (m). The smoothing
   /// weight is lambda = (cutoff / 2 pi)^4, where a smoothing spline halves the amplitude.
   double cutoff_wavelength_m = 40.0;
+  /// The same for bridge and tunnel decks, which are stiff over hundreds of metres: a deck
+  /// arches smoothly over the roads it must clear instead of bumping up at each of them.
+  double structure_cutoff_wavelength_m = 200.0;
   double max_curvature_per_m = 0.05;          ///< |z''| bound (1/m); 0 disables it
   double clearance_m = 5.0;                   ///< minimum vertical clearance at grade separations
   double tolerance_m = 1e-6;                  ///< a row counts as violated beyond this (m)
