@@ -92,13 +92,18 @@ class VariableMap {
 struct Constraints {
   std::vector<Triplet> entries;
   std::vector<double> lower, upper;
+  /// Rows that couple variables P does not already couple (clearances, two-station roads).
+  std::vector<Triplet> extra_pattern;
 
-  std::size_t add(std::initializer_list<std::pair<std::size_t, double>> row, double lo, double hi) {
+  void add(std::initializer_list<std::pair<std::size_t, double>> row, double lo, double hi,
+           bool within_pattern_of_p = true) {
     const auto r = static_cast<int>(lower.size());
-    for (const auto& [col, value] : row) entries.emplace_back(r, static_cast<int>(col), value);
+    for (const auto& [col, value] : row) {
+      entries.emplace_back(r, static_cast<int>(col), value);
+      if (!within_pattern_of_p) extra_pattern.emplace_back(r, static_cast<int>(col), 1.0);
+    }
     lower.push_back(lo);
     upper.push_back(hi);
-    return lower.size() - 1;
   }
 };
 
@@ -274,14 +279,13 @@ struct ActiveSetResult {
 };
 
 ActiveSetResult solve_active_set(const SpMat& P_original, const Vec& q_original, const SpMat& A_original,
-                                 const Vec& l, const Vec& u, const Permutation& order, double tolerance,
-                                 int max_rounds) {
+                                 const SpMat& extra_pattern, const Vec& l, const Vec& u, const Permutation& order,
+                                 double tolerance, int max_rounds) {
   // Work in the elimination order: x_new = order * x.
   SpMat P;
   P = P_original.selfadjointView<Eigen::Lower>().twistedBy(order);
   const Vec q = order * q_original;
   const SpMat A = A_original * order.transpose();
-  const SpMat At = A.transpose();
   // The penalty is stiff against the largest curvature weight, so enforced rows are met to
   // ~1e-7 of the forces involved; polish() does the rest.
   const double mu = 1e7 * std::max(1.0, P.diagonal().maxCoeff());
@@ -289,19 +293,40 @@ ActiveSetResult solve_active_set(const SpMat& P_original, const Vec& q_original,
   Vec weight = Vec::Zero(rows);  // mu on active rows, 0 elsewhere
   Vec bound = Vec::Zero(rows);
 
+  // Every round's matrix gets the pattern of P + A'A (the factorisation needs one pattern), with
+  // only the active rows' values.
   Eigen::SimplicialLDLT<SpMat, Eigen::Lower, Eigen::NaturalOrdering<int>> ldlt;
+  SpMat base;
   {
     const TraceTimer t("analyse pattern");
-    ldlt.analyzePattern(SpMat(P + At * A));
+    const SpMat extra = extra_pattern * order.transpose();
+    base = P + 0.0 * SpMat(extra.transpose() * extra);
+    ldlt.analyzePattern(base);
   }
   ActiveSetResult out;
+  const Eigen::SparseMatrix<double, Eigen::RowMajor> A_rows = A;
+  std::vector<Triplet> active_entries;
   const int freeze_after = std::clamp(max_rounds / 2, 1, 8);  // then only add rows: no cycling
   for (int round = 1; round <= max_rounds; ++round) {
     const TraceTimer t("round");
-    const SpMat M = P + At * weight.asDiagonal() * A;
+    // Only the active rows enter the system: sqrt(mu) a_r, so that Aa'Aa = sum mu a_r a_r'.
+    active_entries.clear();
+    Vec active_rhs = Vec::Zero(P.rows());
+    int k = 0;
+    for (Eigen::Index r = 0; r < rows; ++r) {
+      if (weight[r] == 0.0) continue;
+      for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(A_rows, r); it; ++it) {
+        active_entries.emplace_back(k, static_cast<int>(it.col()), std::sqrt(weight[r]) * it.value());
+        active_rhs[it.col()] += weight[r] * bound[r] * it.value();
+      }
+      ++k;
+    }
+    SpMat active(k, P.cols());
+    active.setFromTriplets(active_entries.begin(), active_entries.end());
+    const SpMat M = base + SpMat(active.transpose() * active);
     ldlt.factorize(M);
     if (ldlt.info() != Eigen::Success) throw Error("profile fit: the normal equations could not be factorised");
-    out.x = ldlt.solve(At * weight.cwiseProduct(bound) - q);
+    out.x = ldlt.solve(active_rhs - q);
     out.rounds = round;
     const Vec ax = A * out.x;
     bool changed = false;
@@ -463,7 +488,7 @@ ProfileFitResult fit_profiles(const RoadNetwork& network, const std::vector<Road
       const std::size_t a = vars.of(r, i, p.size()), b = vars.of(r, i + 1, p.size());
       if (a == b) continue;
       const double ds = p.s[i + 1] - p.s[i];
-      cons.add({{b, 1.0}, {a, -1.0}}, -g * ds, g * ds);
+      cons.add({{b, 1.0}, {a, -1.0}}, -g * ds, g * ds, /*within_pattern_of_p=*/p.size() >= 3);
     }
   }
 
@@ -482,11 +507,13 @@ ProfileFitResult fit_profiles(const RoadNetwork& network, const std::vector<Road
     const auto d = at(sep.lower_road, sep.s_lower);
     cons.add({{u[0].first, u[0].second}, {u[1].first, u[1].second}, {d[0].first, -d[0].second},
               {d[1].first, -d[1].second}},
-             options.clearance_m, kInf);
+             options.clearance_m, kInf, /*within_pattern_of_p=*/false);
   }
 
   SpMat A(static_cast<int>(cons.lower.size()), static_cast<int>(n));
   A.setFromTriplets(cons.entries.begin(), cons.entries.end());
+  SpMat extra(static_cast<int>(cons.lower.size()), static_cast<int>(n));
+  extra.setFromTriplets(cons.extra_pattern.begin(), cons.extra_pattern.end());
   const Vec l = Eigen::Map<const Vec>(cons.lower.data(), static_cast<Eigen::Index>(cons.lower.size()));
   const Vec u = Eigen::Map<const Vec>(cons.upper.data(), static_cast<Eigen::Index>(cons.upper.size()));
 
@@ -497,7 +524,7 @@ ProfileFitResult fit_profiles(const RoadNetwork& network, const std::vector<Road
   const Vec u_aim = (u.array() - kMargin).max(0.5 * (l + u).array());
   const Permutation order = elimination_order(network, vars, result.separations);
   ActiveSetResult solution =
-      solve_active_set(P, q, A, l_aim, u_aim, order, options.tolerance_m, options.max_iterations);
+      solve_active_set(P, q, A, extra, l_aim, u_aim, order, options.tolerance_m, options.max_iterations);
   {
     const TraceTimer t("polish");
     result.max_violation_m = polish(A, l, u, solution.x, 1000);
