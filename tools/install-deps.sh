@@ -11,7 +11,7 @@ packages=(
   libgdal-dev gdal-bin
   libassimp-dev assimp-utils
   libgtest-dev libgmock-dev libbenchmark-dev
-  nlohmann-json3-dev libcli11-dev
+  nlohmann-json3-dev libcli11-dev libpugixml-dev
   libxml2-utils sumo sumo-tools python3-xmlschema
 )
 

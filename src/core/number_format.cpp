@@ -14,6 +14,13 @@ void append_fixed(std::string& out, double value, int decimals) {
   out.append(buf.data(), res.ptr);
 }
 
+void append_shortest(std::string& out, double value) {
+  if (value == 0.0) value = 0.0;  // no "-0"
+  std::array<char, 64> buf{};
+  const auto res = std::to_chars(buf.data(), buf.data() + buf.size(), value);
+  out.append(buf.data(), res.ptr);
+}
+
 void append_int(std::string& out, long long value) {
   std::array<char, 24> buf{};
   const auto res = std::to_chars(buf.data(), buf.data() + buf.size(), value);

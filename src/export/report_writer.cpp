@@ -163,6 +163,26 @@ std::string report_json(const RunReport& r) {
                          {"max_shift_m", round_to(r.paper->max_shift_m, 1e-3)}};
   }
   j["profiles"] = profiles;
+  if (r.opendrive) {
+    const OpenDriveSummary& o = *r.opendrive;
+    j["opendrive"] = {{"file", o.file},
+                      {"version", o.version},
+                      {"roads", o.roads},
+                      {"connecting_roads", o.connecting_roads},
+                      {"junctions", o.junctions},
+                      {"direct_links", o.direct_links},
+                      {"transition_roads", o.transition_roads},
+                      {"roads_skipped", o.roads_skipped},
+                      {"max_link_gap_m", o.max_link_gap_m},
+                      {"max_link_step_m", o.max_link_step_m},
+                      {"link_borders_checked", o.link_borders_checked},
+                      {"round_trip_max_xy_m", o.round_trip_max_xy_m},
+                      {"round_trip_max_z_m", o.round_trip_max_z_m},
+                      {"round_trip_points", o.round_trip_points},
+                      {"elevation_max_deviation_m", o.elevation_max_deviation_m}};
+  } else {
+    j["opendrive"] = nullptr;
+  }
   Json methods = Json::object();
   for (const MethodReport& m : r.methods) methods[m.method] = method_json(m);
   j["methods"] = methods;

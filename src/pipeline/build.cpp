@@ -3,11 +3,15 @@
 #include <ctime>
 #include <iomanip>
 #include <sstream>
+#include <sstream>
 
 #include "relief/core/atomic_file.h"
 #include "relief/core/errors.h"
 #include "relief/export/geojson_writer.h"
+#include "relief/export/opendrive_writer.h"
 #include "relief/export/report_html.h"
+#include "relief/roads/opendrive_reader.h"
+#include "relief/roads/road_model_checks.h"
 #include "pipeline/stages.h"
 
 namespace relief {
@@ -69,6 +73,7 @@ std::optional<Output> parse_output(std::string_view text) {
   if (text == "geojson") return Output::geojson;
   if (text == "report") return Output::report;
   if (text == "html") return Output::html;
+  if (text == "xodr") return Output::xodr;
   return std::nullopt;
 }
 
@@ -77,6 +82,7 @@ std::string_view to_string(Output output) {
     case Output::geojson: return "geojson";
     case Output::report: return "report";
     case Output::html: return "html";
+    case Output::xodr: return "xodr";
   }
   return "unknown";
 }
@@ -202,6 +208,44 @@ BuildResult build(const BuildOptions& options, Diagnostics& diagnostics, const P
     });
     report.outputs.push_back(report.name + ".geojson");
     result.written.push_back(path_of(".geojson"));
+  }
+  if (options.outputs.count(Output::xodr)) {
+    timer.run("build road model", [&] {
+      const RoadModelBuild built = build_road_model(network, profiles, options.road_model, diagnostics);
+      RoadModel model = built.model;
+      model.name = report.name;
+      OpenDriveOptions odr;
+      odr.rev_minor = options.opendrive_rev_minor;
+      odr.date = report.created_utc;
+      std::ostringstream text;
+      write_opendrive(text, model, odr);
+      const std::string xodr = text.str();
+      files.add(path_of(".xodr"), [&](std::ostream& out) { out << xodr; });
+      // Checks: the file read back is the model written; lane borders meet at every link.
+      const RoadModel back = parse_opendrive(xodr, report.name + ".xodr");
+      const ModelDeviation dev = compare_models(model, back);
+      const LinkContinuity links = check_link_continuity(model);
+      OpenDriveSummary o;
+      o.file = report.name + ".xodr";
+      o.version = "1." + std::to_string(options.opendrive_rev_minor);
+      o.roads = built.stats.roads;
+      o.connecting_roads = built.stats.connecting_roads;
+      o.junctions = built.stats.junctions;
+      o.direct_links = built.stats.direct_links;
+      o.transition_roads = built.stats.transition_roads;
+      o.roads_skipped = built.stats.roads_skipped;
+      o.max_link_gap_m = links.max_horizontal_m;
+      o.max_link_step_m = links.max_vertical_m;
+      o.link_borders_checked = links.borders_checked;
+      o.round_trip_max_xy_m = dev.max_xy_m;
+      o.round_trip_max_z_m = dev.max_z_m;
+      o.round_trip_points = dev.points;
+      o.elevation_max_deviation_m = built.stats.max_elevation_deviation_m;
+      report.opendrive = o;
+      return 0;
+    });
+    report.outputs.push_back(report.name + ".xodr");
+    result.written.push_back(path_of(".xodr"));
   }
   if (options.outputs.count(Output::html)) {
     report.outputs.push_back("report.html");

@@ -66,7 +66,7 @@ TEST(Build, SyntheticPlaneHasExactGrades) {
   EXPECT_LT(r.junctions.max_gap_m, 1e-9);
   EXPECT_EQ(r.network.bridges, 1u);
   EXPECT_EQ(r.network.traffic_signals, 1u);
-  ASSERT_EQ(result.written.size(), 3u);  // GeoJSON, report.html, report.json
+  ASSERT_EQ(result.written.size(), 4u);  // OpenDRIVE, GeoJSON, report.html, report.json
   for (const auto& p : result.written) EXPECT_TRUE(std::filesystem::exists(p)) << p;
 }
 

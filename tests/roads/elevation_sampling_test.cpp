@@ -62,7 +62,9 @@ TEST(ElevationSampling, VoidsAreFilledAlongTheRoadAndReported) {
   // value of the valid corners; inside, a straight line between the last valid samples.
   std::size_t first_filled = p.size(), last_filled = 0;
   for (std::size_t i = 0; i < p.size(); ++i) {
-    if (std::abs(p.xy[i].x()) >= 35.0) EXPECT_NEAR(p.z[i], plane(p.xy[i].x(), 0.0), 1e-6) << p.s[i];
+    if (std::abs(p.xy[i].x()) >= 35.0) {
+      EXPECT_NEAR(p.z[i], plane(p.xy[i].x(), 0.0), 1e-6) << p.s[i];
+    }
     if (p.filled[i]) {
       first_filled = std::min(first_filled, i);
       last_filled = i;

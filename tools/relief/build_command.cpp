@@ -31,6 +31,7 @@ struct BuildArgs {
   double wavelength_m = 40.0;
   double max_curvature = 0.05;
   bool no_compare = false;
+  int opendrive_minor = 7;
 };
 
 void print_summary(const BuildResult& result) {
@@ -70,6 +71,14 @@ void print_summary(const BuildResult& result) {
     out << "  paper      " << r.paper->roads_not_converged << " roads still over their limit after "
         << r.paper->max_iterations << " iterations\n";
   }
+  if (r.opendrive) {
+    const OpenDriveSummary& o = *r.opendrive;
+    out << "  opendrive  " << o.file << " (" << o.version << "): " << o.roads << " roads, " << o.junctions
+        << " junctions, " << o.connecting_roads << " connecting roads; largest lane-border gap at links "
+        << fixed(o.max_link_gap_m, 4) << " m horizontal, " << fixed(o.max_link_step_m, 4)
+        << " m vertical; read back within " << fixed(std::max(o.round_trip_max_xy_m, o.round_trip_max_z_m), 6)
+        << " m\n";
+  }
   out << "  gradient   max " << fixed(r.gradient.max_percent, 1) << " %, p99 " << fixed(r.gradient.p99_percent, 1)
       << " %, compliance with class limits " << fixed(r.gradient.compliance_percent, 1) << " %\n"
       << "  junctions  max elevation gap " << fixed(r.junctions.max_gap_m, 3) << " m (" << r.junctions.over_bound
@@ -98,7 +107,7 @@ Runner add_build_command(CLI::App& app) {
   cmd->add_flag("--allow-partial", args->allow_partial, "accept roads partly outside the DEM(s) (filled, reported)");
   cmd->add_option("--grade-limits", args->grade_limits,
                   "override grade limits, e.g. highway=8,arterial=12,local=15,residential=18 (percent)");
-  cmd->add_option("--outputs", args->outputs, "comma-separated outputs to write: geojson, report (report.json), html (report.html), or all")
+  cmd->add_option("--outputs", args->outputs, "comma-separated outputs to write: xodr, geojson, report (report.json), html (report.html), or all")
       ->capture_default_str();
   cmd->add_flag("-q,--quiet", args->quiet, "print only errors and the summary");
   cmd->add_option("--profiles", args->profiles,
@@ -125,6 +134,9 @@ Runner add_build_command(CLI::App& app) {
   cmd->add_option("--max-curvature", args->max_curvature, "bound on vertical curvature |z''|, 1/m (0: none)")
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--opendrive-version", args->opendrive_minor, "OpenDRIVE 1.N to write: 4, 7 (default) or 8")
+      ->capture_default_str()
+      ->check(CLI::IsMember({4, 7, 8}));
   cmd->add_flag("--no-compare", args->no_compare, "run only the chosen profile method (no comparison in the report)");
 
   return [args] {
@@ -156,6 +168,7 @@ Runner add_build_command(CLI::App& app) {
       options.fit.cutoff_wavelength_m = args->wavelength_m;
       options.fit.max_curvature_per_m = args->max_curvature;
       options.compare_methods = !args->no_compare;
+      options.opendrive_rev_minor = args->opendrive_minor;
       if (!args->grade_limits.empty()) options.grade_limits.apply_overrides(args->grade_limits);
       if (args->outputs != "all") {
         options.outputs.clear();
@@ -163,7 +176,7 @@ Runner add_build_command(CLI::App& app) {
         std::string item;
         while (std::getline(in, item, ',')) {
           const auto output = parse_output(item);
-          if (!output) throw CLI::ValidationError("--outputs", "'" + item + "' is not one of geojson, report, html, all");
+          if (!output) throw CLI::ValidationError("--outputs", "'" + item + "' is not one of xodr, geojson, report, html, all");
           options.outputs.insert(*output);
         }
       }

@@ -8,6 +8,10 @@ namespace relief {
 /// Appends `value` with exactly `decimals` digits after the point ("-0.000" is written "0.000").
 void append_fixed(std::string& out, double value, int decimals);
 
+/// Appends the shortest text that reads back as exactly `value` ("0.0001525", "-2.5e-09"):
+/// for polynomial coefficients, whose size spans many orders of magnitude.
+void append_shortest(std::string& out, double value);
+
 /// Appends an integer.
 void append_int(std::string& out, long long value);
 

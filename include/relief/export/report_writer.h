@@ -49,6 +49,25 @@ struct PaperSummary {
   std::vector<int> not_converged_roads;
 };
 
+/// The OpenDRIVE written, and its checks.
+struct OpenDriveSummary {
+  std::string file;
+  std::string version;                 ///< "1.7"
+  std::size_t roads = 0;               ///< roads from the network
+  std::size_t connecting_roads = 0;
+  std::size_t junctions = 0;
+  std::size_t direct_links = 0;
+  std::size_t transition_roads = 0;
+  std::size_t roads_skipped = 0;
+  double max_link_gap_m = 0.0;         ///< horizontal, between linked lane borders
+  double max_link_step_m = 0.0;        ///< vertical, the same
+  std::size_t link_borders_checked = 0;
+  double round_trip_max_xy_m = 0.0;    ///< file read back vs the model written
+  double round_trip_max_z_m = 0.0;
+  std::size_t round_trip_points = 0;
+  double elevation_max_deviation_m = 0.0;  ///< elevation records vs the fitted profile
+};
+
 struct RunReport {
   std::string name;
   std::string created_utc;             ///< ISO 8601
@@ -72,6 +91,7 @@ struct RunReport {
   std::optional<FitSummary> fit;
   std::optional<PaperSummary> paper;
   GradeLimits grade_limits = GradeLimits::paper();
+  std::optional<OpenDriveSummary> opendrive;
   std::vector<std::pair<std::string, double>> timings_s;  ///< stage -> seconds, in order
   std::vector<std::string> outputs;                       ///< file names written
   const Diagnostics* diagnostics = nullptr;

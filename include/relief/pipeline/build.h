@@ -15,6 +15,7 @@
 #include "relief/roads/osm_reader.h"
 #include "relief/roads/paper_smoothing.h"
 #include "relief/roads/profile_fit.h"
+#include "relief/roads/road_model_builder.h"
 #include "relief/roads/validation.h"
 #include "relief/terrain/dem_sampler.h"
 
@@ -30,7 +31,7 @@ enum class ProfileMethod {
 [[nodiscard]] std::string_view to_string(ProfileMethod method);
 
 /// Outputs `build` can write into the output directory.
-enum class Output { geojson, report, html };
+enum class Output { geojson, report, html, xodr };
 [[nodiscard]] std::optional<Output> parse_output(std::string_view text);
 [[nodiscard]] std::string_view to_string(Output output);
 
@@ -51,7 +52,9 @@ struct BuildOptions {
   int paper_max_iterations = 1000;
   /// Also run the other methods and put the comparison in the report.
   bool compare_methods = true;
-  std::set<Output> outputs = {Output::geojson, Output::report, Output::html};
+  std::set<Output> outputs = {Output::geojson, Output::report, Output::html, Output::xodr};
+  RoadModelOptions road_model;
+  int opendrive_rev_minor = 7;  ///< OpenDRIVE 1.4, 1.7 or 1.8
 };
 
 struct BuildResult {

@@ -1,0 +1,53 @@
+#pragma once
+// A function of arc length as OpenDRIVE poly3 records (elevation, superelevation, lane width,
+// lane offset): piece i covers [s_i, s_{i+1}) with value a + b ds + c ds^2 + d ds^3, ds = s - s_i.
+
+#include <optional>
+#include <utility>
+#include <vector>
+
+#include "relief/geometry/plan_view.h"
+
+namespace relief {
+
+struct CubicPiece {
+  double s = 0.0;
+  Poly3 poly;  ///< in ds = s - this->s
+};
+
+class CubicProfile {
+ public:
+  CubicProfile() = default;
+  /// Throws InvalidInput unless the pieces' s are finite and strictly increasing.
+  explicit CubicProfile(std::vector<CubicPiece> pieces);
+  /// A constant function.
+  [[nodiscard]] static CubicProfile constant(double value);
+
+  [[nodiscard]] const std::vector<CubicPiece>& pieces() const { return pieces_; }
+  [[nodiscard]] bool empty() const { return pieces_.empty(); }
+  /// Value at s (the first piece extends to the left, the last to the right). 0 when empty.
+  [[nodiscard]] double value(double s) const;
+  [[nodiscard]] double derivative(double s) const;
+
+ private:
+  [[nodiscard]] std::size_t piece_at(double s) const;
+  std::vector<CubicPiece> pieces_;
+};
+
+/// Fits C1 cubic pieces to samples (s_i, z_i), s strictly increasing: cubic Hermite pieces
+/// between knots chosen among the samples, with knot slopes from the samples (three-point
+/// derivative), extending each piece while every sample it spans stays within `tolerance`.
+/// Value and slope are continuous at every knot; the first and last samples are reproduced
+/// exactly, as are `end_slopes` when given (slope at s_0 and at s_n). Knots are found greedily
+/// (exponential then binary search for the longest piece), O(n log n). One sample gives a
+/// constant (or a line with the first end slope). Throws InvalidInput for no samples, sizes that
+/// differ, stations not strictly increasing, non-finite values, or a negative tolerance.
+[[nodiscard]] CubicProfile fit_cubic_profile(const std::vector<double>& s, const std::vector<double>& z,
+                                             double tolerance,
+                                             const std::optional<std::pair<double, double>>& end_slopes = std::nullopt);
+
+/// The cubic on [0, length] with value z0, slope g0 at 0 and value z1, slope g1 at length.
+/// Throws InvalidInput unless length is positive and finite.
+[[nodiscard]] CubicProfile hermite_profile(double length, double z0, double g0, double z1, double g1);
+
+}  // namespace relief

@@ -1,0 +1,100 @@
+#pragma once
+// Reference lines as OpenDRIVE describes them (planView): a sequence of geometry records, each
+// starting at arc length `s` at (x, y) with heading `hdg`, of one of the kinds below. Used by
+// relief's road model, its OpenDRIVE writer and reader, and every evaluation of the road surface.
+
+#include <vector>
+
+#include "relief/geometry/types.h"
+
+namespace relief {
+
+/// Position and heading on a reference line.
+struct Pose2 {
+  Vec2 position = Vec2::Zero();
+  double heading = 0.0;    ///< radians, counter-clockwise from +x
+  double curvature = 0.0;  ///< 1/m, positive turning left
+};
+
+/// Cubic in a parameter p: value(p) = a + b p + c p^2 + d p^3.
+struct Poly3 {
+  double a = 0.0, b = 0.0, c = 0.0, d = 0.0;
+  [[nodiscard]] double value(double p) const { return a + p * (b + p * (c + p * d)); }
+  [[nodiscard]] double derivative(double p) const { return b + p * (2.0 * c + 3.0 * d * p); }
+  [[nodiscard]] double second_derivative(double p) const { return 2.0 * c + 6.0 * d * p; }
+};
+
+struct PlanGeometry {
+  enum class Kind { line, arc, spiral, param_poly3 };
+  Kind kind = Kind::line;
+  double s = 0.0;       ///< start arc length along the reference line (m)
+  Vec2 start = Vec2::Zero();
+  double heading = 0.0; ///< at the start (rad)
+  double length = 0.0;  ///< arc length (m), > 0
+  double curvature = 0.0;        ///< arc
+  double curvature_start = 0.0;  ///< spiral (clothoid): curvature varies linearly in s
+  double curvature_end = 0.0;
+  /// paramPoly3: local u (along the start heading) and v (to its left) as cubics of p;
+  /// p in [0, 1] when `normalized` (OpenDRIVE pRange="normalized"), else p in [0, length].
+  Poly3 u, v;
+  bool normalized = true;
+};
+
+/// A reference line: records sorted by s, each starting where the previous ends.
+class PlanView {
+ public:
+  PlanView() = default;
+  /// Throws InvalidInput unless every record has a positive, finite length, a finite start, and
+  /// the records are strictly increasing in s. Continuity between records is not checked.
+  explicit PlanView(std::vector<PlanGeometry> records);
+
+  [[nodiscard]] const std::vector<PlanGeometry>& records() const { return records_; }
+  /// End s of the last record (0 when empty).
+  [[nodiscard]] double length() const;
+  /// Pose at arc length s (clamped to [records().front().s, length()], normally [0, length()]).
+  /// Throws InvalidInput when the plan view has no records.
+  [[nodiscard]] Pose2 at(double s) const;
+  /// Index of the record containing s (binary search; a record's start s belongs to it; s before
+  /// the first record gives 0, after the last the last). Throws InvalidInput when empty.
+  [[nodiscard]] std::size_t record_at(double s) const;
+
+ private:
+  std::vector<PlanGeometry> records_;
+};
+
+/// Pose at `ds` metres into one record (ds is clamped to [0, record.length]). Spirals are
+/// integrated numerically (error < 1e-9 m); paramPoly3 arc length is mapped to p by a cumulative
+/// table (error < 1e-6 m), scaled so that ds = record.length is the end of the parameter range.
+[[nodiscard]] Pose2 evaluate(const PlanGeometry& record, double ds);
+
+/// Arc length of a paramPoly3 over its parameter range (Gauss-Legendre, error < 1e-9 m).
+[[nodiscard]] double param_poly3_length(const Poly3& u, const Poly3& v, double p_end);
+
+/// Options for fitting a reference line to a polyline.
+struct ReferenceLineOptions {
+  double tolerance_m = 0.05;    ///< max distance of the reference line from the polyline
+  double min_length_m = 1e-3;   ///< records shorter than this are merged away
+};
+
+/// G1 reference line through a polyline: straight segments as `line` records joined by `arc`
+/// records that round each corner within the tolerance (never arc with curvature 0, no
+/// zero-length records). `station_map` receives, for each polyline vertex, the reference-line
+/// s nearest to it, so that quantities given along the polyline (elevation) can be re-mapped
+/// (the arc's midpoint for a rounded vertex; the ends map to 0 and length()).
+/// Vertices closer than 1 mm are merged first. Each corner of turning angle θ gets the radius
+/// min(tolerance / (1/cos(θ/2) - 1), min(half adjacent segment) / tan(|θ|/2)); lines between
+/// two arcs that fill their segment vanish; a line that would be shorter than min_length_m
+/// shrinks its neighbouring arcs to reach it (only a line on a polyline segment that is itself
+/// shorter than min_length_m can stay shorter, so that the fit never leaves the polyline).
+/// Throws InvalidInput for fewer than two distinct vertices, non-finite vertices, a tolerance
+/// that is not positive, or a negative min_length_m.
+[[nodiscard]] PlanView fit_reference_line(const Polyline2& polyline, const ReferenceLineOptions& options,
+                                          std::vector<double>* station_map = nullptr);
+
+/// A paramPoly3 (normalized) leaving `from` with its heading and arriving at `to` with its
+/// heading: the cubic Hermite curve with tangent lengths `tangent_scale` x the chord. Its record
+/// length is the curve's arc length. A straight-ahead pair within 1e-9 gives a `line`.
+/// Throws InvalidInput when the positions coincide or tangent_scale is not positive.
+[[nodiscard]] PlanGeometry hermite_connector(const Pose2& from, const Pose2& to, double tangent_scale = 0.5);
+
+}  // namespace relief

@@ -1,0 +1,59 @@
+#pragma once
+// Builds the RoadModel (reference lines, elevation, lanes, links, junctions) from the road
+// network and its fitted profiles.
+//
+// - Roads meeting at an intersection (3+ ends) are trimmed back from the junction node by the
+//   junction's radius (the widest half-width there plus a margin) to leave room for the junction;
+//   every allowed movement gets a connecting road per lane pair, whose reference line runs from
+//   the arriving lane's inner border to the departing lane's inner border (paramPoly3, position
+//   and heading exact at both ends) and whose elevation is the cubic with the incoming road's
+//   height and slope at its start and the outgoing road's at its end.
+// - Roads meeting at an attribute change (2 ends) are linked directly, lane to lane, when one
+//   continues the other (straight within 3 degrees, same lanes, same width); otherwise both are
+//   trimmed and joined by a short transition road that bends and widens from one to the other
+//   (lanes present on one side only taper to width 0).
+// - Reference lines: OSM centrelines rounded at their vertices within plan_tolerance_m; lanes:
+//   right lanes drive along the reference line; laneOffset centres the carriageway on the OSM
+//   centreline (one-ways have right lanes only).
+// - Elevation: C1 cubic pieces through the fitted profile within elevation_tolerance_m.
+
+#include "relief/core/diagnostics.h"
+#include "relief/roads/elevation_sampling.h"
+#include "relief/roads/road_model.h"
+#include "relief/roads/road_network.h"
+
+namespace relief {
+
+struct RoadModelOptions {
+  double plan_tolerance_m = 0.05;       ///< reference line vs OSM polyline
+  double elevation_tolerance_m = 0.01;  ///< elevation records vs fitted profile
+  double junction_margin_m = 2.0;       ///< junction radius beyond the widest half-width
+  double max_trim_fraction = 0.4;       ///< a road loses at most this share of its length per end
+  bool u_turns = false;                 ///< connecting roads back into the arriving road
+};
+
+struct RoadModelStats {
+  std::size_t roads = 0;             ///< from the network
+  std::size_t connecting_roads = 0;
+  std::size_t junctions = 0;         ///< OpenDRIVE junctions (= network intersections)
+  std::size_t direct_links = 0;      ///< road-to-road links at attribute changes
+  std::size_t transition_roads = 0;  ///< short roads where two roads meet at an angle or change lanes
+  std::size_t roads_skipped = 0;     ///< roads without height or too short once trimmed
+  /// Largest |elevation record - fitted profile| over the profile's stations (mapped onto the
+  /// reference line) of every road.
+  double max_elevation_deviation_m = 0.0;
+};
+
+struct RoadModelBuild {
+  RoadModel model;
+  RoadModelStats stats;
+  std::vector<int> model_road_of;  ///< per network road: its index in model.roads, or -1
+};
+
+/// `profiles` are parallel to network.roads (stations with fitted z).
+[[nodiscard]] RoadModelBuild build_road_model(const RoadNetwork& network,
+                                              const std::vector<RoadProfile>& profiles,
+                                              const RoadModelOptions& options,
+                                              Diagnostics& diagnostics);
+
+}  // namespace relief

@@ -1,0 +1,35 @@
+#pragma once
+// Checks of a RoadModel: lane borders meet at every link, a model read back from a file matches
+// the one written. (The elevation records' distance from the fitted profiles is measured where
+// they are fitted: RoadModelStats::max_elevation_deviation_m.)
+
+#include <vector>
+
+#include "relief/roads/road_model.h"
+
+namespace relief {
+
+struct LinkContinuity {
+  double max_horizontal_m = 0.0;  ///< largest horizontal gap between matching lane borders
+  double max_vertical_m = 0.0;    ///< largest height step there
+  std::size_t borders_checked = 0;
+  std::size_t over_tolerance = 0; ///< border pairs with a gap above the tolerance
+  int worst_road = -1;            ///< road id where the largest gap is
+};
+
+/// At every road-to-road link and at both ends of every connecting road, the inner and outer
+/// borders of each linked lane pair (lane.predecessor / lane.successor) must meet.
+[[nodiscard]] LinkContinuity check_link_continuity(const RoadModel& model, double tolerance_m = 0.01);
+
+struct ModelDeviation {
+  double max_xy_m = 0.0;
+  double max_z_m = 0.0;
+  std::size_t points = 0;
+  int worst_road = -1;
+};
+
+/// Evaluates both models along the reference line of every road of `a` (matched by id in `b`)
+/// every `step_m` metres, at t = 0 and at the outer border of every lane.
+[[nodiscard]] ModelDeviation compare_models(const RoadModel& a, const RoadModel& b, double step_m = 1.0);
+
+}  // namespace relief

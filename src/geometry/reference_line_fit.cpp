@@ -1,0 +1,216 @@
+#include "relief/geometry/plan_view.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <string>
+
+#include "relief/core/errors.h"
+
+namespace relief {
+
+namespace {
+
+constexpr double kDuplicate_m = 1e-3;      // vertices closer than this are merged
+constexpr double kStraight_rad = 1e-9;     // turning angles below this add no arc
+constexpr double kVanish_m = 1e-9;         // lines this short vanish without notice
+constexpr double kMaxHalfTurn_rad = 0.5 * std::numbers::pi - 1e-9;  // U-turn clamp
+
+double wrap_angle(double a) {
+  // (-pi, pi]
+  a = std::remainder(a, 2.0 * std::numbers::pi);
+  if (a <= -std::numbers::pi) a += 2.0 * std::numbers::pi;
+  return a;
+}
+
+double cross(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
+
+}  // namespace
+
+PlanView fit_reference_line(const Polyline2& polyline, const ReferenceLineOptions& options,
+                            std::vector<double>* station_map) {
+  if (!(options.tolerance_m > 0.0) || !std::isfinite(options.tolerance_m)) {
+    throw InvalidInput("reference line fit: tolerance must be positive and finite");
+  }
+  if (!(options.min_length_m >= 0.0) || !std::isfinite(options.min_length_m)) {
+    throw InvalidInput("reference line fit: minimum record length must be finite and non-negative");
+  }
+  for (std::size_t i = 0; i < polyline.size(); ++i) {
+    if (!polyline[i].allFinite()) {
+      throw InvalidInput("reference line fit: polyline vertex " + std::to_string(i) + " is not finite");
+    }
+  }
+
+  // 1. Merge near-duplicate vertices; the last kept vertex is the polyline's true end.
+  std::vector<std::size_t> kept;
+  std::vector<std::size_t> kept_of(polyline.size(), 0);
+  for (std::size_t i = 0; i < polyline.size(); ++i) {
+    if (kept.empty() || (polyline[i] - polyline[kept.back()]).norm() > kDuplicate_m) kept.push_back(i);
+    kept_of[i] = kept.size() - 1;
+  }
+  if (kept.size() < 2) {
+    throw InvalidInput("reference line fit: the polyline has fewer than two distinct vertices");
+  }
+  if (kept.back() != polyline.size() - 1) kept.back() = polyline.size() - 1;
+
+  const std::size_t m = kept.size();
+  std::vector<Vec2> p(m);
+  for (std::size_t i = 0; i < m; ++i) p[i] = polyline[kept[i]];
+  std::vector<double> len(m - 1);
+  std::vector<Vec2> dir(m - 1);
+  std::vector<double> seg_heading(m - 1);
+  for (std::size_t j = 0; j + 1 < m; ++j) {
+    const Vec2 d = p[j + 1] - p[j];
+    len[j] = d.norm();
+    dir[j] = d / len[j];
+    seg_heading[j] = std::atan2(d.y(), d.x());
+  }
+
+  // 2. Corner arcs: radius min(R_tol, R_fit); d = tangent distance from the vertex.
+  std::vector<double> theta(m, 0.0);
+  std::vector<double> radius(m, 0.0);
+  std::vector<double> tangent(m, 0.0);
+  std::vector<std::size_t> corners{0};  // start, arc vertices, end
+  for (std::size_t i = 1; i + 1 < m; ++i) {
+    theta[i] = std::atan2(cross(dir[i - 1], dir[i]), dir[i - 1].dot(dir[i]));
+    if (std::abs(theta[i]) < kStraight_rad) continue;
+    const double half = std::min(0.5 * std::abs(theta[i]), kMaxHalfTurn_rad);
+    // R_tol = tol / (1/cos(half) - 1), with 1 - cos(x) = 2 sin^2(x/2) for small angles.
+    const double sq = std::sin(0.5 * half);
+    const double r_tol = options.tolerance_m * std::cos(half) / (2.0 * sq * sq);
+    const double t = std::tan(half);
+    const double r_fit = 0.5 * std::min(len[i - 1], len[i]) / t;
+    radius[i] = std::min(r_tol, r_fit);
+    tangent[i] = radius[i] * t;
+    corners.push_back(i);
+  }
+  corners.push_back(m - 1);
+
+  // Cumulative polyline length, for runs of straight lines through collinear vertices.
+  std::vector<double> cum(m, 0.0);
+  for (std::size_t j = 0; j + 1 < m; ++j) cum[j + 1] = cum[j] + len[j];
+  const auto run_length = [&](std::size_t r) {
+    const std::size_t a = corners[r];
+    const std::size_t b = corners[r + 1];
+    return cum[b] - cum[a] - tangent[a] - tangent[b];
+  };
+
+  // 3. A line shorter than min_length (but not vanishing) shrinks its neighbouring arcs until it
+  //    is min_length long: smaller radii only bring the arcs closer to the polyline. A line on a
+  //    polyline segment that is itself shorter than min_length stays: dropping it would shift
+  //    the rest of the reference line off the polyline.
+  const double min_len = options.min_length_m;
+  for (std::size_t pass = 0; pass <= corners.size(); ++pass) {
+    bool changed = false;
+    for (std::size_t r = 0; r + 1 < corners.size(); ++r) {
+      const double ell = run_length(r);
+      if (ell <= kVanish_m || ell >= min_len) continue;
+      const std::size_t a = corners[r];
+      const std::size_t b = corners[r + 1];
+      const double need = min_len - ell;
+      const double avail = tangent[a] + tangent[b];
+      if (!(avail > need)) continue;  // the segment itself is shorter than min_length: kept
+      const double share_a = tangent[a] / avail;
+      for (const auto& [i, share] : {std::pair{a, share_a}, std::pair{b, 1.0 - share_a}}) {
+        if (tangent[i] == 0.0) continue;
+        const double t = std::tan(std::min(0.5 * std::abs(theta[i]), kMaxHalfTurn_rad));
+        tangent[i] -= need * share;
+        radius[i] = tangent[i] / t;
+      }
+      changed = true;
+    }
+    if (!changed) break;
+  }
+
+  // 4. Records: lines along the runs, arcs at the corners. Each record starts at the previous
+  //    record's end (exact G1); each arc's sweep absorbs the heading drift of merged lines.
+  std::vector<PlanGeometry> records;
+  Pose2 cur{p[0], seg_heading[0], 0.0};
+  double s = 0.0;
+  std::vector<double> station(m, 0.0);
+  const auto append = [&](PlanGeometry g) {
+    g.s = s;
+    g.start = cur.position;
+    g.heading = cur.heading;
+    cur = evaluate(g, g.length);
+    s += g.length;
+    records.push_back(g);
+  };
+  for (std::size_t r = 0; r + 1 < corners.size(); ++r) {
+    const std::size_t a = corners[r];
+    const std::size_t b = corners[r + 1];
+    const double ell = run_length(r);
+    const bool keep = ell > kVanish_m;
+    for (std::size_t i = a + 1; i < b; ++i) station[i] = s + (keep ? cum[i] - cum[a] - tangent[a] : 0.0);
+    if (keep) {
+      PlanGeometry line;
+      line.kind = PlanGeometry::Kind::line;
+      line.length = ell;
+      append(line);
+    }
+    if (b + 1 == m) break;
+    const double sweep = theta[b] + wrap_angle(seg_heading[b] - (cur.heading + theta[b]));
+    PlanGeometry arc;
+    arc.kind = PlanGeometry::Kind::arc;
+    arc.length = radius[b] * std::abs(sweep);
+    arc.curvature = std::copysign(1.0 / radius[b], sweep);
+    station[b] = s + 0.5 * arc.length;
+    append(arc);
+  }
+  PlanView plan(std::move(records));
+
+  if (station_map != nullptr) {
+    const double total = plan.length();
+    station.front() = 0.0;
+    station.back() = total;
+    station_map->assign(polyline.size(), 0.0);
+    for (std::size_t i = 0; i < polyline.size(); ++i) {
+      (*station_map)[i] = std::clamp(station[kept_of[i]], 0.0, total);
+    }
+  }
+  return plan;
+}
+
+PlanGeometry hermite_connector(const Pose2& from, const Pose2& to, double tangent_scale) {
+  if (!(tangent_scale > 0.0) || !std::isfinite(tangent_scale)) {
+    throw InvalidInput("hermite connector: tangent scale must be positive and finite");
+  }
+  if (!from.position.allFinite() || !to.position.allFinite() || !std::isfinite(from.heading) ||
+      !std::isfinite(to.heading)) {
+    throw InvalidInput("hermite connector: poses are not finite");
+  }
+  const Vec2 d = to.position - from.position;
+  const double chord = d.norm();
+  if (!(chord > 0.0)) throw InvalidInput("hermite connector: the two poses coincide");
+
+  // `to` in the local frame of `from` (u along its heading, v to its left).
+  const double ch = std::cos(from.heading);
+  const double sh = std::sin(from.heading);
+  const double x1 = ch * d.x() + sh * d.y();
+  const double y1 = -sh * d.x() + ch * d.y();
+  const double delta = wrap_angle(to.heading - from.heading);
+
+  PlanGeometry g;
+  g.start = from.position;
+  g.heading = from.heading;
+  if (x1 > 0.0 && std::abs(y1) <= 1e-9 && std::abs(delta) <= 1e-9) {
+    g.kind = PlanGeometry::Kind::line;
+    g.length = x1;
+    return g;
+  }
+
+  // Cubic Hermite with P0 = 0, P0' = L (1, 0), P1 = (x1, y1), P1' = L (cos Δ, sin Δ):
+  // b = M0, c = 3 P1 - 2 M0 - M1, d = M0 + M1 - 2 P1.
+  const double tl = tangent_scale * chord;
+  const double m1u = tl * std::cos(delta);
+  const double m1v = tl * std::sin(delta);
+  g.kind = PlanGeometry::Kind::param_poly3;
+  g.normalized = true;
+  g.u = Poly3{0.0, tl, 3.0 * x1 - 2.0 * tl - m1u, tl + m1u - 2.0 * x1};
+  g.v = Poly3{0.0, 0.0, 3.0 * y1 - m1v, m1v - 2.0 * y1};
+  g.length = param_poly3_length(g.u, g.v, 1.0);
+  return g;
+}
+
+}  // namespace relief

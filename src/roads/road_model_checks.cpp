@@ -1,0 +1,94 @@
+#include "relief/roads/road_model_checks.h"
+
+#include <cmath>
+
+#include "relief/roads/road_surface.h"
+
+namespace relief {
+namespace {
+
+// Inner and outer border points of a lane at s.
+std::pair<Vec3, Vec3> lane_borders(const ModelRoad& road, double s, int lane) {
+  const int inner = lane < 0 ? lane + 1 : lane - 1;
+  return {surface_point(road, s, lane_border_t(road, s, inner)), surface_point(road, s, lane_border_t(road, s, lane))};
+}
+
+bool has_lane(const ModelRoad& road, double s, int lane) {
+  const LaneSection& sec = section_at(road, s);
+  for (const auto* side : {&sec.left, &sec.right})
+    for (const LaneModel& l : *side)
+      if (l.id == lane) return true;
+  return false;
+}
+
+}  // namespace
+
+LinkContinuity check_link_continuity(const RoadModel& model, double tolerance_m) {
+  LinkContinuity c;
+  const auto compare = [&](const ModelRoad& a, double sa, int la, const ModelRoad& b, double sb, int lb) {
+    if (!has_lane(a, sa, la) || !has_lane(b, sb, lb)) return;
+    const auto [ai, ao] = lane_borders(a, sa, la);
+    const auto [bi, bo] = lane_borders(b, sb, lb);
+    for (const auto& [p, q] : {std::pair{ai, bi}, std::pair{ao, bo}}) {
+      const double h = (p.head<2>() - q.head<2>()).norm();
+      const double v = std::abs(p.z() - q.z());
+      ++c.borders_checked;
+      if (h > tolerance_m || v > tolerance_m) ++c.over_tolerance;
+      if (h > c.max_horizontal_m || v > c.max_vertical_m) c.worst_road = a.id;
+      c.max_horizontal_m = std::max(c.max_horizontal_m, h);
+      c.max_vertical_m = std::max(c.max_vertical_m, v);
+    }
+  };
+  for (const ModelRoad& road : model.roads) {
+    for (const bool at_start : {true, false}) {
+      const auto& link = at_start ? road.predecessor : road.successor;
+      if (!link || link->element != RoadLink::Element::road) continue;
+      const int other_index = model.road_index(link->id);
+      if (other_index < 0) continue;
+      const ModelRoad& other = model.roads[other_index];
+      const double s = at_start ? 0.0 : road.length();
+      const double so = link->contact == RoadLink::Contact::start ? 0.0 : other.length();
+      const LaneSection& sec = section_at(road, s);
+      for (const auto* side : {&sec.left, &sec.right}) {
+        for (const LaneModel& lane : *side) {
+          const auto& linked = at_start ? lane.predecessor : lane.successor;
+          if (linked) compare(road, s, lane.id, other, so, *linked);
+        }
+      }
+    }
+  }
+  return c;
+}
+
+ModelDeviation compare_models(const RoadModel& a, const RoadModel& b, double step_m) {
+  ModelDeviation d;
+  for (const ModelRoad& ra : a.roads) {
+    const int ib = b.road_index(ra.id);
+    if (ib < 0) {
+      d.max_xy_m = std::numeric_limits<double>::infinity();
+      d.worst_road = ra.id;
+      continue;
+    }
+    const ModelRoad& rb = b.roads[ib];
+    const double length = ra.length();
+    const auto n = static_cast<long>(std::ceil(length / step_m));
+    for (long k = 0; k <= n; ++k) {
+      const double s = std::min(length, static_cast<double>(k) * step_m);
+      std::vector<double> ts{0.0};
+      const LaneSection& sec = section_at(ra, s);
+      for (const auto* side : {&sec.left, &sec.right})
+        for (const LaneModel& l : *side) ts.push_back(lane_border_t(ra, s, l.id));
+      for (double t : ts) {
+        const Vec3 p = surface_point(ra, s, t), q = surface_point(rb, s, t);
+        const double xy = (p.head<2>() - q.head<2>()).norm(), z = std::abs(p.z() - q.z());
+        ++d.points;
+        if (xy > d.max_xy_m || z > d.max_z_m) d.worst_road = ra.id;
+        d.max_xy_m = std::max(d.max_xy_m, xy);
+        d.max_z_m = std::max(d.max_z_m, z);
+      }
+    }
+  }
+  return d;
+}
+
+}  // namespace relief

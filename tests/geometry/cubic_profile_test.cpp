@@ -1,0 +1,179 @@
+#include "relief/geometry/cubic_profile.h"
+
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+
+#include "relief/core/errors.h"
+
+namespace relief {
+namespace {
+
+double cubic(double s) { return 12.0 + 0.2 * s - 0.003 * s * s + 1e-5 * s * s * s; }
+double cubic_slope(double s) { return 0.2 - 0.006 * s + 3e-5 * s * s; }
+
+TEST(CubicProfile, EmptyIsZeroAndConstantIsConstant) {
+  const CubicProfile empty;
+  EXPECT_TRUE(empty.empty());
+  EXPECT_EQ(empty.value(3.0), 0.0);
+  EXPECT_EQ(empty.derivative(3.0), 0.0);
+  const auto c = CubicProfile::constant(3.5);
+  EXPECT_FALSE(c.empty());
+  EXPECT_EQ(c.value(-100.0), 3.5);
+  EXPECT_EQ(c.value(1e6), 3.5);
+  EXPECT_EQ(c.derivative(42.0), 0.0);
+}
+
+TEST(CubicProfile, PiecesUseLocalDsAndExtendBeyondTheEnds) {
+  // Piece 0 on [0, 10): 1 + 0.5 ds; piece 1 from 10: 6 + ds^2.
+  const CubicProfile p({CubicPiece{0.0, {1.0, 0.5, 0.0, 0.0}}, CubicPiece{10.0, {6.0, 0.0, 1.0, 0.0}}});
+  EXPECT_DOUBLE_EQ(p.value(4.0), 3.0);
+  EXPECT_DOUBLE_EQ(p.value(-2.0), 0.0);   // first piece extended left
+  EXPECT_DOUBLE_EQ(p.value(10.0), 6.0);   // a knot belongs to the next piece
+  EXPECT_DOUBLE_EQ(p.value(13.0), 15.0);  // last piece extended right
+  EXPECT_DOUBLE_EQ(p.derivative(4.0), 0.5);
+  EXPECT_DOUBLE_EQ(p.derivative(13.0), 6.0);
+}
+
+TEST(CubicProfile, ConstructorRejectsUnsortedPieces) {
+  EXPECT_THROW(CubicProfile({CubicPiece{5.0, {}}, CubicPiece{1.0, {}}}), InvalidInput);
+  EXPECT_THROW(CubicProfile({CubicPiece{1.0, {}}, CubicPiece{1.0, {}}}), InvalidInput);
+  EXPECT_THROW(CubicProfile({CubicPiece{std::nan(""), {}}}), InvalidInput);
+}
+
+TEST(CubicProfile, HermiteProfileMatchesEndConditions) {
+  const auto p = hermite_profile(50.0, 10.0, 0.02, 11.0, -0.01);
+  ASSERT_EQ(p.pieces().size(), 1u);
+  EXPECT_NEAR(p.value(0.0), 10.0, 1e-12);
+  EXPECT_NEAR(p.derivative(0.0), 0.02, 1e-12);
+  EXPECT_NEAR(p.value(50.0), 11.0, 1e-12);
+  EXPECT_NEAR(p.derivative(50.0), -0.01, 1e-12);
+  // A cubic is its own Hermite interpolant.
+  const auto q = hermite_profile(100.0, cubic(0.0), cubic_slope(0.0), cubic(100.0), cubic_slope(100.0));
+  EXPECT_NEAR(q.value(37.0), cubic(37.0), 1e-10);
+  EXPECT_THROW((void)hermite_profile(0.0, 0, 0, 0, 0), InvalidInput);
+  EXPECT_THROW((void)hermite_profile(-1.0, 0, 0, 0, 0), InvalidInput);
+}
+
+TEST(CubicProfile, FitReproducesACubicWithOnePiece) {
+  std::vector<double> s;
+  std::vector<double> z;
+  for (int i = 0; i <= 100; ++i) {
+    s.push_back(i);
+    z.push_back(cubic(i));
+  }
+  const auto p = fit_cubic_profile(s, z, 1e-6, std::pair{cubic_slope(0.0), cubic_slope(100.0)});
+  ASSERT_EQ(p.pieces().size(), 1u);
+  const Poly3& poly = p.pieces()[0].poly;
+  EXPECT_NEAR(poly.a, 12.0, 1e-12);
+  EXPECT_NEAR(poly.b, 0.2, 1e-12);
+  EXPECT_NEAR(poly.c, -0.003, 1e-12);
+  EXPECT_NEAR(poly.d, 1e-5, 1e-14);
+
+  // Without end slopes the three-point slopes are off by O(h^2); still within a looser tolerance.
+  const auto q = fit_cubic_profile(s, z, 2e-3);
+  EXPECT_EQ(q.pieces().size(), 1u);
+}
+
+TEST(CubicProfile, QuadraticIsExactWithoutEndSlopes) {
+  // Three-point slopes are exact for quadratics, also on non-uniform stations.
+  std::vector<double> s{0.0, 0.7, 3.0, 3.2, 9.0, 15.5, 20.0};
+  std::vector<double> z;
+  for (double x : s) z.push_back(2.0 - 0.5 * x + 0.03 * x * x);
+  const auto p = fit_cubic_profile(s, z, 1e-9);
+  ASSERT_EQ(p.pieces().size(), 1u);
+  EXPECT_NEAR(p.derivative(0.0), -0.5, 1e-12);
+  EXPECT_NEAR(p.derivative(20.0), -0.5 + 0.06 * 20.0, 1e-12);
+}
+
+struct NoisyRoad {
+  std::vector<double> s;
+  std::vector<double> z;
+};
+
+// 10 km at 1 m: hills, short bumps and deterministic pseudo-random noise of +-0.1 m.
+NoisyRoad noisy_road() {
+  NoisyRoad road;
+  std::uint64_t state = 12345;
+  for (int i = 0; i <= 10000; ++i) {
+    state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+    const double noise = (static_cast<double>(state >> 11) / 9007199254740992.0 - 0.5) * 0.2;
+    const double x = i;
+    road.s.push_back(x);
+    road.z.push_back(300.0 + 20.0 * std::sin(x / 300.0) + 0.5 * std::sin(x / 17.0) + noise);
+  }
+  return road;
+}
+
+void expect_c1_at_knots(const CubicProfile& p) {
+  const auto& pieces = p.pieces();
+  for (std::size_t i = 1; i < pieces.size(); ++i) {
+    const double h = pieces[i].s - pieces[i - 1].s;
+    EXPECT_NEAR(pieces[i - 1].poly.value(h), pieces[i].poly.a, 1e-9) << i;
+    EXPECT_NEAR(pieces[i - 1].poly.derivative(h), pieces[i].poly.b, 1e-9) << i;
+  }
+}
+
+TEST(CubicProfile, NoisyTenKilometreProfileRespectsTolerance) {
+  const NoisyRoad road = noisy_road();
+  const double tolerance = 0.15;
+  const auto start = std::chrono::steady_clock::now();
+  const auto p = fit_cubic_profile(road.s, road.z, tolerance);
+  const double elapsed_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  EXPECT_LT(elapsed_s, 0.5);  // milliseconds normally; generous for shared CI machines
+  for (std::size_t i = 0; i < road.s.size(); ++i) {
+    ASSERT_LE(std::abs(p.value(road.s[i]) - road.z[i]), tolerance + 1e-9) << road.s[i];
+  }
+  EXPECT_NEAR(p.value(0.0), road.z.front(), 1e-12);
+  EXPECT_NEAR(p.value(10000.0), road.z.back(), 1e-9);
+  EXPECT_GT(p.pieces().size(), 10u);
+  EXPECT_LT(p.pieces().size(), 2000u);
+  expect_c1_at_knots(p);
+}
+
+TEST(CubicProfile, TightToleranceStillFitsEverySample) {
+  const NoisyRoad road = noisy_road();
+  const auto p = fit_cubic_profile(road.s, road.z, 0.0);
+  for (std::size_t i = 0; i < road.s.size(); i += 7) {
+    ASSERT_NEAR(p.value(road.s[i]), road.z[i], 1e-9) << road.s[i];
+  }
+  expect_c1_at_knots(p);
+}
+
+TEST(CubicProfile, EndSlopesAreHonoured) {
+  const NoisyRoad road = noisy_road();
+  const std::vector<double> s(road.s.begin(), road.s.begin() + 501);
+  const std::vector<double> z(road.z.begin(), road.z.begin() + 501);
+  const auto p = fit_cubic_profile(s, z, 0.1, std::pair{0.05, -0.08});
+  EXPECT_NEAR(p.derivative(0.0), 0.05, 1e-12);
+  EXPECT_NEAR(p.derivative(500.0), -0.08, 1e-9);
+  EXPECT_NEAR(p.value(500.0), z.back(), 1e-9);
+  for (std::size_t i = 0; i < s.size(); ++i) EXPECT_LE(std::abs(p.value(s[i]) - z[i]), 0.1 + 1e-9);
+  expect_c1_at_knots(p);
+}
+
+TEST(CubicProfile, OneAndTwoSamples) {
+  const auto one = fit_cubic_profile({5.0}, {7.0}, 0.1);
+  EXPECT_DOUBLE_EQ(one.value(0.0), 7.0);
+  EXPECT_DOUBLE_EQ(one.value(5.0), 7.0);
+  const auto two = fit_cubic_profile({0.0, 10.0}, {1.0, 3.0}, 0.1);
+  ASSERT_EQ(two.pieces().size(), 1u);
+  EXPECT_NEAR(two.value(5.0), 2.0, 1e-12);
+  EXPECT_NEAR(two.derivative(5.0), 0.2, 1e-12);
+}
+
+TEST(CubicProfile, FitRejectsBadInput) {
+  EXPECT_THROW((void)fit_cubic_profile({}, {}, 0.1), InvalidInput);
+  EXPECT_THROW((void)fit_cubic_profile({0.0, 1.0}, {0.0}, 0.1), InvalidInput);
+  EXPECT_THROW((void)fit_cubic_profile({0.0, 1.0, 1.0}, {0.0, 1.0, 2.0}, 0.1), InvalidInput);
+  EXPECT_THROW((void)fit_cubic_profile({0.0, 2.0, 1.0}, {0.0, 1.0, 2.0}, 0.1), InvalidInput);
+  EXPECT_THROW((void)fit_cubic_profile({0.0, 1.0}, {0.0, std::nan("")}, 0.1), InvalidInput);
+  EXPECT_THROW((void)fit_cubic_profile({0.0, 1.0}, {0.0, 1.0}, -0.1), InvalidInput);
+  EXPECT_THROW((void)fit_cubic_profile({0.0, 1.0}, {0.0, 1.0}, 0.1, std::pair{0.0, std::nan("")}),
+               InvalidInput);
+}
+
+}  // namespace
+}  // namespace relief

@@ -1,0 +1,317 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdint>
+#include <numbers>
+
+#include "relief/core/errors.h"
+#include "relief/geometry/plan_view.h"
+
+namespace relief {
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+
+double angle_gap(double a, double b) { return std::abs(std::remainder(a - b, 2.0 * kPi)); }
+
+double distance_to_polyline(const Polyline2& line, const Vec2& q) {
+  double best = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i + 1 < line.size(); ++i) {
+    const Vec2 d = line[i + 1] - line[i];
+    const double len2 = d.squaredNorm();
+    const double t = len2 > 0.0 ? std::clamp((q - line[i]).dot(d) / len2, 0.0, 1.0) : 0.0;
+    best = std::min(best, (line[i] + t * d - q).norm());
+  }
+  return best;
+}
+
+// Every property the fit promises: within tolerance, G1, no NaN, no short or curvature-0
+// records, ends on the polyline's ends with its end headings.
+void expect_valid_fit(const Polyline2& polyline, const PlanView& plan, const ReferenceLineOptions& options) {
+  const auto& records = plan.records();
+  ASSERT_FALSE(records.empty());
+  for (std::size_t i = 0; i < records.size(); ++i) {
+    const PlanGeometry& g = records[i];
+    ASSERT_TRUE(std::isfinite(g.length) && g.start.allFinite() && std::isfinite(g.heading)) << i;
+    if (g.kind == PlanGeometry::Kind::arc) {
+      EXPECT_NE(g.curvature, 0.0) << i;
+      EXPECT_TRUE(std::isfinite(g.curvature)) << i;
+    } else {
+      EXPECT_EQ(g.kind, PlanGeometry::Kind::line) << i;
+      // Shorter only on a polyline segment that is itself shorter than min_length.
+      double shortest = std::numeric_limits<double>::infinity();
+      for (std::size_t k = 0; k + 1 < polyline.size(); ++k) {
+        const double len = (polyline[k + 1] - polyline[k]).norm();
+        if (len > 1e-3) shortest = std::min(shortest, len);
+      }
+      EXPECT_GE(g.length, std::min(options.min_length_m, shortest)) << i;
+    }
+    if (i == 0) {
+      EXPECT_EQ(g.s, 0.0);
+      continue;
+    }
+    const PlanGeometry& prev = records[i - 1];
+    const Pose2 end = evaluate(prev, prev.length);
+    EXPECT_LT((end.position - g.start).norm(), 1e-9) << i;
+    EXPECT_LT(angle_gap(end.heading, g.heading), 1e-9) << i;
+    EXPECT_NEAR(g.s, prev.s + prev.length, 1e-9) << i;
+  }
+  double worst = 0.0;
+  const double length = plan.length();
+  const auto steps = static_cast<int>(std::ceil(length / 0.1));
+  for (int k = 0; k <= steps; ++k) {
+    const double s = std::min(length, 0.1 * k);
+    worst = std::max(worst, distance_to_polyline(polyline, plan.at(s).position));
+  }
+  EXPECT_LE(worst, options.tolerance_m + 1e-9);
+
+  const Pose2 start = plan.at(0.0);
+  const Pose2 end = plan.at(length);
+  EXPECT_LT((start.position - polyline.front()).norm(), 1e-9);
+  EXPECT_LT((end.position - polyline.back()).norm(), 1e-9);
+  const Vec2 d0 = polyline[1] - polyline[0];
+  const Vec2 d1 = polyline.back() - polyline[polyline.size() - 2];
+  EXPECT_LT(angle_gap(start.heading, std::atan2(d0.y(), d0.x())), 1e-9);
+  EXPECT_LT(angle_gap(end.heading, std::atan2(d1.y(), d1.x())), 1e-9);
+}
+
+TEST(ReferenceLineFit, StraightPolylineGivesOneLine) {
+  const Polyline2 line{{0, 0}, {10, 5}, {10, 5}, {20, 10}, {40, 20}};
+  std::vector<double> stations;
+  const ReferenceLineOptions options;
+  const PlanView plan = fit_reference_line(line, options, &stations);
+  ASSERT_EQ(plan.records().size(), 1u);
+  EXPECT_EQ(plan.records()[0].kind, PlanGeometry::Kind::line);
+  EXPECT_NEAR(plan.length(), std::hypot(40.0, 20.0), 1e-12);
+  expect_valid_fit(line, plan, options);
+  ASSERT_EQ(stations.size(), line.size());
+  const double unit = std::hypot(10.0, 5.0);
+  EXPECT_NEAR(stations[0], 0.0, 1e-12);
+  EXPECT_NEAR(stations[1], unit, 1e-9);
+  EXPECT_NEAR(stations[2], unit, 1e-9);
+  EXPECT_NEAR(stations[3], 2.0 * unit, 1e-9);
+  EXPECT_NEAR(stations[4], plan.length(), 1e-12);
+}
+
+TEST(ReferenceLineFit, TwoPointsGiveOneLine) {
+  const Polyline2 line{{3, 4}, {3, -6}};
+  const PlanView plan = fit_reference_line(line, {});
+  ASSERT_EQ(plan.records().size(), 1u);
+  EXPECT_NEAR(plan.length(), 10.0, 1e-12);
+  EXPECT_NEAR(plan.records()[0].heading, -0.5 * kPi, 1e-15);
+  expect_valid_fit(line, plan, {});
+}
+
+TEST(ReferenceLineFit, RightAngleCornerIsRoundedWithinTolerance) {
+  const Polyline2 line{{0, 0}, {100, 0}, {100, 100}};
+  const ReferenceLineOptions options{0.05, 1e-3};
+  std::vector<double> stations;
+  const PlanView plan = fit_reference_line(line, options, &stations);
+  ASSERT_EQ(plan.records().size(), 3u);
+  const PlanGeometry& a = plan.records()[1];
+  ASSERT_EQ(a.kind, PlanGeometry::Kind::arc);
+  // R_tol = tol / (1/cos(45°) - 1) is far below R_fit = 50 m.
+  const double r = 0.05 / (std::sqrt(2.0) - 1.0);
+  EXPECT_NEAR(1.0 / a.curvature, r, 1e-12);
+  EXPECT_NEAR(a.length, 0.5 * kPi * r, 1e-12);
+  EXPECT_NEAR(plan.records()[0].length, 100.0 - r, 1e-12);
+  EXPECT_NEAR(plan.length(), 200.0 - 2.0 * r + 0.5 * kPi * r, 1e-12);
+  expect_valid_fit(line, plan, options);
+  // The arc's midpoint is exactly `tolerance` from the vertex.
+  EXPECT_NEAR((plan.at(stations[1]).position - line[1]).norm(), 0.05, 1e-9);
+  EXPECT_NEAR(stations[1], a.s + 0.5 * a.length, 1e-12);
+  EXPECT_NEAR(stations[2], plan.length(), 1e-12);
+}
+
+TEST(ReferenceLineFit, RightTurnHasNegativeCurvature) {
+  const Polyline2 line{{0, 0}, {10, 0}, {20, -10}};
+  const PlanView plan = fit_reference_line(line, {});
+  ASSERT_EQ(plan.records().size(), 3u);
+  EXPECT_LT(plan.records()[1].curvature, 0.0);
+  expect_valid_fit(line, plan, {});
+}
+
+TEST(ReferenceLineFit, ShortSegmentsLimitTheRadius) {
+  // A gentle bend on 2 m segments: R_fit = 1 m / tan(θ/2) is below R_tol, and the line between
+  // two such arcs vanishes.
+  const double theta = 0.2;
+  const Polyline2 line{{0, 0}, {2, 0}, {2 + 2 * std::cos(theta), 2 * std::sin(theta)},
+                       {2 + 2 * std::cos(theta) + 2 * std::cos(2 * theta),
+                        2 * std::sin(theta) + 2 * std::sin(2 * theta)}};
+  const ReferenceLineOptions options{0.5, 1e-3};
+  const PlanView plan = fit_reference_line(line, options);
+  const auto& r = plan.records();
+  ASSERT_EQ(r.size(), 4u);  // line, arc, arc, line
+  EXPECT_EQ(r[1].kind, PlanGeometry::Kind::arc);
+  EXPECT_EQ(r[2].kind, PlanGeometry::Kind::arc);
+  EXPECT_NEAR(1.0 / r[1].curvature, 1.0 / std::tan(0.5 * theta), 1e-9);
+  EXPECT_NEAR(r[0].length, 1.0, 1e-12);
+  expect_valid_fit(line, plan, options);
+}
+
+TEST(ReferenceLineFit, CircleGivesArcsOfTheCircleRadius) {
+  Polyline2 line;
+  const double radius = 50.0;
+  for (int i = 0; i <= 72; ++i) {
+    const double a = 2.0 * kPi * i / 72.0;
+    line.emplace_back(radius * std::cos(a), radius * std::sin(a));
+  }
+  // Segments of 4.36 m turning 5°: with 5 cm the half-segment limit R_fit = 49.94 m binds and
+  // the lines between arcs vanish; with 1 cm R_tol = 10.5 m binds and lines remain between arcs.
+  const double half = 0.5 * 2.0 * kPi / 72.0;
+  const double r_fit = radius * std::sin(half) / std::tan(half);
+  for (const double tolerance : {0.05, 0.01}) {
+    const ReferenceLineOptions options{tolerance, 1e-3};
+    const double r_tol = tolerance / (1.0 / std::cos(half) - 1.0);
+    const PlanView plan = fit_reference_line(line, options);
+    int arcs = 0;
+    int lines = 0;
+    for (const auto& g : plan.records()) {
+      if (g.kind == PlanGeometry::Kind::arc) {
+        ++arcs;
+        EXPECT_NEAR(1.0 / g.curvature, std::min(r_fit, r_tol), 1e-9);
+      } else {
+        ++lines;
+      }
+    }
+    EXPECT_EQ(arcs, 71);
+    EXPECT_EQ(lines, tolerance == 0.05 ? 2 : 72);
+    expect_valid_fit(line, plan, options);
+    EXPECT_NEAR(plan.length(), 2.0 * kPi * radius, 0.01 * 2.0 * kPi * radius);
+  }
+  EXPECT_NEAR(r_fit, radius, 0.002 * radius);
+}
+
+TEST(ReferenceLineFit, ShortLinesShrinkTheirArcs) {
+  // 72-gon with a tolerance whose arcs would leave 2 cm lines: with min_length 5 cm the arcs
+  // shrink so that every line is at least 5 cm (a shrink also lengthens the next line, so some
+  // end up a little longer), and still lie within the tolerance.
+  Polyline2 line;
+  const double radius = 50.0;
+  for (int i = 0; i <= 72; ++i) {
+    const double a = 2.0 * kPi * i / 72.0;
+    line.emplace_back(radius * std::cos(a), radius * std::sin(a));
+  }
+  const double half = kPi / 72.0;
+  const double half_segment = radius * std::sin(half);
+  const double r_tol = (half_segment - 0.01) / std::tan(half);
+  const ReferenceLineOptions options{r_tol * (1.0 / std::cos(half) - 1.0), 0.05};
+  const PlanView plan = fit_reference_line(line, options);
+  const auto& records = plan.records();
+  ASSERT_EQ(records.size(), 71u + 72u);
+  for (std::size_t i = 2; i + 2 < records.size(); i += 2) {
+    ASSERT_EQ(records[i].kind, PlanGeometry::Kind::line) << i;
+    EXPECT_GE(records[i].length, 0.05 - 1e-12) << i;
+    EXPECT_LE(records[i].length, 0.07) << i;
+    EXPECT_LT(1.0 / records[i + 1].curvature, r_tol) << i;
+  }
+  expect_valid_fit(line, plan, options);
+}
+
+TEST(ReferenceLineFit, HairpinAndUTurnStayFinite) {
+  const Polyline2 hairpin{{0, 0}, {100, 0}, {0, 0.5}};
+  const Polyline2 u_turn{{0, 0}, {100, 0}, {50, 0}};
+  const Polyline2 u_turn_right{{0, 0}, {0, -100}, {0, -50}, {20, -50}};
+  for (const auto& line : {hairpin, u_turn, u_turn_right}) {
+    std::vector<double> stations;
+    const PlanView plan = fit_reference_line(line, {}, &stations);
+    expect_valid_fit(line, plan, {});
+    for (double s : stations) EXPECT_TRUE(std::isfinite(s));
+  }
+}
+
+TEST(ReferenceLineFit, ZigZagWithMixedSegmentsIsValid) {
+  // Deterministic pseudo-random walk: segment lengths 0.002..30 m, turns up to ±170°.
+  Polyline2 line{{0, 0}};
+  std::uint64_t state = 99;
+  const auto next = [&] {
+    state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+    return static_cast<double>(state >> 11) / 9007199254740992.0;
+  };
+  double heading = 0.0;
+  for (int i = 0; i < 300; ++i) {
+    heading += (next() - 0.5) * 2.0 * (170.0 / 180.0) * kPi * (i % 3 == 0 ? 1.0 : 0.2);
+    const double len = i % 17 == 0 ? 0.002 + 0.01 * next() : 0.5 + 30.0 * next();
+    line.push_back(line.back() + len * Vec2(std::cos(heading), std::sin(heading)));
+  }
+  for (const double min_length : {1e-3, 0.05}) {
+    const ReferenceLineOptions options{0.05, min_length};
+    std::vector<double> stations;
+    const PlanView plan = fit_reference_line(line, options, &stations);
+    expect_valid_fit(line, plan, options);
+    ASSERT_EQ(stations.size(), line.size());
+    for (std::size_t i = 1; i < stations.size(); ++i) EXPECT_GE(stations[i], stations[i - 1]) << i;
+    // Each station is the reference point nearest to its vertex: within the tolerance.
+    for (std::size_t i = 0; i < line.size(); ++i) {
+      EXPECT_LE((plan.at(stations[i]).position - line[i]).norm(), 0.05 + 1e-9) << i;
+    }
+  }
+}
+
+TEST(ReferenceLineFit, NearDuplicateVerticesMapToTheSameStation) {
+  const Polyline2 line{{0, 0}, {0.0004, 0}, {50, 0}, {50, 0.0002}, {50, 50}, {50, 50.0005}};
+  std::vector<double> stations;
+  const PlanView plan = fit_reference_line(line, {}, &stations);
+  expect_valid_fit(line, plan, {});
+  ASSERT_EQ(stations.size(), 6u);
+  EXPECT_EQ(stations[0], 0.0);
+  EXPECT_EQ(stations[1], 0.0);
+  EXPECT_EQ(stations[2], stations[3]);
+  EXPECT_EQ(stations[4], plan.length());
+  EXPECT_EQ(stations[5], plan.length());
+}
+
+TEST(ReferenceLineFit, RejectsDegenerateInput) {
+  EXPECT_THROW((void)fit_reference_line({}, {}), InvalidInput);
+  EXPECT_THROW((void)fit_reference_line({{1, 1}}, {}), InvalidInput);
+  EXPECT_THROW((void)fit_reference_line({{1, 1}, {1, 1.0005}}, {}), InvalidInput);
+  EXPECT_THROW((void)fit_reference_line({{0, 0}, {std::nan(""), 1}}, {}), InvalidInput);
+  EXPECT_THROW((void)fit_reference_line({{0, 0}, {1, 1}}, {0.0, 1e-3}), InvalidInput);
+  EXPECT_THROW((void)fit_reference_line({{0, 0}, {1, 1}}, {0.05, -1.0}), InvalidInput);
+}
+
+TEST(HermiteConnector, ReproducesBothPoses) {
+  const Pose2 from{{10.0, -3.0}, 0.4, 0.0};
+  const std::vector<Pose2> targets{{{40.0, 20.0}, 1.9, 0.0},
+                                   {{12.0, 30.0}, -2.5, 0.0},
+                                   {{-5.0, -10.0}, 3.0, 0.0},
+                                   {{30.0, 5.0}, 0.4 + kPi, 0.0},
+                                   {{25.0, 3.0}, 0.4, 0.0}};
+  for (const Pose2& to : targets) {
+    for (const double scale : {0.3, 0.5, 1.0}) {
+      const PlanGeometry g = hermite_connector(from, to, scale);
+      ASSERT_EQ(g.kind, PlanGeometry::Kind::param_poly3);
+      EXPECT_NEAR(g.length, param_poly3_length(g.u, g.v, 1.0), 1e-12);
+      EXPECT_GE(g.length, (to.position - from.position).norm() - 1e-9);
+      const Pose2 a = evaluate(g, 0.0);
+      const Pose2 b = evaluate(g, g.length);
+      EXPECT_LT((a.position - from.position).norm(), 1e-9);
+      EXPECT_LT(angle_gap(a.heading, from.heading), 1e-9);
+      EXPECT_LT((b.position - to.position).norm(), 1e-9);
+      EXPECT_LT(angle_gap(b.heading, to.heading), 1e-9);
+    }
+  }
+}
+
+TEST(HermiteConnector, StraightAheadGivesALine) {
+  const Pose2 from{{1.0, 1.0}, kPi / 4.0, 0.0};
+  const Pose2 to{{11.0, 11.0}, kPi / 4.0, 0.0};
+  const PlanGeometry g = hermite_connector(from, to);
+  ASSERT_EQ(g.kind, PlanGeometry::Kind::line);
+  EXPECT_NEAR(g.length, 10.0 * std::sqrt(2.0), 1e-12);
+  EXPECT_LT((evaluate(g, g.length).position - to.position).norm(), 1e-9);
+  // Straight behind is not straight ahead.
+  const PlanGeometry back = hermite_connector(to, {{-9.0, -9.0}, kPi / 4.0, 0.0});
+  EXPECT_EQ(back.kind, PlanGeometry::Kind::param_poly3);
+}
+
+TEST(HermiteConnector, RejectsCoincidentPosesAndBadScale) {
+  const Pose2 p{{1.0, 2.0}, 0.0, 0.0};
+  EXPECT_THROW((void)hermite_connector(p, p), InvalidInput);
+  EXPECT_THROW((void)hermite_connector(p, {{5.0, 2.0}, 0.0, 0.0}, 0.0), InvalidInput);
+  EXPECT_THROW((void)hermite_connector(p, {{5.0, 2.0}, 0.0, 0.0}, -1.0), InvalidInput);
+  EXPECT_THROW((void)hermite_connector(p, {{5.0, std::nan("")}, 0.0, 0.0}), InvalidInput);
+}
+
+}  // namespace
+}  // namespace relief

@@ -1,0 +1,140 @@
+// The OpenDRIVE written by `build` on the real SF data: schema-valid, read back exactly, lane
+// borders continuous at every link, and imported by SUMO's netconvert with our heights.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <fstream>
+#include <iostream>
+#include <regex>
+#include <sstream>
+
+#include "relief/pipeline/build.h"
+#include "relief/roads/opendrive_reader.h"
+#include "relief/roads/road_surface.h"
+#include "support/test_data.h"
+
+namespace relief {
+namespace {
+
+bool have(const char* tool) { return std::system((std::string("command -v ") + tool + " >/dev/null 2>&1").c_str()) == 0; }
+
+struct Built {
+  RunReport report;
+  std::filesystem::path xodr;
+};
+
+Built build_set(const std::string& name, const std::string& osm, const std::string& dem) {
+  BuildOptions o;
+  o.osm_path = test::shared_data(osm);
+  o.dem_paths = {test::shared_data(dem).string()};
+  o.out_dir = test::scratch_dir("odr_" + name);
+  o.outputs = {Output::xodr};
+  o.compare_methods = false;
+  o.name = name;
+  Diagnostics d;
+  return {build(o, d).report, o.out_dir / (name + ".xodr")};
+}
+
+void check_set(const Built& b) {
+  ASSERT_TRUE(b.report.opendrive);
+  const OpenDriveSummary& o = *b.report.opendrive;
+  std::cout << b.report.name << ": " << o.roads << " roads, " << o.junctions << " junctions, " << o.connecting_roads
+            << " connecting roads, link gap " << o.max_link_gap_m << " m / step " << o.max_link_step_m
+            << " m over " << o.link_borders_checked << " borders, round trip " << o.round_trip_max_xy_m << " / "
+            << o.round_trip_max_z_m << " m, elevation vs fit " << o.elevation_max_deviation_m << " m\n";
+  // One OpenDRIVE junction per intersection of the network.
+  EXPECT_EQ(o.junctions, b.report.network.intersections);
+  EXPECT_GT(o.connecting_roads, 2 * o.junctions);
+  EXPECT_LT(o.max_link_gap_m, 0.01);
+  EXPECT_LT(o.max_link_step_m, 0.01);
+  EXPECT_LT(o.round_trip_max_xy_m, 0.02);
+  EXPECT_LT(o.round_trip_max_z_m, 0.02);
+  EXPECT_LT(o.elevation_max_deviation_m, 0.02);
+
+  // The ASAM schema.
+  if (!have("xmllint")) GTEST_SKIP() << "xmllint not installed";
+  // xmllint cannot compile the schema through a path with "..": its includes resolve twice.
+  const std::string xsd = std::filesystem::weakly_canonical(test::shared_data("").parent_path().parent_path() /
+                                                            "opendrive-xsd/1.7.0/opendrive_17_core.xsd")
+                              .string();
+  const std::string cmd = "xmllint --noout --schema '" + xsd + "' '" + b.xodr.string() + "' 2>" + b.xodr.string() + ".xmllint";
+  EXPECT_EQ(std::system(cmd.c_str()), 0) << "see " << b.xodr << ".xmllint";
+}
+
+TEST(OpenDrive, PotreroValidatesAndReadsBack) {
+  RELIEF_REQUIRE_SHARED_DATA();
+  check_set(build_set("potrero", "sf-potrero/sf-potrero.osm.gz", "sf-potrero/USGS_13_n38w123-subsection-small-potrero.tif"));
+}
+
+TEST(OpenDrive, NortheastValidatesAndReadsBack) {
+  RELIEF_REQUIRE_SHARED_DATA();
+  check_set(build_set("ne", "sf-ne/sf_ne_drive_2017.osm.gz", "sf-ne/sf_ne_usgs24k_30m_nad27utm10_m.tif"));
+}
+
+TEST(OpenDrive, NetconvertImportsItWithOurHeights) {
+  RELIEF_REQUIRE_SHARED_DATA();
+  if (!have("netconvert")) GTEST_SKIP() << "SUMO netconvert not installed";
+  const Built b = build_set("potrero_sumo", "sf-potrero/sf-potrero.osm.gz",
+                            "sf-potrero/USGS_13_n38w123-subsection-small-potrero.tif");
+  const auto net = b.xodr.parent_path() / "imported.net.xml";
+  const auto log = b.xodr.parent_path() / "netconvert.log";
+  const std::string cmd = "SUMO_HOME=${SUMO_HOME:-/usr/share/sumo} netconvert --opendrive-files '" + b.xodr.string() +
+                          "' -o '" + net.string() + "' --offset.disable-normalization true 2>'" + log.string() + "'";
+  ASSERT_EQ(std::system(cmd.c_str()), 0) << "see " << log;
+  std::ifstream log_in(log);
+  std::stringstream log_text;
+  log_text << log_in.rdbuf();
+  EXPECT_EQ(log_text.str().find("Error"), std::string::npos) << log_text.str();
+
+  // Heights: every point of every lane shape netconvert wrote lies at our surface's height at
+  // the nearest station of the same road (edge "-12" or "12.0" came from road 12).
+  const RoadModel model = read_opendrive(b.xodr);
+  std::ifstream in(net);
+  std::stringstream text;
+  text << in.rdbuf();
+  const std::string xml = text.str();
+  const std::regex lane_shape(R"re(<lane id="-?([0-9]+)[^"]*"[^>]*shape="([^"]+)")re");
+  double worst = 0.0;
+  std::size_t points = 0;
+  std::vector<double> errors;
+  for (auto it = std::sregex_iterator(xml.begin(), xml.end(), lane_shape); it != std::sregex_iterator(); ++it) {
+    const int index = model.road_index(std::stoi((*it)[1].str()));
+    if (index < 0) continue;
+    const ModelRoad& road = model.roads[index];
+    std::stringstream shape((*it)[2].str());
+    std::vector<Vec3> pts;
+    for (std::string triple; shape >> triple;) {
+      double x = 0, y = 0, z = 0;
+      if (std::sscanf(triple.c_str(), "%lf,%lf,%lf", &x, &y, &z) == 3) pts.emplace_back(x, y, z);
+    }
+    // The first and last points are netconvert's junction nodes, one height per node (its
+    // junction flattening): compare the points along the road.
+    for (std::size_t k = 1; k + 1 < pts.size(); ++k) {
+      const double x = pts[k].x(), y = pts[k].y(), z = pts[k].z();
+      double best = 1e9, best_z = 0.0;
+      for (double st = 0.0; st <= road.length() + 0.05; st += 0.1) {
+        const Vec3 p = surface_point(road, std::min(st, road.length()), 0.0);
+        const double d = (p.head<2>() - Vec2(x, y)).norm();
+        if (d < best) {
+          best = d;
+          best_z = p.z();
+        }
+      }
+      worst = std::max(worst, std::abs(z - best_z));
+      errors.push_back(std::abs(z - best_z));
+      ++points;
+    }
+  }
+  std::sort(errors.begin(), errors.end());
+  const double p99 = errors.empty() ? 0.0 : errors[errors.size() * 99 / 100];
+  const double median = errors.empty() ? 0.0 : errors[errors.size() / 2];
+  std::cout << "netconvert heights vs relief's: " << points << " lane points inside edges, median " << median
+            << " m, p99 " << p99 << " m, worst " << worst << " m\n";
+  EXPECT_GT(points, 500u);
+  EXPECT_LT(median, 0.01);
+  EXPECT_LT(p99, 0.1);
+}
+
+}  // namespace
+}  // namespace relief

@@ -1,0 +1,129 @@
+#include "relief/roads/road_model_builder.h"
+
+#include <gtest/gtest.h>
+
+#include "relief/roads/road_model_checks.h"
+#include "relief/roads/road_surface.h"
+#include "support/synthetic.h"
+
+namespace relief {
+namespace {
+
+const auto plane = [](const Vec2& p) { return 10.0 + 0.05 * p.x() + 0.02 * p.y(); };
+
+std::vector<RoadProfile> drape(const RoadNetwork& net) {
+  std::vector<RoadProfile> out;
+  for (const Road& road : net.roads) {
+    RoadProfile p = make_stations(road, 1.0);
+    for (std::size_t i = 0; i < p.size(); ++i) p.z[i] = plane(p.xy[i]);
+    out.push_back(p);
+  }
+  return out;
+}
+
+WayAttributes street(int forward, int backward, bool oneway = false) {
+  WayAttributes a;
+  a.highway = HighwayClass::residential;
+  a.lanes_forward = forward;
+  a.lanes_backward = backward;
+  a.oneway = oneway;
+  a.lane_width_m = 3.0;
+  return a;
+}
+
+TEST(RoadModelBuilder, TJunctionOnASlope) {
+  // A west-east street through a junction at the origin, a side street to the south.
+  const RoadNetwork net = test::make_network({{{-100, 0}, {0, 0}}, {{0, 0}, {100, 0}}, {{0, 0}, {0, -100}}},
+                                             {street(1, 1), street(1, 1), street(1, 1)});
+  Diagnostics d;
+  const RoadModelBuild b = build_road_model(net, drape(net), {}, d);
+  EXPECT_EQ(b.stats.roads, 3u);
+  EXPECT_EQ(b.stats.junctions, 1u);
+  EXPECT_EQ(b.stats.connecting_roads, 6u);  // every arm to the two others, one lane each
+  ASSERT_EQ(b.model.roads.size(), 9u);
+  // Trimmed by the junction radius: widest half-width 3 m + 2 m margin.
+  const ModelRoad& west = b.model.roads[b.model_road_of[0]];
+  EXPECT_NEAR(west.length(), 95.0, 1e-6);
+  EXPECT_NEAR(west.elevation.value(0.0), plane({-100, 0}), 1e-6);
+  EXPECT_NEAR(west.elevation.value(95.0), plane({-5, 0}), 1e-6);
+  EXPECT_NEAR(west.elevation.derivative(50.0), 0.05, 1e-6);
+  ASSERT_TRUE(west.successor);
+  EXPECT_EQ(west.successor->element, RoadLink::Element::junction);
+  // Every lane border meets its linked lane's border, in plan and in height.
+  const LinkContinuity c = check_link_continuity(b.model);
+  EXPECT_EQ(c.borders_checked, 6u * 2u * 2u);  // 6 connecting roads, two ends, two borders
+  EXPECT_LT(c.max_horizontal_m, 1e-6);
+  EXPECT_LT(c.max_vertical_m, 1e-6);
+  // Connecting roads carry the plane's grade at both ends (slope continuity).
+  for (const ModelRoad& r : b.model.roads) {
+    if (r.junction < 0) continue;
+    const Vec3 start = surface_point(r, 0.0, 0.0), end = surface_point(r, r.length(), 0.0);
+    EXPECT_NEAR(start.z(), plane(start.head<2>()), 1e-6) << r.name;
+    EXPECT_NEAR(end.z(), plane(end.head<2>()), 1e-6) << r.name;
+  }
+  EXPECT_LT(b.stats.max_elevation_deviation_m, 1e-6);
+}
+
+TEST(RoadModelBuilder, OneWaysHaveRightLanesOnlyAndAreCentred) {
+  const RoadNetwork net = test::make_network({{{0, 0}, {50, 0}}}, {street(2, 0, true)});
+  Diagnostics d;
+  const RoadModelBuild b = build_road_model(net, drape(net), {}, d);
+  const ModelRoad& r = b.model.roads[0];
+  ASSERT_EQ(r.sections.size(), 1u);
+  EXPECT_TRUE(r.sections[0].left.empty());
+  EXPECT_EQ(r.sections[0].right.size(), 2u);
+  // The carriageway (6 m) is centred on the OSM line: borders at t = +3 and -3.
+  EXPECT_NEAR(lane_border_t(r, 10.0, 0), 3.0, 1e-9);
+  EXPECT_NEAR(lane_border_t(r, 10.0, -2), -3.0, 1e-9);
+  EXPECT_EQ(r.sections[0].centre_mark.color, "yellow");
+}
+
+TEST(RoadModelBuilder, AttributeChangesLinkDirectlyOrThroughATransitionRoad) {
+  // Two lanes each way, then one lane each way (a transition road tapers the outer lanes), then
+  // a road drawn against the second, straight on with the same lanes (a direct link).
+  const RoadNetwork net = test::make_network({{{0, 0}, {50, 0}}, {{50, 0}, {100, 0}}, {{130, 0}, {100, 0}}},
+                                             {street(2, 2), street(1, 1), street(1, 1)});
+  Diagnostics d;
+  const RoadModelBuild b = build_road_model(net, drape(net), {}, d);
+  EXPECT_EQ(b.stats.direct_links, 1u);
+  EXPECT_EQ(b.stats.transition_roads, 1u);
+  EXPECT_EQ(b.stats.junctions, 0u);
+  ASSERT_EQ(b.model.roads.size(), 4u);
+  const ModelRoad& a = b.model.roads[0];
+  const ModelRoad& t = b.model.roads[3];
+  ASSERT_TRUE(a.successor);
+  EXPECT_EQ(a.successor->id, t.id);
+  // Trimmed by the widest half-width (6 m) plus the 2 m margin on both sides of the node.
+  EXPECT_NEAR(t.length(), 16.0, 1e-6);
+  ASSERT_EQ(t.sections[0].right.size(), 2u);
+  EXPECT_NEAR(t.sections[0].right[1].width.value(0.0), 3.0, 1e-12);  // the outer lane tapers
+  EXPECT_NEAR(t.sections[0].right[1].width.value(t.length()), 0.0, 1e-12);
+  EXPECT_NEAR(surface_point(t, 8.0, 0.0).z(), plane({50, 0}), 1e-6);
+  // The third road meets the second end to end: its right lane continues the second's left.
+  const ModelRoad& c = b.model.roads[2];
+  ASSERT_TRUE(c.successor);
+  EXPECT_EQ(c.successor->contact, RoadLink::Contact::end);
+  EXPECT_EQ(c.sections[0].right[0].successor, 1);
+  const LinkContinuity cont = check_link_continuity(b.model);
+  // Two borders per linked lane, seen from both roads: road 1 <-> T 4 lanes, T <-> road 2 and
+  // road 2 <-> road 3 two lanes each.
+  EXPECT_EQ(cont.borders_checked, 2u * 2u * (4u + 2u + 2u));
+  EXPECT_LT(cont.max_horizontal_m, 1e-6);
+  EXPECT_LT(cont.max_vertical_m, 1e-6);
+}
+
+TEST(RoadModelBuilder, ACornerGetsATransitionRoad) {
+  // Two streets meeting at a right angle with no third road: no junction, a curved link.
+  const RoadNetwork net = test::make_network({{{-60, 0}, {0, 0}}, {{0, 0}, {0, 60}}}, {street(1, 1), street(1, 1)});
+  Diagnostics d;
+  const RoadModelBuild b = build_road_model(net, drape(net), {}, d);
+  EXPECT_EQ(b.stats.transition_roads, 1u);
+  EXPECT_EQ(b.stats.direct_links, 0u);
+  const LinkContinuity cont = check_link_continuity(b.model);
+  EXPECT_GT(cont.borders_checked, 0u);
+  EXPECT_LT(cont.max_horizontal_m, 1e-6);
+  EXPECT_LT(cont.max_vertical_m, 1e-6);
+}
+
+}  // namespace
+}  // namespace relief
