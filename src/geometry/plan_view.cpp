@@ -118,18 +118,30 @@ Pose2 evaluate_spiral(const PlanGeometry& g, double ds) {
   return {g.start + offset, heading(ds), k_end};
 }
 
-// paramPoly3: arc length ds (scaled so that `length` maps to the full range) -> p by a
-// cumulative table of Gauss-Legendre lengths, then safeguarded Newton inside one interval.
-Pose2 evaluate_param_poly3(const PlanGeometry& g, double ds) {
+constexpr int kArcIntervals = 32;
+
+}  // namespace
+
+std::vector<double> param_poly3_arc_table(const PlanGeometry& g) {
   const double p_end = g.normalized ? 1.0 : g.length;
   const auto f = [&](double p) { return speed(g.u, g.v, p); };
-  constexpr int kIntervals = 32;
-  std::array<double, kIntervals + 1> cumulative{};
-  for (int i = 0; i < kIntervals; ++i) {
-    const double a = p_end * i / kIntervals;
-    const double b = p_end * (i + 1) / kIntervals;
+  std::vector<double> cumulative(kArcIntervals + 1, 0.0);
+  for (int i = 0; i < kArcIntervals; ++i) {
+    const double a = p_end * i / kArcIntervals;
+    const double b = p_end * (i + 1) / kArcIntervals;
     cumulative[static_cast<std::size_t>(i + 1)] = cumulative[static_cast<std::size_t>(i)] + gauss16(f, a, b);
   }
+  return cumulative;
+}
+
+namespace {
+
+// paramPoly3: arc length ds (scaled so that `length` maps to the full range) -> p by the
+// cumulative table of Gauss-Legendre lengths, then safeguarded Newton inside one interval.
+Pose2 evaluate_param_poly3(const PlanGeometry& g, double ds, const std::vector<double>& cumulative) {
+  constexpr int kIntervals = kArcIntervals;
+  const double p_end = g.normalized ? 1.0 : g.length;
+  const auto f = [&](double p) { return speed(g.u, g.v, p); };
   const double total = cumulative.back();
   double p = p_end;
   if (ds <= 0.0) {
@@ -168,8 +180,10 @@ Pose2 evaluate_param_poly3(const PlanGeometry& g, double ds) {
 }  // namespace
 
 PlanView::PlanView(std::vector<PlanGeometry> records) : records_(std::move(records)) {
+  arc_tables_.resize(records_.size());
   for (std::size_t i = 0; i < records_.size(); ++i) {
     const PlanGeometry& g = records_[i];
+    if (g.kind == PlanGeometry::Kind::param_poly3) arc_tables_[i] = param_poly3_arc_table(g);
     if (!(std::isfinite(g.length) && g.length > 0.0)) {
       throw InvalidInput("plan view: geometry record " + std::to_string(i) + " has length " +
                          std::to_string(g.length) + " (must be positive and finite)");
@@ -200,7 +214,11 @@ std::size_t PlanView::record_at(double s) const {
 Pose2 PlanView::at(double s) const {
   if (records_.empty()) throw InvalidInput("plan view: no geometry records");
   const double clamped = std::clamp(s, records_.front().s, length());
-  const PlanGeometry& g = records_[record_at(clamped)];
+  const std::size_t i = record_at(clamped);
+  const PlanGeometry& g = records_[i];
+  if (g.kind == PlanGeometry::Kind::param_poly3) {
+    return evaluate_param_poly3(g, std::clamp(clamped - g.s, 0.0, g.length), arc_tables_[i]);
+  }
   return evaluate(g, clamped - g.s);
 }
 
@@ -210,7 +228,7 @@ Pose2 evaluate(const PlanGeometry& record, double ds) {
     case PlanGeometry::Kind::line: return evaluate_line(record, d);
     case PlanGeometry::Kind::arc: return evaluate_arc(record, d);
     case PlanGeometry::Kind::spiral: return evaluate_spiral(record, d);
-    case PlanGeometry::Kind::param_poly3: return evaluate_param_poly3(record, d);
+    case PlanGeometry::Kind::param_poly3: return evaluate_param_poly3(record, d, param_poly3_arc_table(record));
   }
   return evaluate_line(record, d);
 }

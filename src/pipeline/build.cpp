@@ -210,18 +210,23 @@ BuildResult build(const BuildOptions& options, Diagnostics& diagnostics, const P
     result.written.push_back(path_of(".geojson"));
   }
   if (options.outputs.count(Output::xodr)) {
-    timer.run("build road model", [&] {
-      const RoadModelBuild built = build_road_model(network, profiles, options.road_model, diagnostics);
-      RoadModel model = built.model;
-      model.name = report.name;
+    RoadModelBuild built = timer.run("build road model", [&] {
+      return build_road_model(network, profiles, options.road_model, diagnostics);
+    });
+    built.model.name = report.name;
+    const RoadModel& model = built.model;
+    const std::string xodr = timer.run("write OpenDRIVE", [&] {
       OpenDriveOptions odr;
       odr.rev_minor = options.opendrive_rev_minor;
       odr.date = report.created_utc;
       std::ostringstream text;
       write_opendrive(text, model, odr);
-      const std::string xodr = text.str();
-      files.add(path_of(".xodr"), [&](std::ostream& out) { out << xodr; });
-      // Checks: the file read back is the model written; lane borders meet at every link.
+      std::string written = text.str();
+      files.add(path_of(".xodr"), [&](std::ostream& out) { out << written; });
+      return written;
+    });
+    timer.run("check OpenDRIVE", [&] {
+      // The file read back is the model written; lane borders meet at every link.
       const RoadModel back = parse_opendrive(xodr, report.name + ".xodr");
       const ModelDeviation dev = compare_models(model, back);
       const LinkContinuity links = check_link_continuity(model);

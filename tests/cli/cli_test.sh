@@ -43,6 +43,18 @@ assert r["network"]["roads"] > 0 and r["network"]["bridges"] == 1, r["network"]
 assert "OpenStreetMap" in r["attribution"]
 PY
 check "no temporaries" bash -c "! ls '$out' | grep -q tmp"
+check "xodr written" test -s "$out/hill.xodr"
+xsd="$(cd "$RELIEF_SOURCE_DIR/.." && pwd)/shared/opendrive-xsd/1.7.0/opendrive_17_core.xsd"
+if [ -f "$xsd" ] && command -v xmllint >/dev/null; then
+  check "xodr validates (1.7)" xmllint --noout --schema "$xsd" "$out/hill.xodr"
+fi
+check "report opendrive figures" python3 - "$out/report.json" <<'PY'
+import json, sys
+o = json.load(open(sys.argv[1]))["opendrive"]
+assert o["junctions"] == json.load(open(sys.argv[1]))["network"]["intersections"], o
+assert o["max_link_gap_m"] < 0.01 and o["max_link_step_m"] < 0.01, o
+assert o["round_trip_max_xy_m"] < 0.02 and o["round_trip_max_z_m"] < 0.02, o
+PY
 
 # Bad usage: exit 2.
 check "unknown option" run 2 "" build --osm "$fix/hill.osm" --dem "$fix/hill_dem.asc" --out "$RELIEF_TMP/x" --frobnicate

@@ -60,7 +60,12 @@ class PlanView {
 
  private:
   std::vector<PlanGeometry> records_;
+  std::vector<std::vector<double>> arc_tables_;  ///< per paramPoly3 record: cumulative arc length
 };
+
+/// Cumulative arc length of a paramPoly3 record at 33 evenly spaced parameters (what PlanView
+/// caches so that evaluating it does not integrate the whole curve each time).
+[[nodiscard]] std::vector<double> param_poly3_arc_table(const PlanGeometry& record);
 
 /// Pose at `ds` metres into one record (ds is clamped to [0, record.length]). Spirals are
 /// integrated numerically (error < 1e-9 m); paramPoly3 arc length is mapped to p by a cumulative
