@@ -144,26 +144,25 @@ CrsTransform::~CrsTransform() = default;
 CrsTransform::CrsTransform(CrsTransform&&) noexcept = default;
 CrsTransform& CrsTransform::operator=(CrsTransform&&) noexcept = default;
 
-Vec2 CrsTransform::apply(const Vec2& p) const {
-  PJ_COORD c = proj_coord(p.x(), p.y(), 0.0, 0.0);
-  proj_errno_reset(impl_->op.get());
-  const PJ_COORD r = proj_trans(impl_->op.get(), PJ_FWD, c);
-  if (proj_errno(impl_->op.get()) != 0 || !std::isfinite(r.xy.x) || r.xy.x == HUGE_VAL) {
-    throw ProjectionError("cannot transform point (" + std::to_string(p.x()) + ", " +
-                          std::to_string(p.y()) + ") with '" + impl_->name + "'");
+namespace {
+
+// One point through `op` in `direction`; throws with the operation's name on failure.
+Vec2 transform_point(PJ* op, PJ_DIRECTION direction, const Vec2& p, const std::string& name) {
+  proj_errno_reset(op);
+  const PJ_COORD r = proj_trans(op, direction, proj_coord(p.x(), p.y(), 0.0, 0.0));
+  if (proj_errno(op) != 0 || !std::isfinite(r.xy.x) || r.xy.x == HUGE_VAL) {
+    throw ProjectionError("cannot transform point (" + std::to_string(p.x()) + ", " + std::to_string(p.y()) +
+                          ")" + (direction == PJ_INV ? " back" : "") + " with '" + name + "'");
   }
   return {r.xy.x, r.xy.y};
 }
 
+}  // namespace
+
+Vec2 CrsTransform::apply(const Vec2& p) const { return transform_point(impl_->op.get(), PJ_FWD, p, impl_->name); }
+
 Vec2 CrsTransform::apply_inverse(const Vec2& p) const {
-  PJ_COORD c = proj_coord(p.x(), p.y(), 0.0, 0.0);
-  proj_errno_reset(impl_->op.get());
-  const PJ_COORD r = proj_trans(impl_->op.get(), PJ_INV, c);
-  if (proj_errno(impl_->op.get()) != 0 || !std::isfinite(r.xy.x) || r.xy.x == HUGE_VAL) {
-    throw ProjectionError("cannot transform point (" + std::to_string(p.x()) + ", " +
-                          std::to_string(p.y()) + ") back with '" + impl_->name + "'");
-  }
-  return {r.xy.x, r.xy.y};
+  return transform_point(impl_->op.get(), PJ_INV, p, impl_->name);
 }
 
 void CrsTransform::apply(std::span<Vec2> points) const {

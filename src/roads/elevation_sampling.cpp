@@ -18,6 +18,18 @@ std::string describe_road(const Road& road) {
   return out.str();
 }
 
+// Reports that `count` of a road's `total` samples had no DEM height (`where`) and were filled.
+void report_filled(Diagnostics& diagnostics, const char* code, const Road& road, std::size_t count,
+                   std::size_t total, const char* where) {
+  Diagnostic d;
+  d.code = code;
+  d.road_id = road.id;
+  if (!road.osm_way_ids.empty()) d.osm_way_id = road.osm_way_ids.front();
+  d.message = describe_road(road) + ": " + std::to_string(count) + " of " + std::to_string(total) + " samples " +
+              where + ", filled along the road";
+  diagnostics.report(std::move(d));
+}
+
 // Fills the missing heights of one profile: ends from the junction heights when known, then
 // linear interpolation in s between valid samples, then the nearest valid sample at the ends.
 // Returns false when no height at all could be found.
@@ -141,22 +153,10 @@ ElevationSamples sample_elevation(const RoadNetwork& network, const DemSampler& 
                            std::to_string(voids) + " of " + std::to_string(p.size()) +
                            " samples; use --nodata-fill interpolate to fill along the road");
       }
-      Diagnostic d;
-      d.code = "elevation.void";
-      d.road_id = road.id;
-      if (!road.osm_way_ids.empty()) d.osm_way_id = road.osm_way_ids.front();
-      d.message = describe_road(road) + ": " + std::to_string(voids) + " of " +
-                  std::to_string(p.size()) + " samples in a DEM void, filled along the road";
-      diagnostics.report(std::move(d));
+      report_filled(diagnostics, "elevation.void", road, voids, p.size(), "in a DEM void");
     }
     if (uncovered > 0 && options.allow_partial) {
-      Diagnostic d;
-      d.code = "elevation.uncovered";
-      d.road_id = road.id;
-      if (!road.osm_way_ids.empty()) d.osm_way_id = road.osm_way_ids.front();
-      d.message = describe_road(road) + ": " + std::to_string(uncovered) + " of " +
-                  std::to_string(p.size()) + " samples outside every DEM, filled along the road";
-      diagnostics.report(std::move(d));
+      report_filled(diagnostics, "elevation.uncovered", road, uncovered, p.size(), "outside every DEM");
     }
   }
 

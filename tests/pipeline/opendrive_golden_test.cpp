@@ -28,12 +28,7 @@ WayAttributes street(HighwayClass cls, int forward, int backward, bool oneway = 
 
 // Writes the model of `net` draped on `ground` and fitted, and compares it with the golden file.
 void check_golden(const std::string& name, const RoadNetwork& net, const std::function<double(const Vec2&)>& ground) {
-  std::vector<RoadProfile> raw;
-  for (const Road& road : net.roads) {
-    RoadProfile p = make_stations(road, 1.0);
-    for (std::size_t i = 0; i < p.size(); ++i) p.z[i] = ground(p.xy[i]);
-    raw.push_back(p);
-  }
+  const std::vector<RoadProfile> raw = test::drape(net, ground);
   Diagnostics d;
   const ProfileFitResult fit = fit_profiles(net, raw, {}, d);
   RoadModelBuild built = build_road_model(net, fit.profiles, {}, d);

@@ -14,16 +14,7 @@
 namespace relief {
 namespace {
 
-// Raw profiles of every road with z = f(x, y) at 1 m stations.
-std::vector<RoadProfile> drape(const RoadNetwork& net, const std::function<double(const Vec2&)>& f) {
-  std::vector<RoadProfile> out;
-  for (const Road& road : net.roads) {
-    RoadProfile p = make_stations(road, 1.0);
-    for (std::size_t i = 0; i < p.size(); ++i) p.z[i] = f(p.xy[i]);
-    out.push_back(p);
-  }
-  return out;
-}
+using test::drape;
 
 double max_grade_percent(const std::vector<RoadProfile>& profiles) {
   double g = 0.0;

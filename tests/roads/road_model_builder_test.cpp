@@ -11,15 +11,7 @@ namespace {
 
 const auto plane = [](const Vec2& p) { return 10.0 + 0.05 * p.x() + 0.02 * p.y(); };
 
-std::vector<RoadProfile> drape(const RoadNetwork& net) {
-  std::vector<RoadProfile> out;
-  for (const Road& road : net.roads) {
-    RoadProfile p = make_stations(road, 1.0);
-    for (std::size_t i = 0; i < p.size(); ++i) p.z[i] = plane(p.xy[i]);
-    out.push_back(p);
-  }
-  return out;
-}
+std::vector<RoadProfile> drape(const RoadNetwork& net) { return test::drape(net, plane); }
 
 WayAttributes street(int forward, int backward, bool oneway = false) {
   WayAttributes a;

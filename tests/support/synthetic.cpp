@@ -61,4 +61,16 @@ RoadNetwork make_network(const std::vector<Polyline2>& roads, const std::vector<
   return net;
 }
 
+std::vector<RoadProfile> drape(const RoadNetwork& network, const std::function<double(const Vec2&)>& ground,
+                               double spacing_m) {
+  std::vector<RoadProfile> out;
+  out.reserve(network.roads.size());
+  for (const Road& road : network.roads) {
+    RoadProfile p = make_stations(road, spacing_m);
+    for (std::size_t i = 0; i < p.size(); ++i) p.z[i] = ground(p.xy[i]);
+    out.push_back(std::move(p));
+  }
+  return out;
+}
+
 }  // namespace relief::test

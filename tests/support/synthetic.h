@@ -5,6 +5,7 @@
 #include <functional>
 #include <string>
 
+#include "relief/roads/elevation_sampling.h"
 #include "relief/roads/road_network.h"
 #include "relief/terrain/dem_writer.h"
 
@@ -23,5 +24,10 @@ namespace relief::test {
 /// (within 1 mm). Attributes default to residential two-way.
 [[nodiscard]] RoadNetwork make_network(const std::vector<Polyline2>& roads,
                                        const std::vector<WayAttributes>& attributes = {});
+
+/// Stations of every road every `spacing_m`, with z = ground(x, y) (local frame).
+[[nodiscard]] std::vector<RoadProfile> drape(const RoadNetwork& network,
+                                             const std::function<double(const Vec2&)>& ground,
+                                             double spacing_m = 1.0);
 
 }  // namespace relief::test
