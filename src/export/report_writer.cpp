@@ -170,6 +170,7 @@ std::string report_json(const RunReport& r) {
                       {"roads", o.roads},
                       {"connecting_roads", o.connecting_roads},
                       {"junctions", o.junctions},
+                      {"junctions_without_movements", o.junctions_without_movements},
                       {"direct_links", o.direct_links},
                       {"transition_roads", o.transition_roads},
                       {"roads_skipped", o.roads_skipped},

@@ -236,6 +236,7 @@ BuildResult build(const BuildOptions& options, Diagnostics& diagnostics, const P
       o.roads = built.stats.roads;
       o.connecting_roads = built.stats.connecting_roads;
       o.junctions = built.stats.junctions;
+      o.junctions_without_movements = built.stats.junctions_without_movements;
       o.direct_links = built.stats.direct_links;
       o.transition_roads = built.stats.transition_roads;
       o.roads_skipped = built.stats.roads_skipped;

@@ -436,14 +436,37 @@ RoadModelBuild build_road_model(const RoadNetwork& network, const std::vector<Ro
         const Pose2 from0 = lane_inner_pose(a, in.at_start, arriving.front());
         const Pose2 to0 = lane_inner_pose(b, to.at_start, departing.front());
         const double turn = wrap_angle(to0.heading - from0.heading);
-        // Lane pairs: straight on pairs lanes from the outside in; a turn uses one lane, the
-        // outermost for a right turn, the innermost for a left turn.
+        const char* movement = std::abs(turn) < kPi / 6.0 ? "through" : turn > 0.0 ? "left" : "right";
+        // A slight turn (under 60 degrees) may also be made from a through lane: streets bend.
+        const bool slight = std::abs(turn) < kPi / 3.0;
+        // With `turn:lanes` tagged, the lanes that allow the movement make it: a left turn from
+        // the innermost of them into the innermost departing lanes, through and right from the
+        // outside in. Without, through pairs lanes from the outside in and a turn uses one lane,
+        // the outermost for a right turn, the innermost for a left turn.
+        const WayAttributes& in_attr = network.roads[in.network_road].attributes;
+        const std::vector<std::string>& turns = in.at_start ? in_attr.turn_backward : in_attr.turn_forward;
         std::vector<std::pair<int, int>> pairs;
-        if (std::abs(turn) < kPi / 6.0) {
+        if (turns.size() == arriving.size()) {
+          std::vector<int> allowed;
+          for (std::size_t k = 0; k < turns.size(); ++k)
+            if (lane_allows(turns[k], movement)) allowed.push_back(arriving[k]);
+          if (allowed.empty() && slight) {
+            for (std::size_t k = 0; k < turns.size(); ++k)
+              if (lane_allows(turns[k], "through")) allowed.push_back(arriving[k]);
+          }
+          const std::size_t k = std::min(allowed.size(), departing.size());
+          for (std::size_t i = 0; i < k; ++i) {
+            if (std::string_view(movement) == "left") {
+              pairs.emplace_back(allowed[i], departing[i]);
+            } else {
+              pairs.emplace_back(allowed[allowed.size() - 1 - i], departing[departing.size() - 1 - i]);
+            }
+          }
+        } else if (std::string_view(movement) == "through") {
           const std::size_t k = std::min(arriving.size(), departing.size());
           for (std::size_t i = 0; i < k; ++i)
             pairs.emplace_back(arriving[arriving.size() - 1 - i], departing[departing.size() - 1 - i]);
-        } else if (turn < 0.0) {
+        } else if (std::string_view(movement) == "right") {
           pairs.emplace_back(arriving.back(), departing.back());
         } else {
           pairs.emplace_back(arriving.front(), departing.front());
@@ -487,6 +510,19 @@ RoadModelBuild build_road_model(const RoadNetwork& network, const std::vector<Ro
           ++out.stats.connecting_roads;
         }
       }
+    }
+    if (jm.connections.empty()) {
+      // No movement is possible here (every road leads away, or the turn lanes allow nothing):
+      // the roads end at the junction's edge instead.
+      for (const EndRef& e : ends) {
+        ModelRoad& m = model_of(e);
+        (e.at_start ? m.predecessor : m.successor).reset();
+      }
+      diagnostics.report(Severity::warning, "opendrive.junction_without_movements",
+                         "no movement is possible at the junction of OSM node " + std::to_string(j.osm_node_id) +
+                             " (one-ways all leading away, or turn lanes allowing none); its roads end there");
+      ++out.stats.junctions_without_movements;
+      continue;
     }
     model.junctions.push_back(std::move(jm));
     ++out.stats.junctions;

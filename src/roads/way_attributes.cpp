@@ -96,6 +96,27 @@ std::optional<int> lane_tag(const Tags& tags, std::string_view key, Warnings& wa
 
 }  // namespace
 
+bool lane_allows(std::string_view turn_entry, std::string_view movement) {
+  std::string entry(turn_entry);
+  if (trim(entry).empty()) return movement == "through";
+  std::istringstream in(entry);
+  for (std::string token; std::getline(in, token, ';');) {
+    token = lower(trim(token));
+    if (token == "none" || token == "through" || token == "merge_to_left" || token == "merge_to_right") {
+      if (movement == "through") return true;
+    } else if (token == "left" || token == "sharp_left") {
+      if (movement == "left") return true;
+    } else if (token == "right" || token == "sharp_right") {
+      if (movement == "right") return true;
+    } else if (token == "slight_left") {
+      if (movement == "left" || movement == "through") return true;
+    } else if (token == "slight_right") {
+      if (movement == "right" || movement == "through") return true;
+    }
+  }
+  return false;
+}
+
 std::optional<double> parse_speed_mps(std::string_view value) {
   std::string_view rest = trim(value);
   const auto number = take_number(rest);
@@ -198,6 +219,33 @@ std::optional<ParsedWay> parse_way_tags(const Tags& tags, std::string* warnings_
     a.lanes_backward = per_direction;
   }
 
+  // Turn lanes, in the normalised direction; dropped (with a warning) when the count is off.
+  const auto turn_tag = [&](const char* key, int lanes, std::vector<std::string>& out) {
+    const std::string* value = find_tag(tags, key);
+    if (!value) return;
+    std::vector<std::string> entries;
+    std::string entry;
+    std::istringstream in(*value);
+    while (std::getline(in, entry, '|')) entries.emplace_back(trim(entry));
+    if (!value->empty() && value->back() == '|') entries.emplace_back();
+    if (!a.lanes_tagged && lanes > 0 && static_cast<int>(entries.size()) != lanes) {
+      // Without a lanes tag, the turn lanes tell how many lanes there are.
+      (&out == &a.turn_forward ? a.lanes_forward : a.lanes_backward) = static_cast<int>(entries.size());
+      lanes = static_cast<int>(entries.size());
+    }
+    if (static_cast<int>(entries.size()) != lanes) {
+      warnings.add(key, *value, "has " + std::to_string(entries.size()) + " lanes, the way " +
+                                    std::to_string(lanes) + "; ignored");
+      return;
+    }
+    out = std::move(entries);
+  };
+  if (a.oneway) {
+    turn_tag(find_tag(tags, "turn:lanes") ? "turn:lanes" : "turn:lanes:forward", a.lanes_forward, a.turn_forward);
+  } else {
+    turn_tag(parsed.reversed ? "turn:lanes:backward" : "turn:lanes:forward", a.lanes_forward, a.turn_forward);
+    turn_tag(parsed.reversed ? "turn:lanes:forward" : "turn:lanes:backward", a.lanes_backward, a.turn_backward);
+  }
   // Lane width from the carriageway width, when plausible.
   a.lane_width_m = default_lane_width_m(a.highway);
   if (const std::string* width = find_tag(tags, "width")) {
@@ -238,6 +286,7 @@ std::optional<ParsedWay> parse_way_tags(const Tags& tags, std::string* warnings_
   }
 
   if (const std::string* name = find_tag(tags, "name")) a.name = *name;
+
   return parsed;
 }
 

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <map>
+
 #include "relief/roads/road_model_checks.h"
 #include "relief/roads/road_surface.h"
 #include "support/synthetic.h"
@@ -115,6 +117,35 @@ TEST(RoadModelBuilder, ACornerGetsATransitionRoad) {
   EXPECT_GT(cont.borders_checked, 0u);
   EXPECT_LT(cont.max_horizontal_m, 1e-6);
   EXPECT_LT(cont.max_vertical_m, 1e-6);
+}
+
+}  // namespace
+}  // namespace relief
+
+namespace relief {
+namespace {
+
+TEST(RoadModelBuilder, TurnLanesDecideWhichLaneMakesWhichMovement) {
+  // A four-way crossing; the arm from the west has two lanes towards it, tagged left | through;right.
+  WayAttributes west = street(2, 1);
+  west.turn_forward = {"left", "through;right"};
+  const RoadNetwork net = test::make_network(
+      {{{-80, 0}, {0, 0}}, {{0, 0}, {80, 0}}, {{0, 0}, {0, 80}}, {{0, 0}, {0, -80}}},
+      {west, street(1, 1), street(1, 1), street(1, 1)});
+  Diagnostics d;
+  const RoadModelBuild b = build_road_model(net, test::drape(net, plane), {}, d);
+  const int west_id = b.model.roads[b.model_road_of[0]].id;
+  std::map<int, int> lane_of_movement;  // departing road id -> arriving lane
+  for (const ModelRoad& r : b.model.roads) {
+    if (r.junction < 0 || !r.predecessor || r.predecessor->id != west_id) continue;
+    ASSERT_TRUE(r.successor);
+    lane_of_movement[r.successor->id] = *r.sections[0].right[0].predecessor;
+  }
+  ASSERT_EQ(lane_of_movement.size(), 3u);
+  EXPECT_EQ(lane_of_movement.at(b.model.roads[b.model_road_of[2]].id), -1);  // left, to the north
+  EXPECT_EQ(lane_of_movement.at(b.model.roads[b.model_road_of[1]].id), -2);  // through, to the east
+  EXPECT_EQ(lane_of_movement.at(b.model.roads[b.model_road_of[3]].id), -2);  // right, to the south
+  EXPECT_LT(check_link_continuity(b.model).max_horizontal_m, 1e-6);
 }
 
 }  // namespace

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <string>
+#include <vector>
 
 namespace relief {
 namespace {
@@ -13,6 +14,44 @@ ParsedWay parse(const Tags& tags, std::string* warnings = nullptr) {
   const auto parsed = parse_way_tags(tags, warnings);
   EXPECT_TRUE(parsed.has_value());
   return parsed.value_or(ParsedWay{});
+}
+
+TEST(ParseWayTags, TurnLanesPerDirection) {
+  const ParsedWay one = parse({{"highway", "primary"}, {"oneway", "yes"}, {"lanes", "3"},
+                               {"turn:lanes", "left|through| through;right"}});
+  EXPECT_EQ(one.attributes.turn_forward, (std::vector<std::string>{"left", "through", "through;right"}));
+  EXPECT_TRUE(one.attributes.turn_backward.empty());
+  // A reversed one-way keeps turn:lanes (it describes the direction of travel).
+  const ParsedWay rev = parse({{"highway", "primary"}, {"oneway", "-1"}, {"lanes", "2"}, {"turn:lanes", "left|"}});
+  EXPECT_EQ(rev.attributes.turn_forward, (std::vector<std::string>{"left", ""}));
+  // Two-way: each direction has its own tag, and its lane count must match.
+  const ParsedWay two = parse({{"highway", "secondary"}, {"lanes:forward", "2"}, {"lanes:backward", "1"},
+                               {"turn:lanes:forward", "left|through"}, {"turn:lanes:backward", "none"}});
+  EXPECT_EQ(two.attributes.turn_forward.size(), 2u);
+  EXPECT_EQ(two.attributes.turn_backward, (std::vector<std::string>{"none"}));
+  // Without a lanes tag, turn:lanes says how many lanes there are.
+  const ParsedWay implied = parse({{"highway", "residential"}, {"oneway", "yes"}, {"turn:lanes", "left|through|right"}});
+  EXPECT_EQ(implied.attributes.lanes_forward, 3);
+  EXPECT_EQ(implied.attributes.turn_forward.size(), 3u);
+  std::string warnings;
+  const ParsedWay bad = parse({{"highway", "primary"}, {"oneway", "yes"}, {"lanes", "2"}, {"turn:lanes", "left|through|right"}},
+                              &warnings);
+  EXPECT_TRUE(bad.attributes.turn_forward.empty());
+  EXPECT_NE(warnings.find("turn:lanes"), std::string::npos);
+}
+
+TEST(LaneAllows, Movements) {
+  EXPECT_TRUE(lane_allows("left", "left"));
+  EXPECT_FALSE(lane_allows("left", "through"));
+  EXPECT_TRUE(lane_allows("through;right", "right"));
+  EXPECT_TRUE(lane_allows("through;right", "through"));
+  EXPECT_TRUE(lane_allows("slight_left", "left"));
+  EXPECT_TRUE(lane_allows("slight_left", "through"));
+  EXPECT_TRUE(lane_allows("", "through"));
+  EXPECT_TRUE(lane_allows("none", "through"));
+  EXPECT_FALSE(lane_allows("none", "left"));
+  EXPECT_FALSE(lane_allows("reverse", "through"));
+  EXPECT_TRUE(lane_allows("merge_to_left", "through"));
 }
 
 TEST(ParseSpeed, UnitsAndSymbols) {

@@ -74,7 +74,10 @@ void print_summary(const BuildResult& result) {
   if (r.opendrive) {
     const OpenDriveSummary& o = *r.opendrive;
     out << "  opendrive  " << o.file << " (" << o.version << "): " << o.roads << " roads, " << o.junctions
-        << " junctions, " << o.connecting_roads << " connecting roads; largest lane-border gap at links "
+        << " junctions";
+    if (o.junctions_without_movements) out << " (+" << o.junctions_without_movements << " with no possible movement)";
+    out << ", " << o.connecting_roads << " connecting roads, " << o.transition_roads
+        << " transition roads; largest lane-border gap at links "
         << fixed(o.max_link_gap_m, 4) << " m horizontal, " << fixed(o.max_link_step_m, 4)
         << " m vertical; read back within " << fixed(std::max(o.round_trip_max_xy_m, o.round_trip_max_z_m), 6)
         << " m\n";

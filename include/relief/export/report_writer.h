@@ -56,6 +56,7 @@ struct OpenDriveSummary {
   std::size_t roads = 0;               ///< roads from the network
   std::size_t connecting_roads = 0;
   std::size_t junctions = 0;
+  std::size_t junctions_without_movements = 0;  ///< intersections left out: no movement possible
   std::size_t direct_links = 0;
   std::size_t transition_roads = 0;
   std::size_t roads_skipped = 0;

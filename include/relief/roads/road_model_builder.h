@@ -36,6 +36,7 @@ struct RoadModelStats {
   std::size_t roads = 0;             ///< from the network
   std::size_t connecting_roads = 0;
   std::size_t junctions = 0;         ///< OpenDRIVE junctions (= network intersections)
+  std::size_t junctions_without_movements = 0;  ///< intersections where no movement is possible
   std::size_t direct_links = 0;      ///< road-to-road links at attribute changes
   std::size_t transition_roads = 0;  ///< short roads where two roads meet at an angle or change lanes
   std::size_t roads_skipped = 0;     ///< roads without height or too short once trimmed

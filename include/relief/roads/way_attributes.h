@@ -6,6 +6,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "relief/roads/highway_class.h"
 
@@ -25,6 +26,11 @@ struct WayAttributes {
   std::optional<double> maxspeed_mps;  ///< from `maxspeed` ("25 mph", "50", "50 km/h")
   std::string name;
   bool roundabout = false;        ///< junction=roundabout (or circular); implies oneway
+  /// `turn:lanes` per lane, left to right in the direction of travel ("left", "through;right",
+  /// "none", ...), for the lanes along the way and against it; empty when untagged or when the
+  /// tag's lane count does not match the lanes.
+  std::vector<std::string> turn_forward;
+  std::vector<std::string> turn_backward;
 
   friend bool operator==(const WayAttributes&, const WayAttributes&) = default;
 };
@@ -48,6 +54,10 @@ struct ParsedWay {
 /// - bridge / tunnel: any value but "no"; layer: integer, else 0 with a warning.
 [[nodiscard]] std::optional<ParsedWay> parse_way_tags(
     const std::map<std::string, std::string, std::less<>>& tags, std::string* warnings = nullptr);
+
+/// The movements a `turn:lanes` entry allows: "left", "through", "right" (slight turns count as
+/// both a turn and through, "none" and "" as through, merges as through, "reverse" as none).
+[[nodiscard]] bool lane_allows(std::string_view turn_entry, std::string_view movement);
 
 /// Parses a speed: "25 mph" -> 11.176, "50" (km/h) -> 13.889, "50 km/h", "10 knots"; nullopt for
 /// "none", "signals", "walk", "US:urban" and anything unparseable.
