@@ -136,6 +136,14 @@ r = json.load(open(sys.argv[1]))
 assert abs(r["gradient"]["max_percent"] - 32.81) < 0.5, r["gradient"]
 PY
 
+# Rasters through GDAL's virtual file systems: a VRT mosaic and a zipped DEM.
+gdalbuildvrt -q "$RELIEF_TMP/mosaic.vrt" "$fix/hill_dem.asc"
+out="$RELIEF_TMP/vrt"
+check "vrt dem" run 0 "$out" build --osm "$fix/hill.osm" --dem "$RELIEF_TMP/mosaic.vrt" --out "$out" --quiet --outputs report
+(cd "$fix" && zip -q "$RELIEF_TMP/dem.zip" hill_dem.asc hill_dem.prj)
+out="$RELIEF_TMP/vsizip"
+check "zipped dem" run 0 "$out" build --osm "$fix/hill.osm" --dem "/vsizip/$RELIEF_TMP/dem.zip/hill_dem.asc" --out "$out" --quiet --outputs report
+
 # info: describes without writing.
 check "info" run 0 "" info --osm "$fix/hill.osm" --dem "$fix/hill_dem.asc"
 check "info coverage" grep -q "100.00 % with height" "$RELIEF_TMP/stdout"

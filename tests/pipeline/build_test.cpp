@@ -147,6 +147,30 @@ TEST(Build, NortheastQuadrant) {
   EXPECT_EQ(fit.junctions.max_gap_m, 0.0);
 }
 
+TEST(Build, BrokenDemWithVoidsIsFilledAndReported) {
+  RELIEF_REQUIRE_SHARED_DATA();
+  // Chinatown / Financial District on two SRTM-like tiles with voids along their edges.
+  BuildOptions o = ne_options("build_voids");
+  o.dem_paths = {test::shared_data("dsm-voids/osmnx_elevation1_srtm1.tif").string(),
+                 test::shared_data("dsm-voids/osmnx_elevation2_srtm1.tif").string()};
+  o.osm.bbox = LonLatBox{-122.4090, 37.7903, -122.3967, 37.8004};
+  Diagnostics d;
+  const RunReport r = build(o, d).report;
+  std::cout << "voids DEM: " << r.samples << " samples, " << r.void_samples << " in voids on "
+            << d.count("elevation.void") << " roads, " << r.roads_without_height << " roads without any height\n";
+  EXPECT_GT(r.void_samples, 100u);
+  EXPECT_GE(d.count("elevation.void"), 5u);
+  EXPECT_EQ(d.count("elevation.road_without_height"), r.roads_without_height);
+  ASSERT_TRUE(r.opendrive);
+  EXPECT_EQ(r.opendrive->roads_skipped, r.roads_without_height);
+  EXPECT_LT(r.opendrive->max_link_gap_m, 0.01);
+  // Refusing voids is an error that names the road.
+  o.sampling.nodata_fill = NodataFill::error;
+  o.out_dir = test::scratch_dir("build_voids_refused");
+  EXPECT_THROW((void)build(o, d), InvalidInput);
+  EXPECT_TRUE(std::filesystem::is_empty(o.out_dir));
+}
+
 TEST(Build, FailedRunLeavesNoOutputs) {
   RELIEF_REQUIRE_SHARED_DATA();
   // The NE DEM does not reach Potrero Hill.
