@@ -5,9 +5,6 @@
 #include <Eigen/SparseCholesky>
 
 #include <algorithm>
-#include <chrono>
-#include <cstdio>
-#include <cstdlib>
 #include <cmath>
 #include <functional>
 #include <numbers>
@@ -22,22 +19,6 @@ namespace {
 using SpMat = Eigen::SparseMatrix<double>;
 using Triplet = Eigen::Triplet<double>;
 using Vec = Eigen::VectorXd;
-
-// Prints the time of a stage of the fit to stderr when RELIEF_FIT_TRACE is set (development aid).
-class TraceTimer {
- public:
-  explicit TraceTimer(const char* what) : what_(what), t0_(std::chrono::steady_clock::now()) {}
-  ~TraceTimer() {
-    if (std::getenv("RELIEF_FIT_TRACE")) {
-      std::fprintf(stderr, "fit: %s %.3f s\n", what_,
-                   std::chrono::duration<double>(std::chrono::steady_clock::now() - t0_).count());
-    }
-  }
-
- private:
-  const char* what_;
-  std::chrono::steady_clock::time_point t0_;
-};
 
 constexpr double kMinCurvatureSpacing = 0.5;  // m; closer stations are not used for z'' rows
 constexpr double kInf = std::numeric_limits<double>::infinity();
@@ -297,18 +278,14 @@ ActiveSetResult solve_active_set(const SpMat& P_original, const Vec& q_original,
   // only the active rows' values.
   Eigen::SimplicialLDLT<SpMat, Eigen::Lower, Eigen::NaturalOrdering<int>> ldlt;
   SpMat base;
-  {
-    const TraceTimer t("analyse pattern");
-    const SpMat extra = extra_pattern * order.transpose();
-    base = P + 0.0 * SpMat(extra.transpose() * extra);
-    ldlt.analyzePattern(base);
-  }
+  const SpMat extra = extra_pattern * order.transpose();
+  base = P + 0.0 * SpMat(extra.transpose() * extra);
+  ldlt.analyzePattern(base);
   ActiveSetResult out;
   const Eigen::SparseMatrix<double, Eigen::RowMajor> A_rows = A;
   std::vector<Triplet> active_entries;
   const int freeze_after = std::clamp(max_rounds / 2, 1, 8);  // then only add rows: no cycling
   for (int round = 1; round <= max_rounds; ++round) {
-    const TraceTimer t("round");
     // Only the active rows enter the system: sqrt(mu) a_r, so that Aa'Aa = sum mu a_r a_r'.
     active_entries.clear();
     Vec active_rhs = Vec::Zero(P.rows());
@@ -348,9 +325,6 @@ ActiveSetResult solve_active_set(const SpMat& P_original, const Vec& q_original,
         bound[r] = l[r];
         changed = true;
       }
-    }
-    if (std::getenv("RELIEF_FIT_TRACE")) {
-      std::fprintf(stderr, "active set round %d: %ld active\n", round, static_cast<long>((weight.array() > 0).count()));
     }
     if (!changed) {
       out.converged = true;
@@ -474,10 +448,7 @@ ProfileFitResult fit_profiles(const RoadNetwork& network, const std::vector<Road
   }
   add_junction_planes(network, raw, vars, lambda, p_entries);
   SpMat P(static_cast<int>(n), static_cast<int>(n));
-  {
-    const TraceTimer t("assemble P");
-    P.setFromTriplets(p_entries.begin(), p_entries.end());
-  }
+  P.setFromTriplets(p_entries.begin(), p_entries.end());
   const Vec q = -weight.cwiseProduct(target);
 
   // Grade rows on every segment.
@@ -525,10 +496,7 @@ ProfileFitResult fit_profiles(const RoadNetwork& network, const std::vector<Road
   const Permutation order = elimination_order(network, vars, result.separations);
   ActiveSetResult solution =
       solve_active_set(P, q, A, extra, l_aim, u_aim, order, options.tolerance_m, options.max_iterations);
-  {
-    const TraceTimer t("polish");
-    result.max_violation_m = polish(A, l, u, solution.x, 1000);
-  }
+  result.max_violation_m = polish(A, l, u, solution.x, 1000);
   result.iterations = solution.rounds;
   result.converged = solution.converged;
   result.variables = n;
