@@ -15,7 +15,8 @@ namespace {
 using namespace relief;
 
 double terrain(const Vec2& p) {
-  return 40.0 + 25.0 * std::sin(p.x() / 700.0) * std::cos(p.y() / 900.0) + 8.0 * std::sin(p.x() / 130.0 + p.y() / 170.0);
+  return 40.0 + 25.0 * std::sin(p.x() / 700.0) * std::cos(p.y() / 900.0) +
+         8.0 * std::sin(p.x() / 130.0 + p.y() / 170.0);
 }
 
 struct Grid {
@@ -64,7 +65,8 @@ Grid make_grid(int n) {
 }  // namespace
 
 int main() {
-  std::printf("%10s %10s %12s %10s %8s %14s\n", "junctions", "roads", "samples", "seconds", "rounds", "us/junction");
+  std::printf("%10s %10s %12s %10s %8s %14s\n", "junctions", "roads", "samples", "seconds", "rounds",
+              "us/junction");
   for (int n : {10, 20, 40, 70, 100}) {
     const Grid g = make_grid(n);
     std::size_t samples = 0;

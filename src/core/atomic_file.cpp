@@ -51,7 +51,9 @@ void write_file_atomically(const std::filesystem::path& path,
 }
 
 void write_file_atomically(const std::filesystem::path& path, std::string_view content) {
-  write_file_atomically(path, [&](std::ostream& out) { out.write(content.data(), static_cast<std::streamsize>(content.size())); });
+  write_file_atomically(path, [&](std::ostream& out) {
+    out.write(content.data(), static_cast<std::streamsize>(content.size()));
+  });
 }
 
 OutputSet::~OutputSet() {
@@ -61,8 +63,7 @@ OutputSet::~OutputSet() {
   }
 }
 
-void OutputSet::add(const std::filesystem::path& path,
-                    const std::function<void(std::ostream&)>& write) {
+void OutputSet::add(const std::filesystem::path& path, const std::function<void(std::ostream&)>& write) {
   pending_.push_back({write_temporary(path, write), path});
 }
 

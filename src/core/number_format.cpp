@@ -10,7 +10,8 @@ void append_fixed(std::string& out, double value, int decimals) {
   // Values that round to zero print without a sign.
   if (std::abs(value) < 0.5 * std::pow(10.0, -decimals)) value = 0.0;
   std::array<char, 64> buf{};
-  const auto res = std::to_chars(buf.data(), buf.data() + buf.size(), value, std::chars_format::fixed, decimals);
+  const auto res =
+      std::to_chars(buf.data(), buf.data() + buf.size(), value, std::chars_format::fixed, decimals);
   out.append(buf.data(), res.ptr);
 }
 

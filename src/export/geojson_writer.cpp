@@ -14,18 +14,19 @@ namespace relief {
 namespace {
 
 // Writes a JSON string literal (names may contain quotes or non-ASCII text).
-std::string quoted(const std::string& text) { return nlohmann::json(text).dump(); }
+std::string quoted(const std::string& text) {
+  return nlohmann::json(text).dump();
+}
 
 }  // namespace
 
-void write_geojson(std::ostream& out, const RoadNetwork& network,
-                   const std::vector<RoadProfile>& profiles) {
+void write_geojson(std::ostream& out, const RoadNetwork& network, const std::vector<RoadProfile>& profiles) {
   const CrsTransform to_wgs84(network.frame.crs(), "EPSG:4326");
   const Vec2& origin = network.frame.origin();
 
   out << "{\"type\":\"FeatureCollection\",\n\"attribution\":" << quoted(kOsmAttribution)
-      << ",\n\"relief_frame\":{\"crs\":" << quoted(network.frame.crs()) << ",\"origin\":["
-      << std::fixed << std::setprecision(3) << origin.x() << "," << origin.y()
+      << ",\n\"relief_frame\":{\"crs\":" << quoted(network.frame.crs()) << ",\"origin\":[" << std::fixed
+      << std::setprecision(3) << origin.x() << "," << origin.y()
       << "],\"proj\":" << quoted(network.frame.proj_string()) << "},\n\"features\":[";
   bool first = true;
   std::vector<Vec2> lonlat;
@@ -56,9 +57,9 @@ void write_geojson(std::ostream& out, const RoadNetwork& network,
       out << "null";
     }
     out << ",\"roundabout\":" << (a.roundabout ? "true" : "false") << std::setprecision(3)
-        << ",\"length_m\":" << p.s.back() << ",\"max_grade_percent\":" << std::setprecision(2)
-        << max_grade << ",\"start_junction\":" << road.start_junction
-        << ",\"end_junction\":" << road.end_junction << ",\"osm_way_ids\":[";
+        << ",\"length_m\":" << p.s.back() << ",\"max_grade_percent\":" << std::setprecision(2) << max_grade
+        << ",\"start_junction\":" << road.start_junction << ",\"end_junction\":" << road.end_junction
+        << ",\"osm_way_ids\":[";
     for (std::size_t i = 0; i < road.osm_way_ids.size(); ++i) out << (i ? "," : "") << road.osm_way_ids[i];
     out << "]},\"geometry\":{\"type\":\"LineString\",\"coordinates\":[";
     coords.clear();

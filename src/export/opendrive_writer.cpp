@@ -15,13 +15,14 @@ namespace {
 
 // Enumerations of the ASAM schemas (OpenDRIVE_1.4H.xsd, opendrive_17_*.xsd, 1.8.1/OpenDRIVE_*.xsd)
 // for the values the model carries as free text: a value outside them would not validate.
-constexpr std::array kRoadTypes14{"unknown", "rural", "motorway", "town", "lowSpeed", "pedestrian", "bicycle"};
+constexpr std::array kRoadTypes14{"unknown",  "rural",      "motorway", "town",
+                                  "lowSpeed", "pedestrian", "bicycle"};
 constexpr std::array kRoadTypes17{"townExpressway", "townCollector", "townArterial",
                                   "townPrivate",    "townLocal",     "townPlayStreet"};
-constexpr std::array kLaneTypes14{"none",     "driving",    "stop",      "shoulder",      "biking", "sidewalk",
-                                  "border",   "restricted", "parking",   "bidirectional", "median", "special1",
-                                  "special2", "special3",   "roadWorks", "tram",          "rail",   "entry",
-                                  "exit",     "offRamp",    "onRamp"};
+constexpr std::array kLaneTypes14{
+    "none",       "driving", "stop",          "shoulder", "biking",   "sidewalk", "border",
+    "restricted", "parking", "bidirectional", "median",   "special1", "special2", "special3",
+    "roadWorks",  "tram",    "rail",          "entry",    "exit",     "offRamp",  "onRamp"};
 constexpr std::array kLaneTypes17{"curb", "connectingRamp", "bus", "taxi", "HOV", "mwyEntry", "mwyExit"};
 constexpr std::array kLaneTypes18{"shared", "walking", "slipLane"};
 constexpr std::array kColors14{"standard", "blue", "green", "red", "white", "yellow"};
@@ -41,22 +42,31 @@ bool valid_lane_type(std::string_view t, int minor) {
          (minor >= 8 && contains(kLaneTypes18, t));
 }
 bool valid_color(std::string_view c, int minor) {
-  return contains(kColors14, c) || (minor >= 7 && contains(kColors17, c)) || (minor >= 8 && contains(kColors18, c));
+  return contains(kColors14, c) || (minor >= 7 && contains(kColors17, c)) ||
+         (minor >= 8 && contains(kColors18, c));
 }
 
 const char* mark_type_name(RoadMark::Type type) {
   switch (type) {
-    case RoadMark::Type::none: return "none";
-    case RoadMark::Type::solid: return "solid";
-    case RoadMark::Type::broken: return "broken";
-    case RoadMark::Type::solid_solid: return "solid solid";
-    case RoadMark::Type::solid_broken: return "solid broken";
-    case RoadMark::Type::broken_solid: return "broken solid";
+    case RoadMark::Type::none:
+      return "none";
+    case RoadMark::Type::solid:
+      return "solid";
+    case RoadMark::Type::broken:
+      return "broken";
+    case RoadMark::Type::solid_solid:
+      return "solid solid";
+    case RoadMark::Type::solid_broken:
+      return "solid broken";
+    case RoadMark::Type::broken_solid:
+      return "broken solid";
   }
   return "none";
 }
 
-const char* contact_name(RoadLink::Contact c) { return c == RoadLink::Contact::start ? "start" : "end"; }
+const char* contact_name(RoadLink::Contact c) {
+  return c == RoadLink::Contact::start ? "start" : "end";
+}
 
 // Builds the document in one string: attributes are escaped, numbers checked and printed at a
 // fixed precision. `where_` names the road or junction being written for error messages.
@@ -118,13 +128,27 @@ void XodrWriter::attr(const char* name, std::string_view text) {
   out_ += "=\"";
   for (const char c : text) {
     switch (c) {
-      case '&': out_ += "&amp;"; break;
-      case '<': out_ += "&lt;"; break;
-      case '>': out_ += "&gt;"; break;
-      case '"': out_ += "&quot;"; break;
-      case '\n': out_ += "&#10;"; break;
-      case '\r': out_ += "&#13;"; break;
-      case '\t': out_ += "&#9;"; break;
+      case '&':
+        out_ += "&amp;";
+        break;
+      case '<':
+        out_ += "&lt;";
+        break;
+      case '>':
+        out_ += "&gt;";
+        break;
+      case '"':
+        out_ += "&quot;";
+        break;
+      case '\n':
+        out_ += "&#10;";
+        break;
+      case '\r':
+        out_ += "&#13;";
+        break;
+      case '\t':
+        out_ += "&#9;";
+        break;
       default:
         // Other control characters are not allowed in XML 1.0 at all.
         if (static_cast<unsigned char>(c) >= 0x20) out_ += c;
@@ -166,8 +190,8 @@ void XodrWriter::attr_int(const char* name, long long value) {
 void XodrWriter::attr_positive(const char* name, double value) {
   // Must stay > 0 once printed at the chosen precision.
   if (std::isfinite(value) && !(value >= 0.5 * std::pow(10.0, -options_.decimals))) {
-    fail("<" + element_ + "> attribute '" + name + "' must be positive at " + std::to_string(options_.decimals) +
-         " decimals");
+    fail("<" + element_ + "> attribute '" + name + "' must be positive at " +
+         std::to_string(options_.decimals) + " decimals");
   }
   attr(name, value);
 }
@@ -185,7 +209,8 @@ std::string XodrWriter::run() {
                        " is not supported (1.4, 1.7 or 1.8)");
   }
   if (options_.decimals < 0 || options_.decimals > 17) {
-    throw InvalidInput("OpenDRIVE writer: decimals must be in [0, 17], got " + std::to_string(options_.decimals));
+    throw InvalidInput("OpenDRIVE writer: decimals must be in [0, 17], got " +
+                       std::to_string(options_.decimals));
   }
   if (model_.roads.empty()) throw InvalidInput("OpenDRIVE writer: the model has no roads");
   for (const ModelRoad& r : model_.roads) {
@@ -343,7 +368,8 @@ void XodrWriter::road(const ModelRoad& r) {
   out_ += "    <elevationProfile>\n";
   profile(3, "elevation", "s", r.elevation.empty() ? CubicProfile::constant(0.0) : r.elevation);
   out_ += "    </elevationProfile>\n    <lateralProfile>\n";
-  profile(3, "superelevation", "s", r.superelevation.empty() ? CubicProfile::constant(0.0) : r.superelevation);
+  profile(3, "superelevation", "s",
+          r.superelevation.empty() ? CubicProfile::constant(0.0) : r.superelevation);
   out_ += "    </lateralProfile>\n    <lanes>\n";
   profile(3, "laneOffset", "s", r.lane_offset);
   for (const LaneSection& section : r.sections) lane_section(section);
@@ -362,7 +388,9 @@ void XodrWriter::plan_view(const ModelRoad& r) {
     attr_positive("length", g.length);
     end_start();
     switch (g.kind) {
-      case PlanGeometry::Kind::line: open(4, "line"); break;
+      case PlanGeometry::Kind::line:
+        open(4, "line");
+        break;
       case PlanGeometry::Kind::arc:
         open(4, "arc");
         attr("curvature", g.curvature);
@@ -404,7 +432,8 @@ void XodrWriter::lane_section(const LaneSection& section) {
   std::set<int> ids;
   for (const auto* side : {&section.left, &section.right}) {
     for (const LaneModel& l : *side) {
-      if (!ids.insert(l.id).second) fail("lane id " + std::to_string(l.id) + " appears twice in one lane section");
+      if (!ids.insert(l.id).second)
+        fail("lane id " + std::to_string(l.id) + " appears twice in one lane section");
     }
   }
   open(3, "laneSection");
@@ -417,7 +446,8 @@ void XodrWriter::lane_section(const LaneSection& section) {
       if (l.id <= 0) fail("left lane id " + std::to_string(l.id) + " is not positive");
       lanes.push_back(&l);
     }
-    std::sort(lanes.begin(), lanes.end(), [](const LaneModel* a, const LaneModel* b) { return a->id > b->id; });
+    std::sort(lanes.begin(), lanes.end(),
+              [](const LaneModel* a, const LaneModel* b) { return a->id > b->id; });
     out_ += "        <left>\n";
     for (const LaneModel* l : lanes) lane(*l);
     out_ += "        </left>\n";
@@ -437,7 +467,8 @@ void XodrWriter::lane_section(const LaneSection& section) {
       if (l.id >= 0) fail("right lane id " + std::to_string(l.id) + " is not negative");
       lanes.push_back(&l);
     }
-    std::sort(lanes.begin(), lanes.end(), [](const LaneModel* a, const LaneModel* b) { return a->id > b->id; });
+    std::sort(lanes.begin(), lanes.end(),
+              [](const LaneModel* a, const LaneModel* b) { return a->id > b->id; });
     out_ += "        <right>\n";
     for (const LaneModel* l : lanes) lane(*l);
     out_ += "        </right>\n";

@@ -30,11 +30,21 @@ void append_escaped(std::string& out, std::string_view text) {
     const unsigned char c = p[i];
     if (c < 0x80) {
       switch (c) {
-        case '&': out += "&amp;"; break;
-        case '<': out += "&lt;"; break;
-        case '>': out += "&gt;"; break;
-        case '"': out += "&quot;"; break;
-        case '\'': out += "&#39;"; break;
+        case '&':
+          out += "&amp;";
+          break;
+        case '<':
+          out += "&lt;";
+          break;
+        case '>':
+          out += "&gt;";
+          break;
+        case '"':
+          out += "&quot;";
+          break;
+        case '\'':
+          out += "&#39;";
+          break;
         default:
           if (c < 0x20 && c != '\t' && c != '\n' && c != '\r') {
             out += "\xEF\xBF\xBD";
@@ -118,7 +128,9 @@ double max_grade(const RoadProfile& p) {
   return g.empty() ? 0.0 : *std::max_element(g.begin(), g.end());
 }
 
-double road_length(const RoadProfile& p) { return p.s.empty() ? 0.0 : p.s.back(); }
+double road_length(const RoadProfile& p) {
+  return p.s.empty() ? 0.0 : p.s.back();
+}
 
 // ---------------------------------------------------------------------------------------------
 // Page parts: header, cards, tables.
@@ -166,10 +178,12 @@ void write_kv(std::string& h, std::string_view key, const std::string& value_htm
 }
 
 std::string dem_description(const DemInfo& d) {
-  std::string s = "<code>" + esc(d.path) + "</code><br/>CRS " + esc(d.crs) + ", " +
-                  std::to_string(d.width) + " \xC3\x97 " + std::to_string(d.height) + " px, unit " +
-                  esc(to_string(d.unit)) + " (" +
-                  (d.unit_stated_by_user ? "user" : d.unit_from_metadata ? "metadata" : "assumed") + ")";
+  std::string s = "<code>" + esc(d.path) + "</code><br/>CRS " + esc(d.crs) + ", " + std::to_string(d.width) +
+                  " \xC3\x97 " + std::to_string(d.height) + " px, unit " + esc(to_string(d.unit)) + " (" +
+                  (d.unit_stated_by_user  ? "user"
+                   : d.unit_from_metadata ? "metadata"
+                                          : "assumed") +
+                  ")";
   if (d.nodata) s += ", nodata " + fixed(*d.nodata, 2);
   s += "<br/>transform: " + (d.transform_name.empty() ? std::string(kDash) : esc(d.transform_name));
   if (d.transform_accuracy_m) s += ", accuracy " + fixed(*d.transform_accuracy_m, 2) + " m";
@@ -180,8 +194,8 @@ std::string dem_description(const DemInfo& d) {
 void write_header(std::string& h, const RunReport& r) {
   h += "<h1>relief report";
   if (!r.name.empty()) h += ": " + esc(r.name);
-  h += "</h1>\n<p class=\"sub\">created " + esc(r.created_utc) + " \xC2\xB7 relief " +
-       esc(relief_version()) + "</p>\n<p class=\"attr\">";
+  h += "</h1>\n<p class=\"sub\">created " + esc(r.created_utc) + " \xC2\xB7 relief " + esc(relief_version()) +
+       "</p>\n<p class=\"attr\">";
   // The attribution with its link made clickable (the only external URL of the page).
   const std::string attribution = kOsmAttribution;
   const std::string url = "https://www.openstreetmap.org/copyright";
@@ -197,10 +211,12 @@ void write_header(std::string& h, const RunReport& r) {
   for (const DemInfo& d : r.dems) write_kv(h, "DEM", dem_description(d));
   for (const DemInfo& d : r.reference_dems) write_kv(h, "reference DEM", dem_description(d));
   if (r.reference_dems.empty()) write_kv(h, "reference DEM", "none");
-  write_kv(h, "frame", esc(r.frame.crs()) + ", origin (" + fixed(r.frame.origin().x(), 3) + ", " +
-                           fixed(r.frame.origin().y(), 3) + ") m; local = CRS \xE2\x88\x92 origin");
-  write_kv(h, "sampling", "every " + fixed(r.spacing_m, 2) + " m, " + esc(to_string(r.interpolation)) +
-                              ", voids: " + esc(r.nodata_fill));
+  write_kv(h, "frame",
+           esc(r.frame.crs()) + ", origin (" + fixed(r.frame.origin().x(), 3) + ", " +
+               fixed(r.frame.origin().y(), 3) + ") m; local = CRS \xE2\x88\x92 origin");
+  write_kv(h, "sampling",
+           "every " + fixed(r.spacing_m, 2) + " m, " + esc(to_string(r.interpolation)) +
+               ", voids: " + esc(r.nodata_fill));
   // Grade limits grouped by value: "8.0 %: motorway, trunk, ...".
   std::map<double, std::string> by_limit;
   for (const auto& [cls, percent] : r.grade_limits.percent) {
@@ -230,10 +246,9 @@ void write_cards(std::string& h, const RunReport& r) {
   card(h, fixed(n.length_km, 2), "km of road");
   card(h, integer(n.bridges) + " / " + integer(n.tunnels),
        "bridges / tunnels (" + fixed(n.bridge_km, 2) + " / " + fixed(n.tunnel_km, 2) + " km)");
-  card(h, integer(r.samples), "samples (" + integer(r.void_samples) + " void, " +
-                                  integer(r.uncovered_samples) + " uncovered)");
-  card(h, r.profile_method.empty() ? std::string(kDash) : method_label(r.profile_method),
-       "profiles written");
+  card(h, integer(r.samples),
+       "samples (" + integer(r.void_samples) + " void, " + integer(r.uncovered_samples) + " uncovered)");
+  card(h, r.profile_method.empty() ? std::string(kDash) : method_label(r.profile_method), "profiles written");
   if (r.fit) {
     card(h, esc(r.fit->policy), "fit policy");
     card(h, std::to_string(r.fit->iterations) + (r.fit->converged ? " \xE2\x9C\x93" : " \xE2\x9C\x97"),
@@ -273,8 +288,7 @@ void group_row(std::string& h, const RunReport& r, std::string_view label) {
 
 // Rows MAE / RMSE / max of an ErrorStats picked by `pick` (nullptr = not available).
 template <class Pick>
-void error_rows(std::string& h, const RunReport& r, std::string_view what, std::string_view key,
-                Pick pick) {
+void error_rows(std::string& h, const RunReport& r, std::string_view what, std::string_view key, Pick pick) {
   const auto row = [&](std::string_view stat, std::string_view label, double ErrorStats::*field) {
     comparison_row(h, r, std::string(label) + " " + std::string(what) + " (m)",
                    std::string(key) + "_" + std::string(stat) + "_m", [&](const MethodReport& m) {
@@ -306,15 +320,15 @@ void write_comparison(std::string& h, const RunReport& r) {
   error_rows(h, r, "on structures", "dem_structures",
              [](const MethodReport& m) { return &m.structures.vs_dem; });
   group_row(h, r, "Heights against the reference DEM (samples)");
-  error_rows(h, r, "on ground", "ref_ground", [](const MethodReport& m) {
-    return m.ground.vs_reference ? &*m.ground.vs_reference : nullptr;
-  });
-  error_rows(h, r, "all roads", "ref_all", [](const MethodReport& m) {
-    return m.all.vs_reference ? &*m.all.vs_reference : nullptr;
-  });
+  error_rows(h, r, "on ground", "ref_ground",
+             [](const MethodReport& m) { return m.ground.vs_reference ? &*m.ground.vs_reference : nullptr; });
+  error_rows(h, r, "all roads", "ref_all",
+             [](const MethodReport& m) { return m.all.vs_reference ? &*m.all.vs_reference : nullptr; });
   group_row(h, r, "Gradient");
-  comparison_row(h, r, "max grade (%)", "grade_max", [](const MethodReport& m) { return fixed(m.gradient.max_percent, 2); });
-  comparison_row(h, r, "p99 grade (%)", "grade_p99", [](const MethodReport& m) { return fixed(m.gradient.p99_percent, 2); });
+  comparison_row(h, r, "max grade (%)", "grade_max",
+                 [](const MethodReport& m) { return fixed(m.gradient.max_percent, 2); });
+  comparison_row(h, r, "p99 grade (%)", "grade_p99",
+                 [](const MethodReport& m) { return fixed(m.gradient.p99_percent, 2); });
   comparison_row(h, r, "compliance (% of length)", "compliance",
                  [](const MethodReport& m) { return fixed(m.gradient.compliance_percent, 2); });
   group_row(h, r, "Junctions and grade separations");
@@ -324,18 +338,24 @@ void write_comparison(std::string& h, const RunReport& r) {
     return integer(m.junctions.over_bound) + " of " + integer(m.junctions.checked) + " (&gt; " +
            fixed(m.junctions.bound_m, 2) + " m)";
   });
-  comparison_row(h, r, "grade separations", "separations", [](const MethodReport& m) { return integer(m.separations); });
+  comparison_row(h, r, "grade separations", "separations",
+                 [](const MethodReport& m) { return integer(m.separations); });
   comparison_row(h, r, "min clearance (m)", "min_clearance", [](const MethodReport& m) {
     return m.separations > 0 ? fixed(m.min_clearance_m, 2) : std::string(kDash);
   });
   comparison_row(h, r, "below required clearance", "below_clearance",
                  [](const MethodReport& m) { return integer(m.below_clearance); });
   group_row(h, r, "Cut and fill against the DEM drape (roads on the ground)");
-  comparison_row(h, r, "max cut (m)", "max_cut", [](const MethodReport& m) { return fixed(m.cut_fill.max_cut_m, 2); });
-  comparison_row(h, r, "max fill (m)", "max_fill", [](const MethodReport& m) { return fixed(m.cut_fill.max_fill_m, 2); });
-  comparison_row(h, r, "mean |dz| (m)", "mean_abs_dz", [](const MethodReport& m) { return fixed(m.cut_fill.mean_abs_m, 3); });
-  comparison_row(h, r, "km departing &gt; 0.5 m", "km_over_0_5", [](const MethodReport& m) { return fixed(m.cut_fill.km_over_0_5_m, 3); });
-  comparison_row(h, r, "km departing &gt; 2 m", "km_over_2", [](const MethodReport& m) { return fixed(m.cut_fill.km_over_2_m, 3); });
+  comparison_row(h, r, "max cut (m)", "max_cut",
+                 [](const MethodReport& m) { return fixed(m.cut_fill.max_cut_m, 2); });
+  comparison_row(h, r, "max fill (m)", "max_fill",
+                 [](const MethodReport& m) { return fixed(m.cut_fill.max_fill_m, 2); });
+  comparison_row(h, r, "mean |dz| (m)", "mean_abs_dz",
+                 [](const MethodReport& m) { return fixed(m.cut_fill.mean_abs_m, 3); });
+  comparison_row(h, r, "km departing &gt; 0.5 m", "km_over_0_5",
+                 [](const MethodReport& m) { return fixed(m.cut_fill.km_over_0_5_m, 3); });
+  comparison_row(h, r, "km departing &gt; 2 m", "km_over_2",
+                 [](const MethodReport& m) { return fixed(m.cut_fill.km_over_2_m, 3); });
   group_row(h, r, "Cost");
   comparison_row(h, r, "time (s)", "seconds", [](const MethodReport& m) { return fixed(m.seconds, 3); });
   h += "</table>\n";
@@ -368,8 +388,8 @@ void write_diagnostics(std::string& h, const RunReport& r) {
   for (const auto& [code, count] : d.counts()) {
     h += "<tr><td class=\"l\"><code>" + esc(code) + "</code></td><td>" + integer(count) + "</td></tr>\n";
   }
-  h += "</table>\n<details><summary>" + integer(d.kept().size()) + " kept messages of " +
-       integer(d.total()) + "</summary>\n<table>\n<tr><th class=\"l\">severity</th><th class=\"l\">code</th>"
+  h += "</table>\n<details><summary>" + integer(d.kept().size()) + " kept messages of " + integer(d.total()) +
+       "</summary>\n<table>\n<tr><th class=\"l\">severity</th><th class=\"l\">code</th>"
        "<th class=\"l\">message</th><th>way</th><th>node</th><th>road</th></tr>\n";
   const auto opt = [](const auto& v) { return v ? std::to_string(*v) : std::string(); };
   for (const Diagnostic& m : d.kept()) {
@@ -412,7 +432,9 @@ double nice_step(double range, int count) {
   return (f < 1.5 ? 1.0 : f < 3.5 ? 2.0 : f < 7.5 ? 5.0 : 10.0) * mag;
 }
 
-int decimals_for(double step) { return step >= 1.0 ? 0 : static_cast<int>(std::ceil(-std::log10(step) - 1e-9)); }
+int decimals_for(double step) {
+  return step >= 1.0 ? 0 : static_cast<int>(std::ceil(-std::log10(step) - 1e-9));
+}
 
 // Linear map of data to pixels on one axis.
 struct Scale {
@@ -425,7 +447,8 @@ struct Axes {
   Scale x, y;
 };
 
-void svg_open(std::string& h, double width, double height, std::string_view label, std::string_view cls = "") {
+void svg_open(std::string& h, double width, double height, std::string_view label,
+              std::string_view cls = "") {
   h += "<svg viewBox=\"0 0 " + fixed(width, 0) + " " + fixed(height, 0) + "\" width=\"" + fixed(width, 0) +
        "\" height=\"" + fixed(height, 0) + "\" role=\"img\"";
   if (!cls.empty()) {
@@ -459,8 +482,8 @@ void draw_axes(std::string& h, const Axes& a, std::string_view x_title, std::str
   }
   for (double v = std::ceil(a.x.d0 / xs - 1e-9) * xs; v <= a.x.d1 + 1e-9 * xs; v += xs) {
     const double px = a.x(v);
-    h += "<line class=\"ax\" x1=\"" + fixed(px, 1) + "\" x2=\"" + fixed(px, 1) + "\" y1=\"" + fixed(a.y.p0, 1) +
-         "\" y2=\"" + fixed(a.y.p0 + 4, 1) + "\"/>\n";
+    h += "<line class=\"ax\" x1=\"" + fixed(px, 1) + "\" x2=\"" + fixed(px, 1) + "\" y1=\"" +
+         fixed(a.y.p0, 1) + "\" y2=\"" + fixed(a.y.p0 + 4, 1) + "\"/>\n";
     svg_text(h, px, a.y.p0 + 16, "middle", fixed(v, decimals_for(xs)));
   }
   h += "<path class=\"ax\" fill=\"none\" d=\"M" + fixed(a.x.p0, 1) + " " + fixed(a.y.p1, 1) + "V" +
@@ -644,14 +667,15 @@ void write_histogram(std::string& h, const RunReport& r, const std::vector<Serie
   for (const auto& [cls, percent] : r.grade_limits.percent) limits.insert(percent);
   for (double lim : limits) {
     const double x = a.x(lim);
-    h += "<line class=\"lim\" x1=\"" + fixed(x, 1) + "\" x2=\"" + fixed(x, 1) + "\" y1=\"" + fixed(a.y.p0, 1) +
-         "\" y2=\"" + fixed(a.y.p1 - 8, 1) + "\"/>\n";
+    h += "<line class=\"lim\" x1=\"" + fixed(x, 1) + "\" x2=\"" + fixed(x, 1) + "\" y1=\"" +
+         fixed(a.y.p0, 1) + "\" y2=\"" + fixed(a.y.p1 - 8, 1) + "\"/>\n";
     svg_text(h, x, a.y.p1 - 11, "middle", fixed(lim, 0) + " %", " fill=\"#c0392b\"");
   }
   svg_text(h, a.x(kBinPercent * (kBins - 0.5)), a.y.p0 + 31, "middle", "40+");
   double lx = width - 16 - 130.0 * static_cast<double>(series.size());
   for (const Series& s : series) {
-    h += "<rect class=\"b-" + s.method + "\" x=\"" + fixed(lx, 1) + "\" y=\"12\" width=\"12\" height=\"10\"/>\n";
+    h += "<rect class=\"b-" + s.method + "\" x=\"" + fixed(lx, 1) +
+         "\" y=\"12\" width=\"12\" height=\"10\"/>\n";
     svg_text(h, lx + 16, 21, "start", method_label(s.method));
     lx += 130;
   }
@@ -663,8 +687,8 @@ void write_histogram(std::string& h, const RunReport& r, const std::vector<Serie
 
 // A classed colour scale: value v falls in class k when edges[k-1] <= v < edges[k].
 struct ColourScale {
-  std::string prefix;               // CSS class prefix ("g", "d")
-  std::vector<double> edges;        // size = colours - 1, ascending
+  std::string prefix;         // CSS class prefix ("g", "d")
+  std::vector<double> edges;  // size = colours - 1, ascending
   std::vector<std::string> colours;
   std::vector<std::string> labels;  // one per class
   [[nodiscard]] std::size_t classify(double v) const {
@@ -676,16 +700,41 @@ ColourScale grade_scale() {
   return {"g",
           {2, 4, 6, 8, 10, 12, 15, 20},
           {"#1a9850", "#66bd63", "#a6d96a", "#d9ef8b", "#fee08b", "#fdae61", "#f46d43", "#d73027", "#7f0000"},
-          {"0\xE2\x80\x93" "2", "2\xE2\x80\x93" "4", "4\xE2\x80\x93" "6", "6\xE2\x80\x93" "8",
-           "8\xE2\x80\x93" "10", "10\xE2\x80\x93" "12", "12\xE2\x80\x93" "15", "15\xE2\x80\x93" "20", "20+ %"}};
+          {"0\xE2\x80\x93"
+           "2",
+           "2\xE2\x80\x93"
+           "4",
+           "4\xE2\x80\x93"
+           "6",
+           "6\xE2\x80\x93"
+           "8",
+           "8\xE2\x80\x93"
+           "10",
+           "10\xE2\x80\x93"
+           "12",
+           "12\xE2\x80\x93"
+           "15",
+           "15\xE2\x80\x93"
+           "20",
+           "20+ %"}};
 }
 
 ColourScale departure_scale() {
   return {"d",
           {-2.0, -0.5, -0.1, 0.1, 0.5, 2.0},
           {"#3b8bd4", "#79b8e0", "#bcdcf0", "#8a8f99", "#f6c6a8", "#ef8a62", "#e0302f"},
-          {"cut &gt; 2", "2\xE2\x80\x93" "0.5", "0.5\xE2\x80\x93" "0.1", "\xC2\xB1" "0.1",
-           "0.1\xE2\x80\x93" "0.5", "0.5\xE2\x80\x93" "2", "fill &gt; 2 m"}};
+          {"cut &gt; 2",
+           "2\xE2\x80\x93"
+           "0.5",
+           "0.5\xE2\x80\x93"
+           "0.1",
+           "\xC2\xB1"
+           "0.1",
+           "0.1\xE2\x80\x93"
+           "0.5",
+           "0.5\xE2\x80\x93"
+           "2",
+           "fill &gt; 2 m"}};
 }
 
 // Perpendicular-distance Douglas–Peucker over pts[i0..i1]; marks kept vertices.
@@ -782,8 +831,8 @@ void map_legend(std::string& h, const MapFrame& f, const ColourScale& cs, std::s
   const double metres_per_px = (f.a.x.d1 - f.a.x.d0) / (f.a.x.p1 - f.a.x.p0);
   const double bar_m = nice_step(160 * metres_per_px, 1), bar_px = bar_m / metres_per_px;
   const double bx = f.width - 20 - bar_px;
-  h += "<path class=\"ax\" fill=\"none\" d=\"M" + fixed(bx, 1) + " " + fixed(y, 1) + "v6h" + fixed(bar_px, 1) +
-       "v-6\"/>\n";
+  h += "<path class=\"ax\" fill=\"none\" d=\"M" + fixed(bx, 1) + " " + fixed(y, 1) + "v6h" +
+       fixed(bar_px, 1) + "v-6\"/>\n";
   svg_text(h, bx + bar_px / 2, y + 23, "middle",
            bar_m >= 1000 ? fixed(bar_m / 1000, 0) + " km" : fixed(bar_m, bar_m >= 1 ? 0 : 1) + " m");
   svg_text(h, bx - 24, y + 10, "middle", "N \xE2\x86\x91", " font-weight=\"bold\"");
@@ -800,8 +849,8 @@ std::string scale_css(const ColourScale& cs) {
 
 template <class Value>
 void write_map(std::string& h, const HtmlReportInput& in, const std::vector<RoadProfile>& profiles,
-               const ColourScale& cs, std::string_view title, const std::string& caption, std::string_view unit,
-               const Value& value) {
+               const ColourScale& cs, std::string_view title, const std::string& caption,
+               std::string_view unit, const Value& value) {
   const MapFrame f = map_frame(in);
   h += "<figure><figcaption>" + caption + "</figcaption>\n";
   svg_open(h, f.width, f.height, title, "map");
@@ -818,7 +867,9 @@ void write_map(std::string& h, const HtmlReportInput& in, const std::vector<Road
 }
 
 // The profiles the maps show: relief's fit, else the paper's, else raw.
-const Series& map_series(const std::vector<Series>& series) { return series.back(); }
+const Series& map_series(const std::vector<Series>& series) {
+  return series.back();
+}
 
 void write_maps(std::string& h, const HtmlReportInput& in, const std::vector<Series>& series) {
   const Series& shown = map_series(series);
@@ -835,8 +886,8 @@ void write_maps(std::string& h, const HtmlReportInput& in, const std::vector<Ser
             });
   if (shown.method == "raw") return;
   write_map(h, in, profiles, departure_scale(), "Map of the network coloured by departure from the DEM",
-            "Height of the " + method_label(shown.method) + " profiles minus the DEM drape, mean over pieces of " +
-                fixed(kMapPieceM, 0) +
+            "Height of the " + method_label(shown.method) +
+                " profiles minus the DEM drape, mean over pieces of " + fixed(kMapPieceM, 0) +
                 " m: blue below the terrain (cut), red above (fill). Bridges and tunnels are expected to "
                 "depart.",
             "m", [&](std::size_t r, std::size_t i0, std::size_t i1) {

@@ -12,11 +12,16 @@ namespace {
 using Json = nlohmann::ordered_json;
 
 // Rounds a figure for the report: millimetres, hundredths of a percent.
-double round_to(double value, double step) { return std::round(value / step) * step; }
+double round_to(double value, double step) {
+  return std::round(value / step) * step;
+}
 
 Json error_json(const ErrorStats& e) {
-  return {{"mae_m", round_to(e.mae_m, 1e-4)}, {"rmse_m", round_to(e.rmse_m, 1e-4)},
-          {"max_m", round_to(e.max_m, 1e-4)}, {"bias_m", round_to(e.bias_m, 1e-4)}, {"n", e.n}};
+  return {{"mae_m", round_to(e.mae_m, 1e-4)},
+          {"rmse_m", round_to(e.rmse_m, 1e-4)},
+          {"max_m", round_to(e.max_m, 1e-4)},
+          {"bias_m", round_to(e.bias_m, 1e-4)},
+          {"n", e.n}};
 }
 
 Json dem_json(const DemInfo& d) {
@@ -25,7 +30,9 @@ Json dem_json(const DemInfo& d) {
             {"size_px", {d.width, d.height}},
             {"pixel_size", {d.pixel_size.x(), d.pixel_size.y()}},
             {"vertical_unit", to_string(d.unit)},
-            {"unit_source", d.unit_stated_by_user ? "user" : d.unit_from_metadata ? "metadata" : "assumed"},
+            {"unit_source", d.unit_stated_by_user  ? "user"
+                            : d.unit_from_metadata ? "metadata"
+                                                   : "assumed"},
             {"nodata", d.nodata ? Json(*d.nodata) : Json(nullptr)},
             {"transform", d.transform_name},
             {"transform_accuracy_m", d.transform_accuracy_m ? Json(*d.transform_accuracy_m) : Json(nullptr)}};
@@ -37,7 +44,9 @@ Json dem_json(const DemInfo& d) {
   return j;
 }
 
-Json optional_int(const std::optional<int>& v) { return v ? Json(*v) : Json(nullptr); }
+Json optional_int(const std::optional<int>& v) {
+  return v ? Json(*v) : Json(nullptr);
+}
 
 Json vs_dem_json(const HeightValidation& h) {
   Json j = error_json(h.vs_dem);
@@ -79,22 +88,26 @@ Json method_json(const MethodReport& m) {
           {"vs_reference_ground", m.ground.vs_reference ? error_json(*m.ground.vs_reference) : Json(nullptr)},
           {"gradient", gradient_json(m.gradient)},
           {"junctions", junctions_json(m.junctions)},
-          {"cut_fill", {{"max_fill_m", round_to(m.cut_fill.max_fill_m, 1e-3)},
-                        {"max_cut_m", round_to(m.cut_fill.max_cut_m, 1e-3)},
-                        {"mean_abs_m", round_to(m.cut_fill.mean_abs_m, 1e-4)},
-                        {"km_over_0_5_m", round_to(m.cut_fill.km_over_0_5_m, 1e-3)},
-                        {"km_over_2_m", round_to(m.cut_fill.km_over_2_m, 1e-3)},
-                        {"worst_road", optional_int(m.cut_fill.worst_road)},
-                        {"worst_s_m", round_to(m.cut_fill.worst_s_m, 1e-2)}}},
-          {"clearance", {{"separations", m.separations},
-                         {"min_m", round_to(m.min_clearance_m, 1e-3)},
-                         {"below_required", m.below_clearance}}},
+          {"cut_fill",
+           {{"max_fill_m", round_to(m.cut_fill.max_fill_m, 1e-3)},
+            {"max_cut_m", round_to(m.cut_fill.max_cut_m, 1e-3)},
+            {"mean_abs_m", round_to(m.cut_fill.mean_abs_m, 1e-4)},
+            {"km_over_0_5_m", round_to(m.cut_fill.km_over_0_5_m, 1e-3)},
+            {"km_over_2_m", round_to(m.cut_fill.km_over_2_m, 1e-3)},
+            {"worst_road", optional_int(m.cut_fill.worst_road)},
+            {"worst_s_m", round_to(m.cut_fill.worst_s_m, 1e-2)}}},
+          {"clearance",
+           {{"separations", m.separations},
+            {"min_m", round_to(m.min_clearance_m, 1e-3)},
+            {"below_required", m.below_clearance}}},
           {"seconds", round_to(m.seconds, 1e-4)}};
 }
 
 }  // namespace
 
-std::string relief_version() { return "0.1.0"; }
+std::string relief_version() {
+  return "0.1.0";
+}
 
 std::string report_json(const RunReport& r) {
   Json j;
@@ -131,14 +144,14 @@ std::string report_json(const RunReport& r) {
                   {"tunnel_km", round_to(n.tunnel_km, 1e-3)},
                   {"km_by_class", km_by_class}};
 
-  j["elevation"] = {{"samples", r.samples},
-                    {"void_samples", r.void_samples},
-                    {"uncovered_samples", r.uncovered_samples},
-                    {"roads_without_height", r.roads_without_height},
-                    {"profile_method", r.profile_method},
-                    {"vs_dem", vs_dem_json(r.heights)},
-                    {"vs_reference", r.heights.vs_reference ? error_json(*r.heights.vs_reference)
-                                                            : Json(nullptr)}};
+  j["elevation"] = {
+      {"samples", r.samples},
+      {"void_samples", r.void_samples},
+      {"uncovered_samples", r.uncovered_samples},
+      {"roads_without_height", r.roads_without_height},
+      {"profile_method", r.profile_method},
+      {"vs_dem", vs_dem_json(r.heights)},
+      {"vs_reference", r.heights.vs_reference ? error_json(*r.heights.vs_reference) : Json(nullptr)}};
   j["gradient"] = gradient_json(r.gradient);
   j["junctions"] = junctions_json(r.junctions);
 
@@ -147,14 +160,11 @@ std::string report_json(const RunReport& r) {
   for (const auto& [cls, percent] : r.grade_limits.percent) limits[std::string(to_string(cls))] = percent;
   profiles["grade_limits_percent"] = limits;
   if (r.fit) {
-    profiles["fit"] = {{"policy", r.fit->policy},
-                       {"iterations", r.fit->iterations},
-                       {"converged", r.fit->converged},
-                       {"variables", r.fit->variables},
-                       {"constraints", r.fit->constraints},
-                       {"max_violation_m", r.fit->max_violation_m},
-                       {"clearance_m", r.fit->clearance_m},
-                       {"cutoff_wavelength_m", r.fit->cutoff_wavelength_m}};
+    profiles["fit"] = {
+        {"policy", r.fit->policy},           {"iterations", r.fit->iterations},
+        {"converged", r.fit->converged},     {"variables", r.fit->variables},
+        {"constraints", r.fit->constraints}, {"max_violation_m", r.fit->max_violation_m},
+        {"clearance_m", r.fit->clearance_m}, {"cutoff_wavelength_m", r.fit->cutoff_wavelength_m}};
   }
   if (r.paper) {
     profiles["paper"] = {{"max_iterations", r.paper->max_iterations},

@@ -22,9 +22,7 @@ struct ListDeleter {
   void operator()(PJ_OBJ_LIST* l) const { proj_list_destroy(l); }
 };
 struct FactoryDeleter {
-  void operator()(PJ_OPERATION_FACTORY_CONTEXT* f) const {
-    proj_operation_factory_context_destroy(f);
-  }
+  void operator()(PJ_OPERATION_FACTORY_CONTEXT* f) const { proj_operation_factory_context_destroy(f); }
 };
 using ContextPtr = std::unique_ptr<PJ_CONTEXT, ContextDeleter>;
 using PjPtr = std::unique_ptr<PJ, PjDeleter>;
@@ -80,8 +78,8 @@ CrsTransform::CrsTransform(std::string_view from, std::string_view to, std::opti
   proj_operation_factory_context_set_grid_availability_use(ctx, factory.get(),
                                                            PROJ_GRID_AVAILABILITY_IGNORED);
   if (area) {
-    proj_operation_factory_context_set_area_of_interest(ctx, factory.get(), area->min_lon,
-                                                        area->min_lat, area->max_lon, area->max_lat);
+    proj_operation_factory_context_set_area_of_interest(ctx, factory.get(), area->min_lon, area->min_lat,
+                                                        area->max_lon, area->max_lat);
   }
   std::unique_ptr<PJ_OBJ_LIST, ListDeleter> ops(
       proj_create_operations(ctx, src.get(), dst.get(), factory.get()));
@@ -105,8 +103,8 @@ CrsTransform::CrsTransform(std::string_view from, std::string_view to, std::opti
       for (int g = 0; g < grids; ++g) {
         const char* short_name = nullptr;
         int available = 0;
-        proj_coordoperation_get_grid_used(ctx, candidate.get(), g, &short_name, nullptr, nullptr,
-                                          nullptr, nullptr, nullptr, &available);
+        proj_coordoperation_get_grid_used(ctx, candidate.get(), g, &short_name, nullptr, nullptr, nullptr,
+                                          nullptr, nullptr, &available);
         if (short_name && !available) {
           if (!best_missing_grids.empty()) best_missing_grids += ", ";
           best_missing_grids += short_name;
@@ -118,8 +116,8 @@ CrsTransform::CrsTransform(std::string_view from, std::string_view to, std::opti
     // Fall back to PROJ's own choice (e.g. a ballpark transformation).
     chosen.reset(proj_create_crs_to_crs_from_pj(ctx, src.get(), dst.get(), nullptr, nullptr));
     if (!chosen) {
-      throw ProjectionError("no transformation from '" + std::string(from) + "' to '" +
-                            std::string(to) + "': " + last_error(ctx));
+      throw ProjectionError("no transformation from '" + std::string(from) + "' to '" + std::string(to) +
+                            "': " + last_error(ctx));
     }
   }
   impl_->name = proj_get_name(chosen.get()) ? proj_get_name(chosen.get()) : "";
@@ -135,8 +133,8 @@ CrsTransform::CrsTransform(std::string_view from, std::string_view to, std::opti
   }
   impl_->op.reset(proj_normalize_for_visualization(ctx, chosen.get()));
   if (!impl_->op) {
-    throw ProjectionError("cannot normalise the transformation from '" + std::string(from) +
-                          "' to '" + std::string(to) + "': " + last_error(ctx));
+    throw ProjectionError("cannot normalise the transformation from '" + std::string(from) + "' to '" +
+                          std::string(to) + "': " + last_error(ctx));
   }
 }
 
@@ -159,7 +157,9 @@ Vec2 transform_point(PJ* op, PJ_DIRECTION direction, const Vec2& p, const std::s
 
 }  // namespace
 
-Vec2 CrsTransform::apply(const Vec2& p) const { return transform_point(impl_->op.get(), PJ_FWD, p, impl_->name); }
+Vec2 CrsTransform::apply(const Vec2& p) const {
+  return transform_point(impl_->op.get(), PJ_FWD, p, impl_->name);
+}
 
 Vec2 CrsTransform::apply_inverse(const Vec2& p) const {
   return transform_point(impl_->op.get(), PJ_INV, p, impl_->name);
@@ -169,8 +169,8 @@ void CrsTransform::apply(std::span<Vec2> points) const {
   if (points.empty()) return;
   double* x = points.data()->data();
   double* y = x + 1;
-  proj_trans_generic(impl_->op.get(), PJ_FWD, x, sizeof(Vec2), points.size(), y, sizeof(Vec2),
-                     points.size(), nullptr, 0, 0, nullptr, 0, 0);
+  proj_trans_generic(impl_->op.get(), PJ_FWD, x, sizeof(Vec2), points.size(), y, sizeof(Vec2), points.size(),
+                     nullptr, 0, 0, nullptr, 0, 0);
   for (auto& p : points) {
     if (!std::isfinite(p.x()) || !std::isfinite(p.y()) || p.x() == HUGE_VAL) {
       p = Vec2::Constant(std::numeric_limits<double>::quiet_NaN());
@@ -180,8 +180,8 @@ void CrsTransform::apply(std::span<Vec2> points) const {
 
 Aabb2 CrsTransform::transform_bounds(const Aabb2& box) const {
   double xmin = 0, ymin = 0, xmax = 0, ymax = 0;
-  if (!proj_trans_bounds(impl_->ctx.get(), impl_->op.get(), PJ_FWD, box.min.x(), box.min.y(),
-                         box.max.x(), box.max.y(), &xmin, &ymin, &xmax, &ymax, 21)) {
+  if (!proj_trans_bounds(impl_->ctx.get(), impl_->op.get(), PJ_FWD, box.min.x(), box.min.y(), box.max.x(),
+                         box.max.y(), &xmin, &ymin, &xmax, &ymax, 21)) {
     throw ProjectionError("cannot transform a bounding box with '" + impl_->name +
                           "': " + last_error(impl_->ctx.get()));
   }
@@ -191,10 +191,18 @@ Aabb2 CrsTransform::transform_bounds(const Aabb2& box) const {
   return out;
 }
 
-const std::string& CrsTransform::operation_name() const { return impl_->name; }
-std::optional<double> CrsTransform::accuracy_m() const { return impl_->accuracy; }
-bool CrsTransform::better_operation_missing_grid() const { return impl_->better_missing; }
-const std::string& CrsTransform::missing_grids() const { return impl_->missing_grids; }
+const std::string& CrsTransform::operation_name() const {
+  return impl_->name;
+}
+std::optional<double> CrsTransform::accuracy_m() const {
+  return impl_->accuracy;
+}
+bool CrsTransform::better_operation_missing_grid() const {
+  return impl_->better_missing;
+}
+const std::string& CrsTransform::missing_grids() const {
+  return impl_->missing_grids;
+}
 
 std::string crs_identifier(std::string_view crs) {
   const ContextPtr ctx = make_context();

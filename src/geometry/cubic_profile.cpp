@@ -96,8 +96,8 @@ CubicProfile fit_cubic_profile(const std::vector<double>& s, const std::vector<d
   const std::size_t n = s.size();
   if (n == 0) throw InvalidInput("cubic profile fit: no samples");
   if (z.size() != n) {
-    throw InvalidInput("cubic profile fit: " + std::to_string(n) + " stations but " + std::to_string(z.size()) +
-                       " values");
+    throw InvalidInput("cubic profile fit: " + std::to_string(n) + " stations but " +
+                       std::to_string(z.size()) + " values");
   }
   if (!(tolerance >= 0.0) || !std::isfinite(tolerance)) {
     throw InvalidInput("cubic profile fit: tolerance must be finite and non-negative");
@@ -159,7 +159,10 @@ CubicProfile fit_cubic_profile(const std::vector<double>& s, const std::vector<d
     }
     while (bad < n && bad - good > 1) {
       const std::size_t mid = good + (bad - good) / 2;
-      if (fits(k, mid)) good = mid; else bad = mid;
+      if (fits(k, mid))
+        good = mid;
+      else
+        bad = mid;
     }
     pieces.push_back({s[k], hermite(s[good] - s[k], z[k], m[k], z[good], m[good])});
     k = good;

@@ -35,9 +35,9 @@ std::string GeoFrame::proj_string() const {
   if (std::regex_match(crs_, m, wgs84_utm)) {
     const bool south = m[1] == "327";
     const int zone = std::stoi(m[2]);
-    out << "+proj=tmerc +lat_0=0 +lon_0=" << (zone * 6 - 183) << " +k=0.9996 +x_0="
-        << (500000.0 - origin_.x()) << " +y_0=" << ((south ? 10000000.0 : 0.0) - origin_.y())
-        << " +datum=WGS84 +units=m +no_defs";
+    out << "+proj=tmerc +lat_0=0 +lon_0=" << (zone * 6 - 183)
+        << " +k=0.9996 +x_0=" << (500000.0 - origin_.x())
+        << " +y_0=" << ((south ? 10000000.0 : 0.0) - origin_.y()) << " +datum=WGS84 +units=m +no_defs";
     return out.str();
   }
   // Any other projected CRS: shift its false easting / northing by the origin.

@@ -16,7 +16,7 @@ namespace {
 constexpr int kGaussPoints = 16;
 
 struct GaussLegendre {
-  std::array<double, kGaussPoints> node{};    // on [-1, 1]
+  std::array<double, kGaussPoints> node{};  // on [-1, 1]
   std::array<double, kGaussPoints> weight{};
 };
 
@@ -71,7 +71,9 @@ double sinc(double x) {
   return std::sin(x) / x;
 }
 
-Vec2 direction(double heading) { return {std::cos(heading), std::sin(heading)}; }
+Vec2 direction(double heading) {
+  return {std::cos(heading), std::sin(heading)};
+}
 
 double speed(const Poly3& u, const Poly3& v, double p) {
   return std::hypot(u.derivative(p), v.derivative(p));
@@ -149,16 +151,21 @@ Pose2 evaluate_param_poly3(const PlanGeometry& g, double ds, const std::vector<d
   } else if (ds < g.length && total > 0.0) {
     const double target = ds * total / g.length;
     const auto it = std::upper_bound(cumulative.begin(), cumulative.end(), target);
-    const auto i = static_cast<int>(std::clamp<std::ptrdiff_t>(it - cumulative.begin() - 1, 0, kIntervals - 1));
+    const auto i =
+        static_cast<int>(std::clamp<std::ptrdiff_t>(it - cumulative.begin() - 1, 0, kIntervals - 1));
     double lo = p_end * i / kIntervals;
     double hi = p_end * (i + 1) / kIntervals;
     const double base = cumulative[static_cast<std::size_t>(i)];
     const double p0 = lo;
-    p = lo + (hi - lo) * std::clamp((target - base) / (cumulative[static_cast<std::size_t>(i + 1)] - base), 0.0, 1.0);
+    p = lo + (hi - lo) *
+                 std::clamp((target - base) / (cumulative[static_cast<std::size_t>(i + 1)] - base), 0.0, 1.0);
     for (int iter = 0; iter < 60; ++iter) {
       const double err = base + gauss16(f, p0, p) - target;
       if (std::abs(err) < 1e-12 * std::max(1.0, total)) break;
-      if (err > 0.0) hi = p; else lo = p;
+      if (err > 0.0)
+        hi = p;
+      else
+        lo = p;
       const double v = f(p);
       double next = v > 0.0 ? p - err / v : 0.5 * (lo + hi);
       if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
@@ -225,10 +232,14 @@ Pose2 PlanView::at(double s) const {
 Pose2 evaluate(const PlanGeometry& record, double ds) {
   const double d = std::clamp(ds, 0.0, std::max(0.0, record.length));
   switch (record.kind) {
-    case PlanGeometry::Kind::line: return evaluate_line(record, d);
-    case PlanGeometry::Kind::arc: return evaluate_arc(record, d);
-    case PlanGeometry::Kind::spiral: return evaluate_spiral(record, d);
-    case PlanGeometry::Kind::param_poly3: return evaluate_param_poly3(record, d, param_poly3_arc_table(record));
+    case PlanGeometry::Kind::line:
+      return evaluate_line(record, d);
+    case PlanGeometry::Kind::arc:
+      return evaluate_arc(record, d);
+    case PlanGeometry::Kind::spiral:
+      return evaluate_spiral(record, d);
+    case PlanGeometry::Kind::param_poly3:
+      return evaluate_param_poly3(record, d, param_poly3_arc_table(record));
   }
   return evaluate_line(record, d);
 }

@@ -12,9 +12,9 @@ namespace relief {
 
 namespace {
 
-constexpr double kDuplicate_m = 1e-3;      // vertices closer than this are merged
-constexpr double kStraight_rad = 1e-9;     // turning angles below this add no arc
-constexpr double kVanish_m = 1e-9;         // lines this short vanish without notice
+constexpr double kDuplicate_m = 1e-3;                               // vertices closer than this are merged
+constexpr double kStraight_rad = 1e-9;                              // turning angles below this add no arc
+constexpr double kVanish_m = 1e-9;                                  // lines this short vanish without notice
 constexpr double kMaxHalfTurn_rad = 0.5 * std::numbers::pi - 1e-9;  // U-turn clamp
 
 double wrap_angle(double a) {
@@ -24,7 +24,9 @@ double wrap_angle(double a) {
   return a;
 }
 
-double cross(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
+double cross(const Vec2& a, const Vec2& b) {
+  return a.x() * b.y() - a.y() * b.x();
+}
 
 }  // namespace
 

@@ -3,8 +3,8 @@
 #include <ctime>
 #include <iomanip>
 #include <sstream>
-#include <sstream>
 
+#include "pipeline/stages.h"
 #include "relief/core/atomic_file.h"
 #include "relief/core/errors.h"
 #include "relief/export/geojson_writer.h"
@@ -12,7 +12,6 @@
 #include "relief/export/report_html.h"
 #include "relief/roads/opendrive_reader.h"
 #include "relief/roads/road_model_checks.h"
-#include "pipeline/stages.h"
 
 namespace relief {
 namespace {
@@ -27,9 +26,10 @@ std::string utc_now() {
 }
 
 // The figures of one method's profiles.
-MethodReport evaluate(std::string method, const RoadNetwork& network, const std::vector<RoadProfile>& profiles,
-                      const std::vector<RoadProfile>& raw, const HeightValidator& validator,
-                      std::vector<GradeSeparation> separations, const BuildOptions& options, double seconds) {
+MethodReport evaluate(std::string method, const RoadNetwork& network,
+                      const std::vector<RoadProfile>& profiles, const std::vector<RoadProfile>& raw,
+                      const HeightValidator& validator, std::vector<GradeSeparation> separations,
+                      const BuildOptions& options, double seconds) {
   MethodReport m;
   m.method = std::move(method);
   m.seconds = seconds;
@@ -62,9 +62,12 @@ std::optional<ProfileMethod> parse_profile_method(std::string_view text) {
 
 std::string_view to_string(ProfileMethod method) {
   switch (method) {
-    case ProfileMethod::raw: return "raw";
-    case ProfileMethod::paper: return "paper";
-    case ProfileMethod::relief: return "relief";
+    case ProfileMethod::raw:
+      return "raw";
+    case ProfileMethod::paper:
+      return "paper";
+    case ProfileMethod::relief:
+      return "relief";
   }
   return "unknown";
 }
@@ -79,10 +82,14 @@ std::optional<Output> parse_output(std::string_view text) {
 
 std::string_view to_string(Output output) {
   switch (output) {
-    case Output::geojson: return "geojson";
-    case Output::report: return "report";
-    case Output::html: return "html";
-    case Output::xodr: return "xodr";
+    case Output::geojson:
+      return "geojson";
+    case Output::report:
+      return "report";
+    case Output::html:
+      return "html";
+    case Output::xodr:
+      return "xodr";
   }
   return "unknown";
 }
@@ -122,9 +129,8 @@ BuildResult build(const BuildOptions& options, Diagnostics& diagnostics, const P
   });
   report.dems = dem.sources();
 
-  const ElevationSamples samples = timer.run("sample elevation", [&] {
-    return sample_elevation(network, dem, options.sampling, diagnostics);
-  });
+  const ElevationSamples samples = timer.run(
+      "sample elevation", [&] { return sample_elevation(network, dem, options.sampling, diagnostics); });
   report.samples = samples.samples;
   report.void_samples = samples.void_samples;
   report.uncovered_samples = samples.uncovered_samples;
@@ -154,19 +160,24 @@ BuildResult build(const BuildOptions& options, Diagnostics& diagnostics, const P
       return fit_profiles(network, raw, o, diagnostics);
     });
     fit_seconds = timer.timings().back().second;
-    report.fit = FitSummary{std::string(to_string(options.fit.policy)), fit->iterations, fit->converged,
-                            fit->variables, fit->constraints, fit->max_violation_m, options.fit.clearance_m,
+    report.fit = FitSummary{std::string(to_string(options.fit.policy)),
+                            fit->iterations,
+                            fit->converged,
+                            fit->variables,
+                            fit->constraints,
+                            fit->max_violation_m,
+                            options.fit.clearance_m,
                             options.fit.cutoff_wavelength_m};
   }
-  const std::vector<RoadProfile>& profiles = options.profile_method == ProfileMethod::paper    ? paper->profiles
+  const std::vector<RoadProfile>& profiles = options.profile_method == ProfileMethod::paper ? paper->profiles
                                              : options.profile_method == ProfileMethod::relief ? fit->profiles
                                                                                                : raw;
 
   std::optional<DemSampler> reference;
   if (!options.reference_dem_paths.empty()) {
     reference = timer.run("open reference DEM", [&] {
-      return DemSampler(options.reference_dem_paths, network.frame, network_bounds(network), options.reference_dem,
-                        &diagnostics);
+      return DemSampler(options.reference_dem_paths, network.frame, network_bounds(network),
+                        options.reference_dem, &diagnostics);
     });
     report.reference_dems = reference->sources();
   }
@@ -177,12 +188,12 @@ BuildResult build(const BuildOptions& options, Diagnostics& diagnostics, const P
       report.methods.push_back(evaluate("raw", network, raw, raw, validator, separations, options, 0.0));
     }
     if (paper) {
-      report.methods.push_back(evaluate("paper", network, paper->profiles, raw, validator, separations, options,
-                                        paper_seconds));
+      report.methods.push_back(
+          evaluate("paper", network, paper->profiles, raw, validator, separations, options, paper_seconds));
     }
     if (fit) {
-      report.methods.push_back(evaluate("relief", network, fit->profiles, raw, validator, separations, options,
-                                        fit_seconds));
+      report.methods.push_back(
+          evaluate("relief", network, fit->profiles, raw, validator, separations, options, fit_seconds));
     }
     for (const MethodReport& m : report.methods) {
       if (m.method != report.profile_method) continue;

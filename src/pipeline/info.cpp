@@ -22,8 +22,8 @@ InfoResult inspect(const BuildOptions& options, Diagnostics& diagnostics) {
   sampling.allow_partial = true;
   sampling.nodata_fill = NodataFill::interpolate;
   Diagnostics quiet;
-  const DemSampler dem(options.dem_paths, loaded.network.frame, network_bounds(loaded.network),
-                       options.dem, &diagnostics);
+  const DemSampler dem(options.dem_paths, loaded.network.frame, network_bounds(loaded.network), options.dem,
+                       &diagnostics);
   info.dems = dem.sources();
   const ElevationSamples samples = sample_elevation(loaded.network, dem, sampling, quiet);
   info.samples = samples.samples;

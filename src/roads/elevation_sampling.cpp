@@ -25,16 +25,16 @@ void report_filled(Diagnostics& diagnostics, const char* code, const Road& road,
   d.code = code;
   d.road_id = road.id;
   if (!road.osm_way_ids.empty()) d.osm_way_id = road.osm_way_ids.front();
-  d.message = describe_road(road) + ": " + std::to_string(count) + " of " + std::to_string(total) + " samples " +
-              where + ", filled along the road";
+  d.message = describe_road(road) + ": " + std::to_string(count) + " of " + std::to_string(total) +
+              " samples " + where + ", filled along the road";
   diagnostics.report(std::move(d));
 }
 
 // Fills the missing heights of one profile: ends from the junction heights when known, then
 // linear interpolation in s between valid samples, then the nearest valid sample at the ends.
 // Returns false when no height at all could be found.
-bool fill_profile(RoadProfile& p, const std::vector<std::uint8_t>& valid,
-                  std::optional<double> start_height, std::optional<double> end_height) {
+bool fill_profile(RoadProfile& p, const std::vector<std::uint8_t>& valid, std::optional<double> start_height,
+                  std::optional<double> end_height) {
   std::vector<std::uint8_t> known = valid;
   const std::size_t n = p.size();
   if (!known.front() && start_height) {
@@ -161,12 +161,12 @@ ElevationSamples sample_elevation(const RoadNetwork& network, const DemSampler& 
   }
 
   if (result.uncovered_samples > 0 && !options.allow_partial) {
-    const double percent = 100.0 * static_cast<double>(result.uncovered_samples) /
-                           static_cast<double>(result.samples);
+    const double percent =
+        100.0 * static_cast<double>(result.uncovered_samples) / static_cast<double>(result.samples);
     std::ostringstream msg;
     msg.precision(3);
-    msg << "the DEM does not cover the roads: " << result.uncovered_samples << " of "
-        << result.samples << " road samples (" << percent << " %) lie outside every DEM";
+    msg << "the DEM does not cover the roads: " << result.uncovered_samples << " of " << result.samples
+        << " road samples (" << percent << " %) lie outside every DEM";
     if (first_uncovered) {
       const Vec2 at = points[*first_uncovered];
       msg << ", e.g. at local (" << at.x() << ", " << at.y() << ") m";

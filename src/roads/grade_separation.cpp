@@ -15,10 +15,13 @@ struct Segment {
   std::size_t index;  // segment [index, index + 1] of the road's polyline
 };
 
-std::int64_t cell_key(long cx, long cy) { return (static_cast<std::int64_t>(cx) << 32) ^ (cy & 0xffffffff); }
+std::int64_t cell_key(long cx, long cy) {
+  return (static_cast<std::int64_t>(cx) << 32) ^ (cy & 0xffffffff);
+}
 
 // Intersection parameters (t on p0-p1, u on q0-q1) of two segments, if they cross.
-std::optional<std::pair<double, double>> intersect(const Vec2& p0, const Vec2& p1, const Vec2& q0, const Vec2& q1) {
+std::optional<std::pair<double, double>> intersect(const Vec2& p0, const Vec2& p1, const Vec2& q0,
+                                                   const Vec2& q1) {
   const Vec2 r = p1 - p0, s = q1 - q0;
   const double denom = r.x() * s.y() - r.y() * s.x();
   if (std::abs(denom) < 1e-12) return std::nullopt;  // parallel
@@ -48,8 +51,10 @@ std::vector<GradeSeparation> find_grade_separations(const RoadNetwork& network,
     for (std::size_t i = 0; i + 1 < road.points.size(); ++i) {
       const Vec2 lo = road.points[i].cwiseMin(road.points[i + 1]);
       const Vec2 hi = road.points[i].cwiseMax(road.points[i + 1]);
-      for (long cx = std::lround(std::floor(lo.x() / kCell)); cx <= std::lround(std::floor(hi.x() / kCell)); ++cx)
-        for (long cy = std::lround(std::floor(lo.y() / kCell)); cy <= std::lround(std::floor(hi.y() / kCell)); ++cy)
+      for (long cx = std::lround(std::floor(lo.x() / kCell)); cx <= std::lround(std::floor(hi.x() / kCell));
+           ++cx)
+        for (long cy = std::lround(std::floor(lo.y() / kCell)); cy <= std::lround(std::floor(hi.y() / kCell));
+             ++cy)
           grid[cell_key(cx, cy)].push_back({road.id, i});
     }
   }
@@ -87,7 +92,8 @@ std::vector<GradeSeparation> find_grade_separations(const RoadNetwork& network,
         sep.s_lower = a_up ? s_on(rb, ib, hit->second) : s_on(ra, ia, hit->first);
         sep.xy = xy;
         // The same crossing is seen from every cell both segments touch: keep it once.
-        const std::int64_t pair = (static_cast<std::int64_t>(up.id) << 32) | static_cast<std::uint32_t>(down.id);
+        const std::int64_t pair =
+            (static_cast<std::int64_t>(up.id) << 32) | static_cast<std::uint32_t>(down.id);
         bool duplicate = false;
         for (std::size_t k : by_pair[pair]) duplicate |= (found[k].xy - xy).norm() < 1.0;
         if (duplicate) continue;

@@ -52,7 +52,9 @@ constexpr bool rows_in_enum_order() {
 }
 static_assert(rows_in_enum_order(), "kClasses must list every HighwayClass in enum order");
 
-const ClassDefaults& row(HighwayClass cls) { return kClasses[static_cast<std::size_t>(cls)]; }
+const ClassDefaults& row(HighwayClass cls) {
+  return kClasses[static_cast<std::size_t>(cls)];
+}
 
 }  // namespace
 
@@ -65,16 +67,24 @@ std::optional<HighwayClass> parse_highway_class(std::string_view value) {
   return std::nullopt;
 }
 
-std::string_view to_string(HighwayClass cls) { return row(cls).name; }
+std::string_view to_string(HighwayClass cls) {
+  return row(cls).name;
+}
 
 bool is_motor_road(HighwayClass cls) {
   return static_cast<int>(cls) <= static_cast<int>(HighwayClass::living_street);
 }
 
-double default_lane_width_m(HighwayClass cls) { return row(cls).lane_width_m; }
+double default_lane_width_m(HighwayClass cls) {
+  return row(cls).lane_width_m;
+}
 
-int default_lanes_per_direction(HighwayClass cls) { return row(cls).lanes_per_direction; }
+int default_lanes_per_direction(HighwayClass cls) {
+  return row(cls).lanes_per_direction;
+}
 
-double default_speed_mps(HighwayClass cls) { return row(cls).speed_mps; }
+double default_speed_mps(HighwayClass cls) {
+  return row(cls).speed_mps;
+}
 
 }  // namespace relief

@@ -74,9 +74,7 @@ struct Piece {
 // Removes consecutive nodes at an identical position, always keeping both end nodes (they are
 // the ones shared with other pieces).
 void dedupe_points(std::vector<int>& nodes, const NodeTable& table) {
-  const auto pos = [&](int n) -> const Vec2& {
-    return table.positions[static_cast<std::size_t>(n)];
-  };
+  const auto pos = [&](int n) -> const Vec2& { return table.positions[static_cast<std::size_t>(n)]; };
   std::vector<int> kept;
   kept.reserve(nodes.size());
   for (std::size_t i = 0; i < nodes.size(); ++i) {
@@ -101,8 +99,7 @@ double piece_length_m(const Piece& piece, const NodeTable& table) {
 
 // Splits every way at nodes used more than once (by other ways or by itself) and drops the
 // pieces shorter than kMinPieceLength_m.
-std::vector<Piece> split_ways(const OsmRoads& osm, const NodeTable& table,
-                              Diagnostics& diagnostics) {
+std::vector<Piece> split_ways(const OsmRoads& osm, const NodeTable& table, Diagnostics& diagnostics) {
   std::vector<Piece> pieces;
   for (const OsmWay& way : osm.ways) {
     std::size_t start = 0;
@@ -113,16 +110,15 @@ std::vector<Piece> split_ways(const OsmRoads& osm, const NodeTable& table,
       Piece piece;
       piece.way_id = way.id;
       piece.attributes = &way.attributes;
-      for (std::size_t k = start; k <= i; ++k)
-        piece.nodes.push_back(table.index.at(way.node_ids[k]));
+      for (std::size_t k = start; k <= i; ++k) piece.nodes.push_back(table.index.at(way.node_ids[k]));
       dedupe_points(piece.nodes, table);
       if (piece.nodes.size() < 2 || piece_length_m(piece, table) < kMinPieceLength_m) {
         Diagnostic d;
         d.severity = Severity::warning;
         d.code = "network.degenerate_way";
         d.message = "way " + std::to_string(way.id) + ": the piece from node " +
-                    std::to_string(way.node_ids[start]) + " to node " +
-                    std::to_string(way.node_ids[i]) + " is shorter than 1 cm; dropped";
+                    std::to_string(way.node_ids[start]) + " to node " + std::to_string(way.node_ids[i]) +
+                    " is shorter than 1 cm; dropped";
         d.osm_way_id = way.id;
         diagnostics.report(std::move(d));
       } else {
@@ -154,8 +150,7 @@ std::vector<std::array<std::optional<Link>, 2>> find_links(const std::vector<Pie
   std::vector<int> end_count(table.ids.size(), 0);
   for (std::size_t p = 0; p < pieces.size(); ++p) {
     for (const bool at_start : {true, false}) {
-      const auto node =
-          static_cast<std::size_t>(at_start ? pieces[p].nodes.front() : pieces[p].nodes.back());
+      const auto node = static_cast<std::size_t>(at_start ? pieces[p].nodes.front() : pieces[p].nodes.back());
       if (end_count[node] < 2)
         ends[node][static_cast<std::size_t>(end_count[node])] = {static_cast<int>(p), at_start};
       ++end_count[node];
@@ -190,8 +185,7 @@ struct ChainStep {
 // Chains of linked pieces, ordered by their first piece in the input; the first piece of each
 // chain keeps its direction. Linear: every piece is visited at most three times.
 std::vector<std::vector<ChainStep>> merge_chains(
-    const std::vector<Piece>& pieces,
-    const std::vector<std::array<std::optional<Link>, 2>>& links) {
+    const std::vector<Piece>& pieces, const std::vector<std::array<std::optional<Link>, 2>>& links) {
   const auto link_at = [&](int piece, bool at_start) -> const std::optional<Link>& {
     return links[static_cast<std::size_t>(piece)][at_start ? 0 : 1];
   };
@@ -317,8 +311,8 @@ RoadNetwork build_network(const OsmRoads& osm, const GeoFrame& frame, Diagnostic
     network.roads.push_back(std::move(road));
   }
   if (network.roads.empty()) {
-    throw InvalidInput("no roads left to build a network from: all " +
-                       std::to_string(osm.ways.size()) + " ways are empty or shorter than 1 cm");
+    throw InvalidInput("no roads left to build a network from: all " + std::to_string(osm.ways.size()) +
+                       " ways are empty or shorter than 1 cm");
   }
   build_junctions(network, osm, table);
   return network;

@@ -32,7 +32,8 @@ class XodrReader {
   [[noreturn]] void fail(const std::string& what) const {
     throw InvalidInput(source_ + ": " + (where_.empty() ? "" : where_ + ": ") + what);
   }
-  [[noreturn]] void fail_attribute(const pugi::xml_node& node, const char* name, const std::string& what) const {
+  [[noreturn]] void fail_attribute(const pugi::xml_node& node, const char* name,
+                                   const std::string& what) const {
     fail(std::string("<") + node.name() + "> attribute '" + name + "' " + what);
   }
 
@@ -98,11 +99,14 @@ Poly3 XodrReader::poly(const pugi::xml_node& node) const {
                number_or(node, "d", 0.0)};
 }
 
-CubicProfile XodrReader::profile(const pugi::xml_node& parent, const char* element, const char* s_name) const {
+CubicProfile XodrReader::profile(const pugi::xml_node& parent, const char* element,
+                                 const char* s_name) const {
   std::vector<CubicPiece> pieces;
-  for (const pugi::xml_node n : parent.children(element)) pieces.push_back({number_or(n, s_name, 0.0), poly(n)});
+  for (const pugi::xml_node n : parent.children(element))
+    pieces.push_back({number_or(n, s_name, 0.0), poly(n)});
   if (pieces.empty()) return {};
-  std::stable_sort(pieces.begin(), pieces.end(), [](const CubicPiece& a, const CubicPiece& b) { return a.s < b.s; });
+  std::stable_sort(pieces.begin(), pieces.end(),
+                   [](const CubicPiece& a, const CubicPiece& b) { return a.s < b.s; });
   try {
     return CubicProfile(std::move(pieces));
   } catch (const InvalidInput& e) {
@@ -185,10 +189,10 @@ PlanView XodrReader::plan_view(const pugi::xml_node& road) const {
       g.curvature_end = number(spiral, "curvEnd");
     } else if (const pugi::xml_node pp = n.child("paramPoly3")) {
       g.kind = PlanGeometry::Kind::param_poly3;
-      g.u =
-          Poly3{number_or(pp, "aU", 0.0), number_or(pp, "bU", 0.0), number_or(pp, "cU", 0.0), number_or(pp, "dU", 0.0)};
-      g.v =
-          Poly3{number_or(pp, "aV", 0.0), number_or(pp, "bV", 0.0), number_or(pp, "cV", 0.0), number_or(pp, "dV", 0.0)};
+      g.u = Poly3{number_or(pp, "aU", 0.0), number_or(pp, "bU", 0.0), number_or(pp, "cU", 0.0),
+                  number_or(pp, "dU", 0.0)};
+      g.v = Poly3{number_or(pp, "aV", 0.0), number_or(pp, "bV", 0.0), number_or(pp, "cV", 0.0),
+                  number_or(pp, "dV", 0.0)};
       const std::string_view range = trimmed(pp.attribute("pRange").value());
       if (range.empty() || range == "normalized") {
         g.normalized = true;
@@ -351,7 +355,8 @@ JunctionModel XodrReader::junction(const pugi::xml_node& node) {
     c.id = integer(n, "id");
     c.incoming_road = integer_or(n, "incomingRoad", -1);
     // Direct junctions (1.7+) name the road they join as linkedRoad.
-    c.connecting_road = n.attribute("connectingRoad") ? integer(n, "connectingRoad") : integer_or(n, "linkedRoad", -1);
+    c.connecting_road =
+        n.attribute("connectingRoad") ? integer(n, "connectingRoad") : integer_or(n, "linkedRoad", -1);
     c.contact = contact(n, "contactPoint");
     for (const pugi::xml_node ll : n.children("laneLink"))
       c.lane_links.emplace_back(integer(ll, "from"), integer(ll, "to"));
@@ -365,8 +370,8 @@ RoadModel XodrReader::read(std::string_view xml) {
   const pugi::xml_parse_result parsed =
       doc.load_buffer(xml.data(), xml.size(), pugi::parse_default, pugi::encoding_auto);
   if (!parsed) {
-    fail(std::string("not well-formed XML (") + parsed.description() + " at byte " + std::to_string(parsed.offset) +
-         ")");
+    fail(std::string("not well-formed XML (") + parsed.description() + " at byte " +
+         std::to_string(parsed.offset) + ")");
   }
   const pugi::xml_node root = doc.child("OpenDRIVE");
   if (!root) fail("not an OpenDRIVE file (no <OpenDRIVE> root element)");
@@ -397,6 +402,8 @@ RoadModel read_opendrive(const std::filesystem::path& path) {
   return XodrReader(path.string()).read(content);
 }
 
-RoadModel parse_opendrive(std::string_view xml, std::string_view source) { return XodrReader(source).read(xml); }
+RoadModel parse_opendrive(std::string_view xml, std::string_view source) {
+  return XodrReader(source).read(xml);
+}
 
 }  // namespace relief

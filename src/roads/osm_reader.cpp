@@ -24,12 +24,13 @@ namespace relief {
 
 namespace {
 
-using LocationIndex =
-    osmium::index::map::FlexMem<osmium::unsigned_object_id_type, osmium::Location>;
+using LocationIndex = osmium::index::map::FlexMem<osmium::unsigned_object_id_type, osmium::Location>;
 // Negative ids (unsaved JOSM edits) get their own index instead of being lost.
 using LocationHandler = osmium::handler::NodeLocationsForWays<LocationIndex, LocationIndex>;
 
-std::string quoted(const std::filesystem::path& path) { return "'" + path.string() + "'"; }
+std::string quoted(const std::filesystem::path& path) {
+  return "'" + path.string() + "'";
+}
 
 // Collects traffic signals and the road ways, split at missing nodes, while libosmium reads.
 class RoadHandler : public osmium::handler::Handler {
@@ -201,9 +202,8 @@ std::vector<OsmWay> clip_ways(std::vector<OsmWay> ways, const LonLatBox& box,
         if (s >= 1.0) return {way.node_ids[hi], way.nodes[hi]};
         const LonLat& a = way.nodes[lo];
         const LonLat& b = way.nodes[hi];
-        const LonLat p{
-            std::clamp(a.lon_deg + s * (b.lon_deg - a.lon_deg), box.min_lon, box.max_lon),
-            std::clamp(a.lat_deg + s * (b.lat_deg - a.lat_deg), box.min_lat, box.max_lat)};
+        const LonLat p{std::clamp(a.lon_deg + s * (b.lon_deg - a.lon_deg), box.min_lon, box.max_lon),
+                       std::clamp(a.lat_deg + s * (b.lat_deg - a.lat_deg), box.min_lat, box.max_lat)};
         const auto key = std::make_tuple(way.node_ids[lo], way.node_ids[hi], s);
         auto [it, inserted] = crossing_ids.emplace(key, next_id);
         if (inserted) --next_id;
@@ -248,8 +248,8 @@ OsmRoads read_osm(const std::filesystem::path& path, const OsmReadOptions& optio
                               osmium::io::read_meta::no);
     const osmium::Box box = reader.header().box();
     if (box.valid()) {
-      roads.header_bounds = LonLatBox{box.bottom_left().lon(), box.bottom_left().lat(),
-                                      box.top_right().lon(), box.top_right().lat()};
+      roads.header_bounds = LonLatBox{box.bottom_left().lon(), box.bottom_left().lat(), box.top_right().lon(),
+                                      box.top_right().lat()};
     }
     LocationIndex positive_ids;
     LocationIndex negative_ids;

@@ -1,7 +1,7 @@
 #include "relief/roads/profile_fit.h"
 
-#include <Eigen/Sparse>
 #include <Eigen/OrderingMethods>
+#include <Eigen/Sparse>
 #include <Eigen/SparseCholesky>
 
 #include <algorithm>
@@ -95,7 +95,9 @@ std::array<double, 3> curvature_row(double h1, double h2) {
   return {2.0 / (h1 * (h1 + h2)), -2.0 / (h1 * h2), 2.0 / (h2 * (h1 + h2))};
 }
 
-bool is_structure(const Road& road) { return road.attributes.bridge || road.attributes.tunnel; }
+bool is_structure(const Road& road) {
+  return road.attributes.bridge || road.attributes.tunnel;
+}
 
 struct Triple {
   std::size_t a, b, c;
@@ -119,8 +121,8 @@ std::vector<Triple> smoothness_triples(const RoadNetwork& network, const std::ve
     const std::size_t n = p.size();
     const double lambda = is_structure(network.roads[r]) ? structure : ground;
     for (std::size_t i = 1; i + 1 < n; ++i) {
-      triples.push_back({vars.of(r, i - 1, n), vars.of(r, i, n), vars.of(r, i + 1, n),
-                         p.s[i] - p.s[i - 1], p.s[i + 1] - p.s[i], lambda});
+      triples.push_back({vars.of(r, i - 1, n), vars.of(r, i, n), vars.of(r, i + 1, n), p.s[i] - p.s[i - 1],
+                         p.s[i + 1] - p.s[i], lambda});
     }
   }
   return triples;
@@ -260,8 +262,8 @@ struct ActiveSetResult {
 };
 
 ActiveSetResult solve_active_set(const SpMat& P_original, const Vec& q_original, const SpMat& A_original,
-                                 const SpMat& extra_pattern, const Vec& l, const Vec& u, const Permutation& order,
-                                 double tolerance, int max_rounds) {
+                                 const SpMat& extra_pattern, const Vec& l, const Vec& u,
+                                 const Permutation& order, double tolerance, int max_rounds) {
   // Work in the elimination order: x_new = order * x.
   SpMat P;
   P = P_original.selfadjointView<Eigen::Lower>().twistedBy(order);
@@ -302,7 +304,8 @@ ActiveSetResult solve_active_set(const SpMat& P_original, const Vec& q_original,
     active.setFromTriplets(active_entries.begin(), active_entries.end());
     const SpMat M = base + SpMat(active.transpose() * active);
     ldlt.factorize(M);
-    if (ldlt.info() != Eigen::Success) throw Error("profile fit: the normal equations could not be factorised");
+    if (ldlt.info() != Eigen::Success)
+      throw Error("profile fit: the normal equations could not be factorised");
     out.x = ldlt.solve(active_rhs - q);
     out.rounds = round;
     const Vec ax = A * out.x;
@@ -386,7 +389,8 @@ double grade_limit(const ProfileFitOptions& options, HighwayClass cls) {
 
 ProfileFitResult fit_profiles(const RoadNetwork& network, const std::vector<RoadProfile>& raw,
                               const ProfileFitOptions& options, Diagnostics& diagnostics) {
-  if (raw.size() != network.roads.size()) throw InvalidInput("fit_profiles: one profile per road is required");
+  if (raw.size() != network.roads.size())
+    throw InvalidInput("fit_profiles: one profile per road is required");
   const VariableMap vars(network, raw);
   const std::size_t n = vars.count();
 
@@ -433,17 +437,20 @@ ProfileFitResult fit_profiles(const RoadNetwork& network, const std::vector<Road
   const std::vector<Triple> triples = smoothness_triples(network, raw, vars, options);
   std::vector<Triplet> p_entries;
   p_entries.reserve(n + 9 * triples.size());
-  for (std::size_t v = 0; v < n; ++v) p_entries.emplace_back(static_cast<int>(v), static_cast<int>(v), weight[static_cast<Eigen::Index>(v)]);
+  for (std::size_t v = 0; v < n; ++v)
+    p_entries.emplace_back(static_cast<int>(v), static_cast<int>(v), weight[static_cast<Eigen::Index>(v)]);
   Constraints cons;
   for (const Triple& t : triples) {
     const auto c = curvature_row(t.h1, t.h2);
-    const double w = t.lambda * 0.5 * (std::max(t.h1, kMinCurvatureSpacing) + std::max(t.h2, kMinCurvatureSpacing));
+    const double w =
+        t.lambda * 0.5 * (std::max(t.h1, kMinCurvatureSpacing) + std::max(t.h2, kMinCurvatureSpacing));
     const std::array<std::size_t, 3> idx{t.a, t.b, t.c};
     for (int i = 0; i < 3; ++i)
       for (int k = 0; k < 3; ++k)
         p_entries.emplace_back(static_cast<int>(idx[i]), static_cast<int>(idx[k]), w * c[i] * c[k]);
     if (options.max_curvature_per_m > 0.0 && t.h1 >= kMinCurvatureSpacing && t.h2 >= kMinCurvatureSpacing) {
-      cons.add({{t.a, c[0]}, {t.b, c[1]}, {t.c, c[2]}}, -options.max_curvature_per_m, options.max_curvature_per_m);
+      cons.add({{t.a, c[0]}, {t.b, c[1]}, {t.c, c[2]}}, -options.max_curvature_per_m,
+               options.max_curvature_per_m);
     }
   }
   add_junction_planes(network, raw, vars, lambda, p_entries);
@@ -476,7 +483,9 @@ ProfileFitResult fit_profiles(const RoadNetwork& network, const std::vector<Road
     };
     const auto u = at(sep.upper_road, sep.s_upper);
     const auto d = at(sep.lower_road, sep.s_lower);
-    cons.add({{u[0].first, u[0].second}, {u[1].first, u[1].second}, {d[0].first, -d[0].second},
+    cons.add({{u[0].first, u[0].second},
+              {u[1].first, u[1].second},
+              {d[0].first, -d[0].second},
               {d[1].first, -d[1].second}},
              options.clearance_m, kInf, /*within_pattern_of_p=*/false);
   }
@@ -517,7 +526,8 @@ ProfileFitResult fit_profiles(const RoadNetwork& network, const std::vector<Road
   result.profiles = raw;
   for (std::size_t r = 0; r < raw.size(); ++r) {
     RoadProfile& p = result.profiles[r];
-    for (std::size_t i = 0; i < p.size(); ++i) p.z[i] = solution.x[static_cast<Eigen::Index>(vars.of(r, i, p.size()))];
+    for (std::size_t i = 0; i < p.size(); ++i)
+      p.z[i] = solution.x[static_cast<Eigen::Index>(vars.of(r, i, p.size()))];
   }
   result.junction_z.resize(network.junctions.size());
   for (std::size_t j = 0; j < network.junctions.size(); ++j) {

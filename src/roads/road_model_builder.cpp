@@ -69,20 +69,33 @@ RoadMark mark(RoadMark::Type type, const char* color = "standard") {
 
 bool is_major(HighwayClass c) {
   switch (c) {
-    case HighwayClass::motorway: case HighwayClass::trunk: case HighwayClass::primary:
-    case HighwayClass::secondary: return true;
-    default: return false;
+    case HighwayClass::motorway:
+    case HighwayClass::trunk:
+    case HighwayClass::primary:
+    case HighwayClass::secondary:
+      return true;
+    default:
+      return false;
   }
 }
 
 std::string road_type(HighwayClass c) {
   switch (c) {
-    case HighwayClass::motorway: case HighwayClass::motorway_link: return "motorway";
-    case HighwayClass::trunk: case HighwayClass::trunk_link: return "rural";
-    case HighwayClass::footway: case HighwayClass::path: case HighwayClass::steps:
-    case HighwayClass::pedestrian: return "pedestrian";
-    case HighwayClass::cycleway: return "bicycle";
-    default: return "town";
+    case HighwayClass::motorway:
+    case HighwayClass::motorway_link:
+      return "motorway";
+    case HighwayClass::trunk:
+    case HighwayClass::trunk_link:
+      return "rural";
+    case HighwayClass::footway:
+    case HighwayClass::path:
+    case HighwayClass::steps:
+    case HighwayClass::pedestrian:
+      return "pedestrian";
+    case HighwayClass::cycleway:
+      return "bicycle";
+    default:
+      return "town";
   }
 }
 
@@ -229,11 +242,15 @@ void add_transition_road(RoadModel& model, ModelRoad& a_ref, bool a_at_start, in
   make_side(a_in, b_out, -1, sec.right);
   make_side(a_out, b_in, +1, sec.left);
   t.sections = {sec};
-  t.predecessor = RoadLink{RoadLink::Element::road, a.id, a_at_start ? RoadLink::Contact::start : RoadLink::Contact::end};
-  t.successor = RoadLink{RoadLink::Element::road, b.id, b_at_start ? RoadLink::Contact::start : RoadLink::Contact::end};
-  (a_at_start ? a_ref.predecessor : a_ref.successor) = RoadLink{RoadLink::Element::road, t.id, RoadLink::Contact::start};
+  t.predecessor =
+      RoadLink{RoadLink::Element::road, a.id, a_at_start ? RoadLink::Contact::start : RoadLink::Contact::end};
+  t.successor =
+      RoadLink{RoadLink::Element::road, b.id, b_at_start ? RoadLink::Contact::start : RoadLink::Contact::end};
+  (a_at_start ? a_ref.predecessor : a_ref.successor) =
+      RoadLink{RoadLink::Element::road, t.id, RoadLink::Contact::start};
   ModelRoad& b_ref = model.roads[model.road_index(b_id)];
-  (b_at_start ? b_ref.predecessor : b_ref.successor) = RoadLink{RoadLink::Element::road, t.id, RoadLink::Contact::end};
+  (b_at_start ? b_ref.predecessor : b_ref.successor) =
+      RoadLink{RoadLink::Element::road, t.id, RoadLink::Contact::end};
   model.roads.push_back(std::move(t));
 }
 
@@ -263,14 +280,16 @@ bool needs_transition(const RoadNetwork& network, const Junction& j) {
   if (da.dot(db) > 0.0 || reach * sin_kink > 0.002) return true;
   const auto [a_in, a_out] = arriving_departing(a.attributes, j.ends[0].at_start);
   const auto [b_in, b_out] = arriving_departing(b.attributes, j.ends[1].at_start);
-  return a_in != b_out || a_out != b_in || std::abs(a.attributes.lane_width_m - b.attributes.lane_width_m) > 1e-9;
+  return a_in != b_out || a_out != b_in ||
+         std::abs(a.attributes.lane_width_m - b.attributes.lane_width_m) > 1e-9;
 }
 
 }  // namespace
 
 RoadModelBuild build_road_model(const RoadNetwork& network, const std::vector<RoadProfile>& profiles,
                                 const RoadModelOptions& options, Diagnostics& diagnostics) {
-  if (profiles.size() != network.roads.size()) throw InvalidInput("build_road_model: one profile per road is required");
+  if (profiles.size() != network.roads.size())
+    throw InvalidInput("build_road_model: one profile per road is required");
   RoadModelBuild out;
   RoadModel& model = out.model;
   model.frame = network.frame;
@@ -338,7 +357,7 @@ RoadModelBuild build_road_model(const RoadNetwork& network, const std::vector<Ro
     m.osm_way_ids = road.osm_way_ids;
     m.type = road_type(road.attributes.highway);
     m.speed_mps = road.attributes.maxspeed_mps ? *road.attributes.maxspeed_mps
-                                                : default_speed_mps(road.attributes.highway);
+                                               : default_speed_mps(road.attributes.highway);
 
     // Elevation: the fitted profile's stations inside the trimmed part, on the reference line.
     std::vector<double> es{0.0}, ez{height_at_station(p, s0)};
@@ -377,7 +396,9 @@ RoadModelBuild build_road_model(const RoadNetwork& network, const std::vector<Ro
     for (const RoadEnd& e : j.ends) {
       if (out.model_road_of[e.road] >= 0) ends.push_back({e.road, e.at_start});
     }
-    const auto model_of = [&](const EndRef& e) -> ModelRoad& { return model.roads[out.model_road_of[e.network_road]]; };
+    const auto model_of = [&](const EndRef& e) -> ModelRoad& {
+      return model.roads[out.model_road_of[e.network_road]];
+    };
 
     if (transition[j.id] && ends.size() == 2) {
       add_transition_road(model, model_of(ends[0]), ends[0].at_start, model_of(ends[1]).id, ends[1].at_start);
@@ -388,9 +409,13 @@ RoadModelBuild build_road_model(const RoadNetwork& network, const std::vector<Ro
       // Direct link, lane to lane: same direction (end meets start) pairs right with right.
       ModelRoad& a = model_of(ends[0]);
       ModelRoad& b = model_of(ends[1]);
-      const auto contact = [](bool at_start) { return at_start ? RoadLink::Contact::start : RoadLink::Contact::end; };
-      (ends[0].at_start ? a.predecessor : a.successor) = RoadLink{RoadLink::Element::road, b.id, contact(ends[1].at_start)};
-      (ends[1].at_start ? b.predecessor : b.successor) = RoadLink{RoadLink::Element::road, a.id, contact(ends[0].at_start)};
+      const auto contact = [](bool at_start) {
+        return at_start ? RoadLink::Contact::start : RoadLink::Contact::end;
+      };
+      (ends[0].at_start ? a.predecessor : a.successor) =
+          RoadLink{RoadLink::Element::road, b.id, contact(ends[1].at_start)};
+      (ends[1].at_start ? b.predecessor : b.successor) =
+          RoadLink{RoadLink::Element::road, a.id, contact(ends[0].at_start)};
       const bool same_direction = ends[0].at_start != ends[1].at_start;
       const LaneSection& sa = ends[0].at_start ? a.sections.front() : a.sections.back();
       const LaneSection& sb = ends[1].at_start ? b.sections.front() : b.sections.back();
@@ -419,7 +444,8 @@ RoadModelBuild build_road_model(const RoadNetwork& network, const std::vector<Ro
     jm.name = "junction " + std::to_string(j.osm_node_id);
     for (const EndRef& e : ends) {
       ModelRoad& m = model_of(e);
-      (e.at_start ? m.predecessor : m.successor) = RoadLink{RoadLink::Element::junction, jm.id, RoadLink::Contact::start};
+      (e.at_start ? m.predecessor : m.successor) =
+          RoadLink{RoadLink::Element::junction, jm.id, RoadLink::Contact::start};
     }
     for (std::size_t ia = 0; ia < ends.size(); ++ia) {
       for (std::size_t ib = 0; ib < ends.size(); ++ib) {
@@ -475,8 +501,8 @@ RoadModelBuild build_road_model(const RoadNetwork& network, const std::vector<Ro
           ModelRoad c;
           c.id = static_cast<int>(model.roads.size()) + 1;
           c.junction = jm.id;
-          c.name = "connection " + std::to_string(a.id) + ":" + std::to_string(la) + " -> " + std::to_string(b.id) +
-                   ":" + std::to_string(lb);
+          c.name = "connection " + std::to_string(a.id) + ":" + std::to_string(la) + " -> " +
+                   std::to_string(b.id) + ":" + std::to_string(lb);
           c.type = a.type;
           c.speed_mps = std::min(a.speed_mps.value_or(10.0), b.speed_mps.value_or(10.0));
           const Pose2 from = lane_inner_pose(a, in.at_start, la);
@@ -497,8 +523,10 @@ RoadModelBuild build_road_model(const RoadNetwork& network, const std::vector<Ro
           lane.successor = lb;
           sec.right.push_back(lane);
           c.sections = {sec};
-          c.predecessor = RoadLink{RoadLink::Element::road, a.id, in.at_start ? RoadLink::Contact::start : RoadLink::Contact::end};
-          c.successor = RoadLink{RoadLink::Element::road, b.id, to.at_start ? RoadLink::Contact::start : RoadLink::Contact::end};
+          c.predecessor = RoadLink{RoadLink::Element::road, a.id,
+                                   in.at_start ? RoadLink::Contact::start : RoadLink::Contact::end};
+          c.successor = RoadLink{RoadLink::Element::road, b.id,
+                                 to.at_start ? RoadLink::Contact::start : RoadLink::Contact::end};
           JunctionConnection conn;
           conn.id = static_cast<int>(jm.connections.size());
           conn.incoming_road = a.id;
@@ -518,9 +546,10 @@ RoadModelBuild build_road_model(const RoadNetwork& network, const std::vector<Ro
         ModelRoad& m = model_of(e);
         (e.at_start ? m.predecessor : m.successor).reset();
       }
-      diagnostics.report(Severity::warning, "opendrive.junction_without_movements",
-                         "no movement is possible at the junction of OSM node " + std::to_string(j.osm_node_id) +
-                             " (one-ways all leading away, or turn lanes allowing none); its roads end there");
+      diagnostics.report(
+          Severity::warning, "opendrive.junction_without_movements",
+          "no movement is possible at the junction of OSM node " + std::to_string(j.osm_node_id) +
+              " (one-ways all leading away, or turn lanes allowing none); its roads end there");
       ++out.stats.junctions_without_movements;
       continue;
     }

@@ -10,7 +10,8 @@ namespace {
 // Inner and outer border points of a lane at s.
 std::pair<Vec3, Vec3> lane_borders(const ModelRoad& road, double s, int lane) {
   const int inner = lane < 0 ? lane + 1 : lane - 1;
-  return {surface_point(road, s, lane_border_t(road, s, inner)), surface_point(road, s, lane_border_t(road, s, lane))};
+  return {surface_point(road, s, lane_border_t(road, s, inner)),
+          surface_point(road, s, lane_border_t(road, s, lane))};
 }
 
 bool has_lane(const ModelRoad& road, double s, int lane) {

@@ -30,8 +30,9 @@ const LaneSection& section_at(const ModelRoad& road, double s) {
     throw InvalidInput("road " + std::to_string(road.id) + " has no lane sections");
   }
   // Last section starting at or before s; s before the first section uses the first.
-  const auto it = std::upper_bound(road.sections.begin(), road.sections.end(), s,
-                                   [](double value, const LaneSection& section) { return value < section.s; });
+  const auto it =
+      std::upper_bound(road.sections.begin(), road.sections.end(), s,
+                       [](double value, const LaneSection& section) { return value < section.s; });
   return it == road.sections.begin() ? road.sections.front() : *(it - 1);
 }
 
@@ -68,6 +69,8 @@ Vec3 surface_point(const ModelRoad& road, double s, double t) {
   return {xy.x(), xy.y(), z};
 }
 
-double heading_at(const ModelRoad& road, double s) { return road.plan.at(s).heading; }
+double heading_at(const ModelRoad& road, double s) {
+  return road.plan.at(s).heading;
+}
 
 }  // namespace relief

@@ -34,10 +34,11 @@ const std::map<std::string_view, std::vector<HighwayClass>>& class_groups() {
   using H = HighwayClass;
   static const std::map<std::string_view, std::vector<HighwayClass>> groups = {
       {"highway", {H::motorway, H::motorway_link, H::trunk, H::trunk_link}},
-      {"arterial", {H::primary, H::primary_link, H::secondary, H::secondary_link, H::tertiary,
-                    H::tertiary_link}},
-      {"local", {H::unclassified, H::residential, H::service, H::living_street, H::pedestrian,
-                 H::track, H::footway, H::path, H::cycleway, H::steps, H::bridleway}},
+      {"arterial",
+       {H::primary, H::primary_link, H::secondary, H::secondary_link, H::tertiary, H::tertiary_link}},
+      {"local",
+       {H::unclassified, H::residential, H::service, H::living_street, H::pedestrian, H::track, H::footway,
+        H::path, H::cycleway, H::steps, H::bridleway}},
   };
   return groups;
 }
@@ -193,9 +194,15 @@ NetworkStats network_stats(const RoadNetwork& network) {
   s.roads = network.roads.size();
   for (const Junction& j : network.junctions) {
     switch (j.kind) {
-      case JunctionKind::intersection: ++s.intersections; break;
-      case JunctionKind::attribute_change: ++s.attribute_changes; break;
-      case JunctionKind::dead_end: ++s.dead_ends; break;
+      case JunctionKind::intersection:
+        ++s.intersections;
+        break;
+      case JunctionKind::attribute_change:
+        ++s.attribute_changes;
+        break;
+      case JunctionKind::dead_end:
+        ++s.dead_ends;
+        break;
     }
     if (j.traffic_signal) ++s.traffic_signals;
   }
@@ -238,7 +245,8 @@ CutFillStats cut_fill(const std::vector<RoadProfile>& profiles, const std::vecto
     if (!p.has_height || !t.has_height) continue;
     for (std::size_t i = 0; i < p.size(); ++i) {
       const double d = p.z[i] - t.z[i];
-      const double w = 0.5 * ((i > 0 ? p.s[i] - p.s[i - 1] : 0.0) + (i + 1 < p.size() ? p.s[i + 1] - p.s[i] : 0.0));
+      const double w =
+          0.5 * ((i > 0 ? p.s[i] - p.s[i - 1] : 0.0) + (i + 1 < p.size() ? p.s[i + 1] - p.s[i] : 0.0));
       c.max_fill_m = std::max(c.max_fill_m, d);
       c.max_cut_m = std::max(c.max_cut_m, -d);
       sum += std::abs(d) * w;
@@ -286,7 +294,8 @@ HeightValidator::HeightValidator(const std::vector<RoadProfile>& stations, const
   dem_mid_.assign(heights.begin(), heights.begin() + static_cast<std::ptrdiff_t>(n));
   gradient_mid_.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
-    const auto &xp = heights[n + i], &xm = heights[2 * n + i], &yp = heights[3 * n + i], &ym = heights[4 * n + i];
+    const auto &xp = heights[n + i], &xm = heights[2 * n + i], &yp = heights[3 * n + i],
+               &ym = heights[4 * n + i];
     if (xp && xm && yp && ym) gradient_mid_[i] = Vec2((*xp - *xm) / (2 * step), (*yp - *ym) / (2 * step));
   }
 

@@ -193,10 +193,8 @@ std::optional<ParsedWay> parse_way_tags(const Tags& tags, std::string* warnings_
 
   // Lanes per direction. For a reversed way the tags' forward is our backward.
   const int per_direction = default_lanes_per_direction(a.highway);
-  const auto forward =
-      lane_tag(tags, parsed.reversed ? "lanes:backward" : "lanes:forward", warnings);
-  const auto backward =
-      lane_tag(tags, parsed.reversed ? "lanes:forward" : "lanes:backward", warnings);
+  const auto forward = lane_tag(tags, parsed.reversed ? "lanes:backward" : "lanes:forward", warnings);
+  const auto backward = lane_tag(tags, parsed.reversed ? "lanes:forward" : "lanes:backward", warnings);
   const auto total = lane_tag(tags, "lanes", warnings);
   if (a.oneway) {
     a.lanes_forward = forward ? *forward : total ? *total : per_direction;
@@ -234,17 +232,20 @@ std::optional<ParsedWay> parse_way_tags(const Tags& tags, std::string* warnings_
       lanes = static_cast<int>(entries.size());
     }
     if (static_cast<int>(entries.size()) != lanes) {
-      warnings.add(key, *value, "has " + std::to_string(entries.size()) + " lanes, the way " +
-                                    std::to_string(lanes) + "; ignored");
+      warnings.add(
+          key, *value,
+          "has " + std::to_string(entries.size()) + " lanes, the way " + std::to_string(lanes) + "; ignored");
       return;
     }
     out = std::move(entries);
   };
   if (a.oneway) {
-    turn_tag(find_tag(tags, "turn:lanes") ? "turn:lanes" : "turn:lanes:forward", a.lanes_forward, a.turn_forward);
+    turn_tag(find_tag(tags, "turn:lanes") ? "turn:lanes" : "turn:lanes:forward", a.lanes_forward,
+             a.turn_forward);
   } else {
     turn_tag(parsed.reversed ? "turn:lanes:backward" : "turn:lanes:forward", a.lanes_forward, a.turn_forward);
-    turn_tag(parsed.reversed ? "turn:lanes:forward" : "turn:lanes:backward", a.lanes_backward, a.turn_backward);
+    turn_tag(parsed.reversed ? "turn:lanes:forward" : "turn:lanes:backward", a.lanes_backward,
+             a.turn_backward);
   }
   // Lane width from the carriageway width, when plausible.
   a.lane_width_m = default_lane_width_m(a.highway);
@@ -253,8 +254,7 @@ std::optional<ParsedWay> parse_way_tags(const Tags& tags, std::string* warnings_
     const double lanes = a.lanes_forward + a.lanes_backward;
     if (!w) {
       warnings.add("width", *width, "is not a length; ignored");
-    } else if (const double per_lane = *w / lanes;
-               per_lane < kMinLaneWidth_m || per_lane > kMaxLaneWidth_m) {
+    } else if (const double per_lane = *w / lanes; per_lane < kMinLaneWidth_m || per_lane > kMaxLaneWidth_m) {
       std::ostringstream what;
       what << "gives " << per_lane << " m per lane (outside 2..6 m); ignored";
       warnings.add("width", *width, what.str());
@@ -279,10 +279,9 @@ std::optional<ParsedWay> parse_way_tags(const Tags& tags, std::string* warnings_
   if (const std::string* maxspeed = find_tag(tags, "maxspeed")) {
     a.maxspeed_mps = parse_speed_mps(*maxspeed);
     const std::string v = lower(trim(*maxspeed));
-    const bool symbolic = v == "none" || v == "signals" || v == "walk" || v == "variable" ||
-                          v.find(':') != std::string::npos;
-    if (!a.maxspeed_mps && !symbolic)
-      warnings.add("maxspeed", *maxspeed, "not understood; ignored");
+    const bool symbolic =
+        v == "none" || v == "signals" || v == "walk" || v == "variable" || v.find(':') != std::string::npos;
+    if (!a.maxspeed_mps && !symbolic) warnings.add("maxspeed", *maxspeed, "not understood; ignored");
   }
 
   if (const std::string* name = find_tag(tags, "name")) a.name = *name;

@@ -94,13 +94,12 @@ class GridTransform {
     const int j = std::clamp(static_cast<int>(v), 0, cells_ - 1);
     const double s = u - i;
     const double t = v - j;
-    return (1 - s) * (1 - t) * node(i, j) + s * (1 - t) * node(i + 1, j) +
-           (1 - s) * t * node(i, j + 1) + s * t * node(i + 1, j + 1);
+    return (1 - s) * (1 - t) * node(i, j) + s * (1 - t) * node(i + 1, j) + (1 - s) * t * node(i, j + 1) +
+           s * t * node(i + 1, j + 1);
   }
 
  private:
-  GridTransform(const Aabb2& box, int cells)
-      : box_(box), cells_(cells), cell_((box.max - box.min) / cells) {}
+  GridTransform(const Aabb2& box, int cells) : box_(box), cells_(cells), cell_((box.max - box.min) / cells) {}
 
   [[nodiscard]] const Vec2& node(int i, int j) const {
     return nodes_[static_cast<std::size_t>(j) * (cells_ + 1) + i];
@@ -130,9 +129,8 @@ class GridTransform {
     double worst = 0.0;
     for (std::size_t k = 0; k < centres.size(); ++k) {
       const Vec2 error = (apply(centres[k]) - truth[k]).cwiseAbs().cwiseQuotient(pixel_size);
-      worst = std::max(worst, std::isfinite(error.maxCoeff())
-                                  ? error.maxCoeff()
-                                  : std::numeric_limits<double>::infinity());
+      worst = std::max(worst, std::isfinite(error.maxCoeff()) ? error.maxCoeff()
+                                                              : std::numeric_limits<double>::infinity());
     }
     return worst;
   }
@@ -178,10 +176,9 @@ struct Raster {
   [[nodiscard]] std::optional<double> bilinear(const Vec2& uv) const {
     const AxisCells a = axis_cells(uv.x(), grid.width);
     const AxisCells b = axis_cells(uv.y(), grid.height);
-    const std::array<double, 4> z{heights.at(a.i0, b.i0), heights.at(a.i1, b.i0),
-                                  heights.at(a.i0, b.i1), heights.at(a.i1, b.i1)};
-    const std::array<double, 4> w{(1 - a.t) * (1 - b.t), a.t * (1 - b.t), (1 - a.t) * b.t,
-                                  a.t * b.t};
+    const std::array<double, 4> z{heights.at(a.i0, b.i0), heights.at(a.i1, b.i0), heights.at(a.i0, b.i1),
+                                  heights.at(a.i1, b.i1)};
+    const std::array<double, 4> w{(1 - a.t) * (1 - b.t), a.t * (1 - b.t), (1 - a.t) * b.t, a.t * b.t};
     double sum = 0.0;
     double weight = 0.0;
     for (std::size_t k = 0; k < 4; ++k) {
@@ -200,8 +197,7 @@ struct Raster {
     const AxisCells b = axis_cells(uv.y(), grid.height);
     const double cu = a.i0 + a.t;  // clamped position, in cell indices
     const double cv = b.i0 + b.t;
-    const std::array<std::array<int, 2>, 4> cells{
-        {{a.i0, b.i0}, {a.i1, b.i0}, {a.i0, b.i1}, {a.i1, b.i1}}};
+    const std::array<std::array<int, 2>, 4> cells{{{a.i0, b.i0}, {a.i1, b.i0}, {a.i0, b.i1}, {a.i1, b.i1}}};
     double sum = 0.0;
     double weight = 0.0;
     for (const auto& [col, row] : cells) {
@@ -233,9 +229,12 @@ struct Raster {
     const Vec2 uv = grid.index_of(xy);
     if (!grid.inside(uv)) return std::nullopt;
     switch (method) {
-      case Interpolation::bilinear: return bilinear(uv);
-      case Interpolation::idw: return idw(uv);
-      case Interpolation::nearest: return nearest(uv);
+      case Interpolation::bilinear:
+        return bilinear(uv);
+      case Interpolation::idw:
+        return idw(uv);
+      case Interpolation::nearest:
+        return nearest(uv);
     }
     return std::nullopt;
   }
@@ -284,12 +283,14 @@ std::vector<double> to_metres(std::vector<double> raw, const DemInfo& info) {
 
 std::string format_box(const LonLatBox& b) {
   std::ostringstream out;
-  out << std::fixed << std::setprecision(4) << "lon " << b.min_lon << " to " << b.max_lon
-      << ", lat " << b.min_lat << " to " << b.max_lat;
+  out << std::fixed << std::setprecision(4) << "lon " << b.min_lon << " to " << b.max_lon << ", lat "
+      << b.min_lat << " to " << b.max_lat;
   return out.str();
 }
 
-LonLatBox lonlat_box(const Aabb2& b) { return {b.min.x(), b.min.y(), b.max.x(), b.max.y()}; }
+LonLatBox lonlat_box(const Aabb2& b) {
+  return {b.min.x(), b.min.y(), b.max.x(), b.max.y()};
+}
 
 std::string quoted_list(const std::vector<std::string>& paths) {
   std::string out;
@@ -322,12 +323,11 @@ Aabb2 extent_in_frame(const Raster& raster) {
   return out;
 }
 
-void report_missing_grid(const DemInfo& info, const std::string& frame_crs,
-                         Diagnostics* diagnostics) {
+void report_missing_grid(const DemInfo& info, const std::string& frame_crs, Diagnostics* diagnostics) {
   if (diagnostics == nullptr) return;
   std::ostringstream message;
-  message << "DEM '" << info.path << "': a more accurate transformation from " << frame_crs
-          << " to " << info.crs << " needs the grid(s) " << info.missing_grids
+  message << "DEM '" << info.path << "': a more accurate transformation from " << frame_crs << " to "
+          << info.crs << " needs the grid(s) " << info.missing_grids
           << ", which are not installed (projsync --file <grid> installs them); using '"
           << info.transform_name << "'";
   if (info.transform_accuracy_m) {
@@ -350,8 +350,7 @@ struct Opened {
 
 // Opens one raster, builds its transformation and reads the window over `area_crs`.
 Opened open_raster(const std::string& path, const GeoFrame& frame, const Aabb2& area_crs,
-                   const LonLatBox& area_wgs84, const DemOptions& options,
-                   Diagnostics* diagnostics) {
+                   const LonLatBox& area_wgs84, const DemOptions& options, Diagnostics* diagnostics) {
   const auto dataset = gdal::Dataset::open_raster(path);
   DemInfo info = gdal::describe_dem(dataset, options.unit);
   CrsTransform to_raster(frame.crs(), info.crs_wkt, area_wgs84);
@@ -370,15 +369,13 @@ Opened open_raster(const std::string& path, const GeoFrame& frame, const Aabb2& 
     return {info, std::nullopt, Unused::all_nodata};
   }
   auto fast = GridTransform::build(to_raster, area_crs, info.pixel_size, kGridTolerancePx);
-  return {
-      info,
-      Raster{info, grid, HeightWindow{window, std::move(z)}, std::move(to_raster), std::move(fast)},
-      Unused::none};
+  return {info, Raster{info, grid, HeightWindow{window, std::move(z)}, std::move(to_raster), std::move(fast)},
+          Unused::none};
 }
 
 // The exception when no raster has a valid height over the area.
-[[noreturn]] void throw_no_height(const std::vector<DemInfo>& sources,
-                                  const std::vector<Unused>& unused, const LonLatBox& area) {
+[[noreturn]] void throw_no_height(const std::vector<DemInfo>& sources, const std::vector<Unused>& unused,
+                                  const LonLatBox& area) {
   std::vector<std::string> paths;
   bool all_outside = true;
   for (std::size_t i = 0; i < sources.size(); ++i) {
@@ -393,8 +390,8 @@ Opened open_raster(const std::string& path, const GeoFrame& frame, const Aabb2& 
       extents += "; '" + s.path + "' covers " +
                  (s.extent_wgs84 ? format_box(*s.extent_wgs84) : std::string("an unknown area"));
     }
-    throw CoverageError(
-        dems + (paths.size() == 1 ? " does" : " do") + " not cover " + roads + extents, 100.0);
+    throw CoverageError(dems + (paths.size() == 1 ? " does" : " do") + " not cover " + roads + extents,
+                        100.0);
   }
   if (paths.size() == 1) {
     throw InvalidInput(dems + " is all nodata over " + roads);
@@ -417,14 +414,13 @@ struct DemSampler::Impl {
   Aabb2 coverage;                // local frame
 };
 
-DemSampler::DemSampler(const std::vector<std::string>& paths, const GeoFrame& frame,
-                       const Aabb2& area, const DemOptions& options, Diagnostics* diagnostics)
+DemSampler::DemSampler(const std::vector<std::string>& paths, const GeoFrame& frame, const Aabb2& area,
+                       const DemOptions& options, Diagnostics* diagnostics)
     : impl_(std::make_unique<Impl>()) {
   if (paths.empty()) throw InvalidInput("no DEM given");
   if (area.empty()) throw InvalidInput("the area to read from the DEMs is empty");
   if (!(options.margin_m >= 0.0)) {
-    throw InvalidInput("the DEM margin must be >= 0 m (got " + std::to_string(options.margin_m) +
-                       ")");
+    throw InvalidInput("the DEM margin must be >= 0 m (got " + std::to_string(options.margin_m) + ")");
   }
   impl_->origin = frame.origin();
   impl_->interpolation = options.interpolation;
@@ -433,8 +429,7 @@ DemSampler::DemSampler(const std::vector<std::string>& paths, const GeoFrame& fr
   Aabb2 area_crs = area.inflated(options.margin_m);
   area_crs.min += frame.origin();
   area_crs.max += frame.origin();
-  const LonLatBox area_wgs84 =
-      lonlat_box(CrsTransform(frame.crs(), "EPSG:4326").transform_bounds(area_crs));
+  const LonLatBox area_wgs84 = lonlat_box(CrsTransform(frame.crs(), "EPSG:4326").transform_bounds(area_crs));
 
   std::vector<Unused> unused;
   for (const auto& path : paths) {
@@ -464,8 +459,7 @@ std::optional<double> DemSampler::height_at(const Vec2& local) const {
   return out;
 }
 
-void DemSampler::heights_at(std::span<const Vec2> points,
-                            std::span<std::optional<double>> out) const {
+void DemSampler::heights_at(std::span<const Vec2> points, std::span<std::optional<double>> out) const {
   if (out.size() != points.size()) {
     throw InvalidInput("heights_at: " + std::to_string(points.size()) + " points but room for " +
                        std::to_string(out.size()) + " heights");
@@ -509,8 +503,14 @@ std::optional<Vec2> DemSampler::gradient_at(const Vec2& local, double step_m) co
   return Vec2((*z[0] - *z[1]) / (2.0 * step_m), (*z[2] - *z[3]) / (2.0 * step_m));
 }
 
-const std::vector<DemInfo>& DemSampler::sources() const { return impl_->sources; }
-Interpolation DemSampler::interpolation() const { return impl_->interpolation; }
-Aabb2 DemSampler::coverage_bounds() const { return impl_->coverage; }
+const std::vector<DemInfo>& DemSampler::sources() const {
+  return impl_->sources;
+}
+Interpolation DemSampler::interpolation() const {
+  return impl_->interpolation;
+}
+Aabb2 DemSampler::coverage_bounds() const {
+  return impl_->coverage;
+}
 
 }  // namespace relief

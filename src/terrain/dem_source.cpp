@@ -19,17 +19,14 @@ std::string normalised(std::string_view text) {
   if (first == std::string_view::npos) return {};
   std::string out(text.substr(first, last - first + 1));
   for (char& c : out) {
-    c = (c == ' ' || c == '-') ? '_'
-                               : static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    c = (c == ' ' || c == '-') ? '_' : static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
   }
   return out;
 }
 
 template <typename T, std::size_t N>
-std::optional<T> lookup(const std::array<std::pair<std::string_view, T>, N>& table,
-                        std::string_view key) {
-  const auto it =
-      std::find_if(table.begin(), table.end(), [&](const auto& e) { return e.first == key; });
+std::optional<T> lookup(const std::array<std::pair<std::string_view, T>, N>& table, std::string_view key) {
+  const auto it = std::find_if(table.begin(), table.end(), [&](const auto& e) { return e.first == key; });
   if (it == table.end()) return std::nullopt;
   return it->second;
 }
@@ -38,18 +35,24 @@ std::optional<T> lookup(const std::array<std::pair<std::string_view, T>, N>& tab
 
 double metres_per_unit(VerticalUnit unit) {
   switch (unit) {
-    case VerticalUnit::metre: return 1.0;
-    case VerticalUnit::foot: return 0.3048;                     // international foot, exact
-    case VerticalUnit::us_survey_foot: return 1200.0 / 3937.0;  // US survey foot, exact
+    case VerticalUnit::metre:
+      return 1.0;
+    case VerticalUnit::foot:
+      return 0.3048;  // international foot, exact
+    case VerticalUnit::us_survey_foot:
+      return 1200.0 / 3937.0;  // US survey foot, exact
   }
   return 1.0;
 }
 
 std::string to_string(VerticalUnit unit) {
   switch (unit) {
-    case VerticalUnit::metre: return "m";
-    case VerticalUnit::foot: return "ft";
-    case VerticalUnit::us_survey_foot: return "us-ft";
+    case VerticalUnit::metre:
+      return "m";
+    case VerticalUnit::foot:
+      return "ft";
+    case VerticalUnit::us_survey_foot:
+      return "us-ft";
   }
   return "m";
 }
@@ -78,9 +81,12 @@ std::optional<VerticalUnit> parse_vertical_unit(std::string_view text) {
 
 std::string to_string(Interpolation interpolation) {
   switch (interpolation) {
-    case Interpolation::bilinear: return "bilinear";
-    case Interpolation::idw: return "idw";
-    case Interpolation::nearest: return "nearest";
+    case Interpolation::bilinear:
+      return "bilinear";
+    case Interpolation::idw:
+      return "idw";
+    case Interpolation::nearest:
+      return "nearest";
   }
   return "bilinear";
 }

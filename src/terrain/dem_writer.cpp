@@ -12,9 +12,9 @@ namespace {
 
 void check_grid_shape(double dx, double dy, int width, int height) {
   if (!(dx > 0.0) || !(dy > 0.0) || width <= 0 || height <= 0) {
-    throw InvalidInput("a DEM grid needs positive pixel sizes and dimensions (got dx " +
-                       std::to_string(dx) + ", dy " + std::to_string(dy) + ", " +
-                       std::to_string(width) + " x " + std::to_string(height) + " pixels)");
+    throw InvalidInput("a DEM grid needs positive pixel sizes and dimensions (got dx " + std::to_string(dx) +
+                       ", dy " + std::to_string(dy) + ", " + std::to_string(width) + " x " +
+                       std::to_string(height) + " pixels)");
   }
 }
 
@@ -43,8 +43,8 @@ void write_grid(const std::string& path, const DemGrid& grid) {
 
 }  // namespace
 
-DemGrid make_dem_grid(std::string crs, double x0, double y0, double dx, double dy, int width,
-                      int height, const std::function<double(double, double)>& f) {
+DemGrid make_dem_grid(std::string crs, double x0, double y0, double dx, double dy, int width, int height,
+                      const std::function<double(double, double)>& f) {
   check_grid_shape(dx, dy, width, height);
   DemGrid grid;
   grid.crs = std::move(crs);
@@ -68,8 +68,8 @@ void write_geotiff(const std::string& path, const DemGrid& grid) {
   check_grid_shape(grid.dx, grid.dy, grid.width, grid.height);
   if (grid.values.size() != static_cast<std::size_t>(grid.width) * grid.height) {
     throw InvalidInput("DEM grid for '" + path + "' has " + std::to_string(grid.values.size()) +
-                       " values for " + std::to_string(grid.width) + " x " +
-                       std::to_string(grid.height) + " pixels");
+                       " values for " + std::to_string(grid.width) + " x " + std::to_string(grid.height) +
+                       " pixels");
   }
   const std::string temporary = temporary_name(path);
   try {

@@ -40,7 +40,9 @@ std::string last_error() {
   return (message != nullptr && *message != '\0') ? message : "unknown GDAL error";
 }
 
-bool failed_since_reset() { return CPLGetLastErrorType() >= CE_Failure; }
+bool failed_since_reset() {
+  return CPLGetLastErrorType() >= CE_Failure;
+}
 
 // True when the bytes of `path` can be read (GDAL virtual file systems included).
 bool readable(const std::string& path) {
@@ -50,7 +52,9 @@ bool readable(const std::string& path) {
   return true;
 }
 
-GDALDatasetH as_dataset(void* handle) { return static_cast<GDALDatasetH>(handle); }
+GDALDatasetH as_dataset(void* handle) {
+  return static_cast<GDALDatasetH>(handle);
+}
 
 struct SrsDeleter {
   void operator()(OGRSpatialReferenceH srs) const { OSRDestroySpatialReference(srs); }
@@ -62,9 +66,8 @@ using SrsPtr = std::unique_ptr<std::remove_pointer_t<OGRSpatialReferenceH>, SrsD
 Dataset Dataset::open_raster(const std::string& path) {
   ensure_registered();
   QuietErrors quiet;
-  GDALDatasetH handle =
-      GDALOpenEx(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY | GDAL_OF_VERBOSE_ERROR, nullptr,
-                 nullptr, nullptr);
+  GDALDatasetH handle = GDALOpenEx(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY | GDAL_OF_VERBOSE_ERROR,
+                                   nullptr, nullptr, nullptr);
   if (handle == nullptr) {
     const std::string why = last_error();
     if (!readable(path)) throw IoError("cannot open DEM '" + path + "': " + why);
@@ -108,8 +111,12 @@ Dataset& Dataset::operator=(Dataset&& other) noexcept {
   return *this;
 }
 
-int Dataset::width() const { return GDALGetRasterXSize(as_dataset(handle_)); }
-int Dataset::height() const { return GDALGetRasterYSize(as_dataset(handle_)); }
+int Dataset::width() const {
+  return GDALGetRasterXSize(as_dataset(handle_));
+}
+int Dataset::height() const {
+  return GDALGetRasterYSize(as_dataset(handle_));
+}
 
 GeoTransform Dataset::geo_transform() const {
   QuietErrors quiet;
@@ -207,8 +214,7 @@ void Dataset::set_nodata(double nodata) {
 
 void Dataset::set_unit_type(const std::string& unit_type) {
   QuietErrors quiet;
-  if (GDALSetRasterUnitType(GDALGetRasterBand(as_dataset(handle_), 1), unit_type.c_str()) !=
-      CE_None) {
+  if (GDALSetRasterUnitType(GDALGetRasterBand(as_dataset(handle_), 1), unit_type.c_str()) != CE_None) {
     throw IoError("cannot write the unit type of '" + path_ + "': " + last_error());
   }
 }
@@ -236,8 +242,7 @@ DemInfo describe_dem(const Dataset& dataset, std::optional<VerticalUnit> unit) {
   info.path = dataset.path();
   const GeoTransform gt = dataset.geo_transform();
   if (gt[2] != 0.0 || gt[4] != 0.0) {
-    throw InvalidInput("DEM '" + info.path +
-                       "' is rotated or sheared (geotransform rotation terms " +
+    throw InvalidInput("DEM '" + info.path + "' is rotated or sheared (geotransform rotation terms " +
                        std::to_string(gt[2]) + ", " + std::to_string(gt[4]) +
                        "); only north-up rasters are supported: warp it first (gdalwarp)");
   }
@@ -270,9 +275,8 @@ DemInfo describe_dem(const Dataset& dataset, std::optional<VerticalUnit> unit) {
   } else if (!facts.unit_type.empty()) {
     const auto stated = parse_vertical_unit(facts.unit_type);
     if (!stated) {
-      throw InvalidInput(
-          "DEM '" + info.path + "' states the vertical unit '" + facts.unit_type +
-          "', which relief does not know: state the unit (m, ft or us-ft) explicitly");
+      throw InvalidInput("DEM '" + info.path + "' states the vertical unit '" + facts.unit_type +
+                         "', which relief does not know: state the unit (m, ft or us-ft) explicitly");
     }
     info.unit = *stated;
     info.unit_from_metadata = true;

@@ -24,7 +24,7 @@ TEST(GeoJsonWriter, WritesOneLineStringPerRoadInLonLatWithHeights) {
   std::vector<RoadProfile> profiles(2);
   for (int r = 0; r < 2; ++r) {
     profiles[r] = make_stations(net.roads[r], 5.0);
-    for (std::size_t i = 0; i < profiles[r].size(); ++i) profiles[r].z[i] = 12.0 + i;
+    for (std::size_t i = 0; i < profiles[r].size(); ++i) profiles[r].z[i] = 12.0 + static_cast<double>(i);
   }
   profiles[1].has_height = false;  // left out
   std::ostringstream out;

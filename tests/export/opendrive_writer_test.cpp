@@ -44,7 +44,9 @@ PlanGeometry arc(double s, Vec2 start, double heading, double length, double cur
 }
 
 // The next record starting where `g` ends.
-Pose2 end_of(const PlanGeometry& g) { return evaluate(g, g.length); }
+Pose2 end_of(const PlanGeometry& g) {
+  return evaluate(g, g.length);
+}
 
 LaneModel lane(int id, const std::string& type, CubicProfile width, RoadMark::Type mark,
                std::optional<int> predecessor = std::nullopt, std::optional<int> successor = std::nullopt) {
@@ -58,8 +60,12 @@ LaneModel lane(int id, const std::string& type, CubicProfile width, RoadMark::Ty
   return l;
 }
 
-RoadLink road_link(int id, RoadLink::Contact contact) { return {RoadLink::Element::road, id, contact}; }
-RoadLink junction_link(int id) { return {RoadLink::Element::junction, id, RoadLink::Contact::start}; }
+RoadLink road_link(int id, RoadLink::Contact contact) {
+  return {RoadLink::Element::road, id, contact};
+}
+RoadLink junction_link(int id) {
+  return {RoadLink::Element::junction, id, RoadLink::Contact::start};
+}
 
 // Road 1: a two-way street (line + arc, two lanes each way, two lane sections, a lane offset)
 // ending in junction 100; road 3 (paramPoly3) connects it to road 2 (line + spiral).
@@ -82,9 +88,10 @@ RoadModel sample_model() {
   s0.s = 0.0;
   s0.left = {lane(1, "driving", CubicProfile::constant(3.5), RoadMark::Type::broken, std::nullopt, 1),
              lane(2, "sidewalk", CubicProfile::constant(2.0), RoadMark::Type::none)};
-  s0.right = {lane(-1, "driving", CubicProfile({{0.0, {3.5, 0.0, 0.0, 0.0}}, {20.0, {3.5, 0.01, -2e-4, 0.0}}}),
-                   RoadMark::Type::broken, std::nullopt, -1),
-              lane(-2, "shoulder", CubicProfile::constant(1.0), RoadMark::Type::solid)};
+  s0.right = {
+      lane(-1, "driving", CubicProfile({{0.0, {3.5, 0.0, 0.0, 0.0}}, {20.0, {3.5, 0.01, -2e-4, 0.0}}}),
+           RoadMark::Type::broken, std::nullopt, -1),
+      lane(-2, "shoulder", CubicProfile::constant(1.0), RoadMark::Type::solid)};
   s0.centre_mark = {RoadMark::Type::solid_solid, "yellow", 0.15};
   LaneSection s1;
   s1.s = 60.0;
@@ -193,7 +200,9 @@ std::string read_text(const fs::path& path) {
 
 // ../shared/opendrive-xsd beside the source tree, as a normalised path: xmllint compiles the
 // schema's circular includes twice when the path contains "..".
-fs::path xsd_dir() { return (fs::path(RELIEF_SOURCE_DIR) / ".." / "shared" / "opendrive-xsd").lexically_normal(); }
+fs::path xsd_dir() {
+  return (fs::path(RELIEF_SOURCE_DIR) / ".." / "shared" / "opendrive-xsd").lexically_normal();
+}
 
 bool have_command(const std::string& command) {
   return std::system(("command -v " + command + " >/dev/null 2>&1").c_str()) == 0;
@@ -211,7 +220,9 @@ TEST(OpenDriveWriter, ValidatesAgainstTheOpenDrive17Schema) {
   if (!fs::exists(xsd)) GTEST_SKIP() << "no " << xsd;
   if (!have_command("xmllint")) GTEST_SKIP() << "no xmllint";
   const fs::path file = write_xodr("v17", sample_model());
-  EXPECT_EQ(run_failing("xmllint --noout --schema " + xsd.string() + " " + file.string(), file.string() + ".log"), "");
+  EXPECT_EQ(
+      run_failing("xmllint --noout --schema " + xsd.string() + " " + file.string(), file.string() + ".log"),
+      "");
 }
 
 TEST(OpenDriveWriter, ValidatesAgainstTheOpenDrive18Schema) {
@@ -279,8 +290,10 @@ TEST(OpenDriveWriter, CarriesAttributionAndGeoReference) {
   const RoadModel model = tiny_model();
   const std::string text = to_xodr(model);
   EXPECT_NE(text.find("<!-- Road data (c) OpenStreetMap contributors"), std::string::npos);
-  EXPECT_NE(text.find("<userData code=\"attribution\" value=\"Road data (c) OpenStreetMap"), std::string::npos);
-  EXPECT_NE(text.find("<geoReference><![CDATA[" + model.frame.proj_string() + "]]></geoReference>"), std::string::npos);
+  EXPECT_NE(text.find("<userData code=\"attribution\" value=\"Road data (c) OpenStreetMap"),
+            std::string::npos);
+  EXPECT_NE(text.find("<geoReference><![CDATA[" + model.frame.proj_string() + "]]></geoReference>"),
+            std::string::npos);
 }
 
 TEST(OpenDriveWriter, NumbersIgnoreTheStreamLocaleAndNeverPrintMinusZero) {
@@ -295,7 +308,8 @@ TEST(OpenDriveWriter, NumbersIgnoreTheStreamLocaleAndNeverPrintMinusZero) {
   out.imbue(std::locale(std::locale::classic(), new Comma));
   write_opendrive(out, model, options);
   // Fixed decimals for values, the shortest exact text for coefficients; no "-0" either way.
-  EXPECT_NE(out.str().find("<elevation s=\"0.000\" a=\"0.000\" b=\"0\" c=\"0\" d=\"0\""), std::string::npos) << out.str();
+  EXPECT_NE(out.str().find("<elevation s=\"0.000\" a=\"0.000\" b=\"0\" c=\"0\" d=\"0\""), std::string::npos)
+      << out.str();
   EXPECT_EQ(out.str().find("\"-0.000\""), std::string::npos);
   EXPECT_FALSE(std::regex_search(out.str(), std::regex("[0-9],[0-9]")));
 }
@@ -340,7 +354,8 @@ void expect_mark(const RoadMark& read, const RoadMark& written, const std::strin
   EXPECT_NEAR(read.width_m, written.width_m, 1e-9) << what;
 }
 
-void expect_lanes(const std::vector<LaneModel>& read, const std::vector<LaneModel>& written, const std::string& what) {
+void expect_lanes(const std::vector<LaneModel>& read, const std::vector<LaneModel>& written,
+                  const std::string& what) {
   ASSERT_EQ(read.size(), written.size()) << what;
   for (std::size_t i = 0; i < read.size(); ++i) {
     const std::string w = what + " lane " + std::to_string(written[i].id);
@@ -353,7 +368,8 @@ void expect_lanes(const std::vector<LaneModel>& read, const std::vector<LaneMode
   }
 }
 
-void expect_link(const std::optional<RoadLink>& read, const std::optional<RoadLink>& written, const std::string& what) {
+void expect_link(const std::optional<RoadLink>& read, const std::optional<RoadLink>& written,
+                 const std::string& what) {
   ASSERT_EQ(read.has_value(), written.has_value()) << what;
   if (!read) return;
   EXPECT_EQ(read->element, written->element) << what;
@@ -436,8 +452,8 @@ TEST(OpenDriveWriter, RoundTripsThroughTheReader) {
 
 TEST(OpenDriveWriter, ThrowsOnNonFiniteNumbersNamingTheRoad) {
   RoadModel model = sample_model();
-  model.roads[1].elevation =
-      CubicProfile(std::vector<CubicPiece>{{0.0, {12.0, std::numeric_limits<double>::quiet_NaN(), 0.0, 0.0}}});
+  model.roads[1].elevation = CubicProfile(
+      std::vector<CubicPiece>{{0.0, {12.0, std::numeric_limits<double>::quiet_NaN(), 0.0, 0.0}}});
   try {
     (void)to_xodr(model);
     FAIL() << "no exception";

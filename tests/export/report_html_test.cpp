@@ -36,7 +36,8 @@ MethodReport method(const std::string& name, double rmse_ground_m, double max_gr
   m.ground.vs_dem = ErrorStats{rmse_ground_m * 0.8, rmse_ground_m, rmse_ground_m * 3.0, 0.0, 450};
   m.structures.vs_dem = ErrorStats{1.5, 2.0, 5.0, 0.0, 200};
   m.gradient.max_percent = max_grade_percent;
-  m.gradient.by_class["residential"] = GradeClassStats{0.1, 15.0, 100.0, max_grade_percent, max_grade_percent};
+  m.gradient.by_class["residential"] =
+      GradeClassStats{0.1, 15.0, 100.0, max_grade_percent, max_grade_percent};
   m.separations = 1;
   m.min_clearance_m = 4.5;
   return m;
@@ -177,7 +178,8 @@ TEST(ReportHtml, ComparisonTableHasEachMethodsRmseAndHighlightsTheWrittenOne) {
 TEST(ReportHtml, HistogramBinsSumToTheRoadLength) {
   const World w = make_world();
   const std::string html = render(input_of(w, true));
-  const std::regex group(R"re(<g class="b-(\w+)" data-method="\w+" data-total-m="([0-9.]+)">([\s\S]*?)</g>)re");
+  const std::regex group(
+      R"re(<g class="b-(\w+)" data-method="\w+" data-total-m="([0-9.]+)">([\s\S]*?)</g>)re");
   const std::regex bar(R"re(data-m="([0-9.]+)")re");
   int groups = 0;
   for (auto it = std::sregex_iterator(html.begin(), html.end(), group); it != std::sregex_iterator(); ++it) {
@@ -237,7 +239,6 @@ TEST(ReportHtml, ThrowsOnMissingOrMismatchedInputs) {
   EXPECT_THROW(render(in), InvalidInput);
 }
 
-
 // A city-sized network (1200 roads, 144 km, 1 m stations, wiggly centrelines, a noisy drape)
 // must give a page of sane size: the maps are simplified, the profiles thinned.
 TEST(ReportHtml, CityNetworkStaysUnderThreeMegabytes) {
@@ -250,7 +251,8 @@ TEST(ReportHtml, CityNetworkStaysUnderThreeMegabytes) {
       for (int dir = 0; dir < 2; ++dir) {
         Polyline2 line;
         for (int k = 0; k <= 6; ++k) {
-          const double along = (j + k / 6.0) * kBlockM, across = i * kBlockM + (k % 6 ? 1.5 * std::sin(k) : 0.0);
+          const double along = (j + k / 6.0) * kBlockM,
+                       across = i * kBlockM + (k % 6 ? 1.5 * std::sin(k) : 0.0);
           line.push_back(dir == 0 ? Vec2(along, across) : Vec2(across, along));
         }
         lines.push_back(line);

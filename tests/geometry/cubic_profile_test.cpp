@@ -11,8 +11,12 @@
 namespace relief {
 namespace {
 
-double cubic(double s) { return 12.0 + 0.2 * s - 0.003 * s * s + 1e-5 * s * s * s; }
-double cubic_slope(double s) { return 0.2 - 0.006 * s + 3e-5 * s * s; }
+double cubic(double s) {
+  return 12.0 + 0.2 * s - 0.003 * s * s + 1e-5 * s * s * s;
+}
+double cubic_slope(double s) {
+  return 0.2 - 0.006 * s + 3e-5 * s * s;
+}
 
 TEST(CubicProfile, EmptyIsZeroAndConstantIsConstant) {
   const CubicProfile empty;

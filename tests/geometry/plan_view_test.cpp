@@ -48,10 +48,18 @@ Vec2 clothoid_end(double a, double length) {
   for (int k = 0; k < 80; ++k) {
     const double value = term / (2.0 * k + 1.0);
     switch (k % 4) {
-      case 0: x += value; break;
-      case 1: y += value; break;
-      case 2: x -= value; break;
-      case 3: y -= value; break;
+      case 0:
+        x += value;
+        break;
+      case 1:
+        y += value;
+        break;
+      case 2:
+        x -= value;
+        break;
+      case 3:
+        y -= value;
+        break;
     }
     term *= phase / (k + 1.0);
   }
@@ -217,11 +225,14 @@ TEST(PlanView, RecordAtOnManyRecordsIsBinarySearch) {
 TEST(PlanView, ConstructorRejectsBadRecords) {
   EXPECT_THROW(PlanView({line(0.0, Vec2::Zero(), 0.0, 0.0)}), InvalidInput);
   EXPECT_THROW(PlanView({line(0.0, Vec2::Zero(), 0.0, -1.0)}), InvalidInput);
-  EXPECT_THROW(PlanView({line(0.0, Vec2::Zero(), 0.0, std::numeric_limits<double>::infinity())}), InvalidInput);
+  EXPECT_THROW(PlanView({line(0.0, Vec2::Zero(), 0.0, std::numeric_limits<double>::infinity())}),
+               InvalidInput);
   EXPECT_THROW(PlanView({line(0.0, Vec2::Zero(), 0.0, std::nan(""))}), InvalidInput);
   EXPECT_THROW(PlanView({line(0.0, Vec2(std::nan(""), 0.0), 0.0, 1.0)}), InvalidInput);
-  EXPECT_THROW(PlanView({line(5.0, Vec2::Zero(), 0.0, 1.0), line(1.0, Vec2::Zero(), 0.0, 1.0)}), InvalidInput);
-  EXPECT_THROW(PlanView({line(0.0, Vec2::Zero(), 0.0, 1.0), line(0.0, Vec2::Zero(), 0.0, 1.0)}), InvalidInput);
+  EXPECT_THROW(PlanView({line(5.0, Vec2::Zero(), 0.0, 1.0), line(1.0, Vec2::Zero(), 0.0, 1.0)}),
+               InvalidInput);
+  EXPECT_THROW(PlanView({line(0.0, Vec2::Zero(), 0.0, 1.0), line(0.0, Vec2::Zero(), 0.0, 1.0)}),
+               InvalidInput);
   EXPECT_NO_THROW(PlanView({line(0.0, Vec2::Zero(), 0.0, 1.0), line(1.0, {1.0, 0.0}, 0.0, 1.0)}));
 }
 

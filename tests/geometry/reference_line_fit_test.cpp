@@ -12,7 +12,9 @@ namespace {
 
 constexpr double kPi = std::numbers::pi;
 
-double angle_gap(double a, double b) { return std::abs(std::remainder(a - b, 2.0 * kPi)); }
+double angle_gap(double a, double b) {
+  return std::abs(std::remainder(a - b, 2.0 * kPi));
+}
 
 double distance_to_polyline(const Polyline2& line, const Vec2& q) {
   double best = std::numeric_limits<double>::infinity();
@@ -135,9 +137,11 @@ TEST(ReferenceLineFit, ShortSegmentsLimitTheRadius) {
   // A gentle bend on 2 m segments: R_fit = 1 m / tan(θ/2) is below R_tol, and the line between
   // two such arcs vanishes.
   const double theta = 0.2;
-  const Polyline2 line{{0, 0}, {2, 0}, {2 + 2 * std::cos(theta), 2 * std::sin(theta)},
-                       {2 + 2 * std::cos(theta) + 2 * std::cos(2 * theta),
-                        2 * std::sin(theta) + 2 * std::sin(2 * theta)}};
+  const Polyline2 line{
+      {0, 0},
+      {2, 0},
+      {2 + 2 * std::cos(theta), 2 * std::sin(theta)},
+      {2 + 2 * std::cos(theta) + 2 * std::cos(2 * theta), 2 * std::sin(theta) + 2 * std::sin(2 * theta)}};
   const ReferenceLineOptions options{0.5, 1e-3};
   const PlanView plan = fit_reference_line(line, options);
   const auto& r = plan.records();

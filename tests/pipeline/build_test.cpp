@@ -41,8 +41,8 @@ void print(const RunReport& r) {
             << ", km " << r.network.length_km << ", bridges " << r.network.bridges << ", tunnels "
             << r.network.tunnels << ", signals " << r.network.traffic_signals << "\n  samples " << r.samples
             << ", vs_dem max " << r.heights.vs_dem.max_m << " rmse " << r.heights.vs_dem.rmse_m
-            << ", grade max " << r.gradient.max_percent << " p99 " << r.gradient.p99_percent
-            << " compliance " << r.gradient.compliance_percent << ", junction gap " << r.junctions.max_gap_m;
+            << ", grade max " << r.gradient.max_percent << " p99 " << r.gradient.p99_percent << " compliance "
+            << r.gradient.compliance_percent << ", junction gap " << r.junctions.max_gap_m;
   if (r.heights.vs_reference) {
     std::cout << "\n  vs reference: mae " << r.heights.vs_reference->mae_m << " rmse "
               << r.heights.vs_reference->rmse_m << " max " << r.heights.vs_reference->max_m << " bias "
@@ -157,7 +157,8 @@ TEST(Build, BrokenDemWithVoidsIsFilledAndReported) {
   Diagnostics d;
   const RunReport r = build(o, d).report;
   std::cout << "voids DEM: " << r.samples << " samples, " << r.void_samples << " in voids on "
-            << d.count("elevation.void") << " roads, " << r.roads_without_height << " roads without any height\n";
+            << d.count("elevation.void") << " roads, " << r.roads_without_height
+            << " roads without any height\n";
   EXPECT_GT(r.void_samples, 100u);
   EXPECT_GE(d.count("elevation.void"), 5u);
   EXPECT_EQ(d.count("elevation.road_without_height"), r.roads_without_height);

@@ -27,7 +27,8 @@ WayAttributes street(HighwayClass cls, int forward, int backward, bool oneway = 
 }
 
 // Writes the model of `net` draped on `ground` and fitted, and compares it with the golden file.
-void check_golden(const std::string& name, const RoadNetwork& net, const std::function<double(const Vec2&)>& ground) {
+void check_golden(const std::string& name, const RoadNetwork& net,
+                  const std::function<double(const Vec2&)>& ground) {
   const std::vector<RoadProfile> raw = test::drape(net, ground);
   Diagnostics d;
   const ProfileFitResult fit = fit_profiles(net, raw, {}, d);
@@ -54,24 +55,29 @@ void check_golden(const std::string& name, const RoadNetwork& net, const std::fu
 }
 
 TEST(OpenDriveGolden, TJunctionOnASlope) {
-  const RoadNetwork net = test::make_network({{{-80, 0}, {0, 0}}, {{0, 0}, {80, 0}}, {{0, 0}, {0, -80}}},
-                                             {street(HighwayClass::residential, 1, 1), street(HighwayClass::residential, 1, 1),
-                                              street(HighwayClass::residential, 1, 1)});
+  const RoadNetwork net =
+      test::make_network({{{-80, 0}, {0, 0}}, {{0, 0}, {80, 0}}, {{0, 0}, {0, -80}}},
+                         {street(HighwayClass::residential, 1, 1), street(HighwayClass::residential, 1, 1),
+                          street(HighwayClass::residential, 1, 1)});
   check_golden("t_junction_slope", net, [](const Vec2& p) { return 20.0 + 0.06 * p.x() + 0.04 * p.y(); });
 }
 
 TEST(OpenDriveGolden, FourWayCrossing) {
-  const RoadNetwork net = test::make_network(
-      {{{-60, 0}, {0, 0}}, {{0, 0}, {60, 0}}, {{0, -60}, {0, 0}}, {{0, 0}, {0, 60}}},
-      {street(HighwayClass::primary, 2, 2), street(HighwayClass::primary, 2, 2),
-       street(HighwayClass::residential, 1, 1), street(HighwayClass::residential, 1, 1)});
+  const RoadNetwork net =
+      test::make_network({{{-60, 0}, {0, 0}}, {{0, 0}, {60, 0}}, {{0, -60}, {0, 0}}, {{0, 0}, {0, 60}}},
+                         {street(HighwayClass::primary, 2, 2), street(HighwayClass::primary, 2, 2),
+                          street(HighwayClass::residential, 1, 1), street(HighwayClass::residential, 1, 1)});
   check_golden("four_way", net, [](const Vec2&) { return 12.0; });
 }
 
 TEST(OpenDriveGolden, OneWayPair) {
   // Two one-way streets in opposite directions joined by a two-way cross street.
   const RoadNetwork net = test::make_network(
-      {{{-50, 10}, {0, 10}}, {{0, 10}, {50, 10}}, {{50, -10}, {0, -10}}, {{0, -10}, {-50, -10}}, {{0, -10}, {0, 10}}},
+      {{{-50, 10}, {0, 10}},
+       {{0, 10}, {50, 10}},
+       {{50, -10}, {0, -10}},
+       {{0, -10}, {-50, -10}},
+       {{0, -10}, {0, 10}}},
       {street(HighwayClass::secondary, 2, 0, true), street(HighwayClass::secondary, 2, 0, true),
        street(HighwayClass::secondary, 2, 0, true), street(HighwayClass::secondary, 2, 0, true),
        street(HighwayClass::residential, 1, 1)});
@@ -82,10 +88,11 @@ TEST(OpenDriveGolden, BridgeOverAValley) {
   WayAttributes bridge = street(HighwayClass::secondary, 1, 1);
   bridge.bridge = true;
   bridge.layer = 1;
-  const RoadNetwork net = test::make_network({{{0, 0}, {100, 0}}, {{100, 0}, {220, 0}}, {{220, 0}, {320, 0}}},
-                                             {street(HighwayClass::secondary, 1, 1), bridge,
-                                              street(HighwayClass::secondary, 1, 1)});
-  check_golden("bridge", net, [](const Vec2& p) { return 30.0 - std::max(0.0, 20.0 - 0.3 * std::abs(p.x() - 160.0)); });
+  const RoadNetwork net = test::make_network(
+      {{{0, 0}, {100, 0}}, {{100, 0}, {220, 0}}, {{220, 0}, {320, 0}}},
+      {street(HighwayClass::secondary, 1, 1), bridge, street(HighwayClass::secondary, 1, 1)});
+  check_golden("bridge", net,
+               [](const Vec2& p) { return 30.0 - std::max(0.0, 20.0 - 0.3 * std::abs(p.x() - 160.0)); });
 }
 
 }  // namespace

@@ -17,7 +17,9 @@
 namespace relief {
 namespace {
 
-bool have(const char* tool) { return std::system((std::string("command -v ") + tool + " >/dev/null 2>&1").c_str()) == 0; }
+bool have(const char* tool) {
+  return std::system((std::string("command -v ") + tool + " >/dev/null 2>&1").c_str()) == 0;
+}
 
 struct Built {
   RunReport report;
@@ -39,10 +41,11 @@ Built build_set(const std::string& name, const std::string& osm, const std::stri
 void check_set(const Built& b) {
   ASSERT_TRUE(b.report.opendrive);
   const OpenDriveSummary& o = *b.report.opendrive;
-  std::cout << b.report.name << ": " << o.roads << " roads, " << o.junctions << " junctions, " << o.connecting_roads
-            << " connecting roads, link gap " << o.max_link_gap_m << " m / step " << o.max_link_step_m
-            << " m over " << o.link_borders_checked << " borders, round trip " << o.round_trip_max_xy_m << " / "
-            << o.round_trip_max_z_m << " m, elevation vs fit " << o.elevation_max_deviation_m << " m\n";
+  std::cout << b.report.name << ": " << o.roads << " roads, " << o.junctions << " junctions, "
+            << o.connecting_roads << " connecting roads, link gap " << o.max_link_gap_m << " m / step "
+            << o.max_link_step_m << " m over " << o.link_borders_checked << " borders, round trip "
+            << o.round_trip_max_xy_m << " / " << o.round_trip_max_z_m << " m, elevation vs fit "
+            << o.elevation_max_deviation_m << " m\n";
   // One OpenDRIVE junction per intersection of the network, but for intersections where no
   // movement is possible (the NE extract has one: three one-ways leaving a node whose feeder
   // is outside it), which are reported.
@@ -58,16 +61,19 @@ void check_set(const Built& b) {
   // The ASAM schema.
   if (!have("xmllint")) GTEST_SKIP() << "xmllint not installed";
   // xmllint cannot compile the schema through a path with "..": its includes resolve twice.
-  const std::string xsd = std::filesystem::weakly_canonical(test::shared_data("").parent_path().parent_path() /
-                                                            "opendrive-xsd/1.7.0/opendrive_17_core.xsd")
-                              .string();
-  const std::string cmd = "xmllint --noout --schema '" + xsd + "' '" + b.xodr.string() + "' 2>" + b.xodr.string() + ".xmllint";
+  const std::string xsd =
+      std::filesystem::weakly_canonical(test::shared_data("").parent_path().parent_path() /
+                                        "opendrive-xsd/1.7.0/opendrive_17_core.xsd")
+          .string();
+  const std::string cmd =
+      "xmllint --noout --schema '" + xsd + "' '" + b.xodr.string() + "' 2>" + b.xodr.string() + ".xmllint";
   EXPECT_EQ(std::system(cmd.c_str()), 0) << "see " << b.xodr << ".xmllint";
 }
 
 TEST(OpenDrive, PotreroValidatesAndReadsBack) {
   RELIEF_REQUIRE_SHARED_DATA();
-  check_set(build_set("potrero", "sf-potrero/sf-potrero.osm.gz", "sf-potrero/USGS_13_n38w123-subsection-small-potrero.tif"));
+  check_set(build_set("potrero", "sf-potrero/sf-potrero.osm.gz",
+                      "sf-potrero/USGS_13_n38w123-subsection-small-potrero.tif"));
 }
 
 TEST(OpenDrive, NortheastValidatesAndReadsBack) {
@@ -82,8 +88,9 @@ TEST(OpenDrive, NetconvertImportsItWithOurHeights) {
                             "sf-potrero/USGS_13_n38w123-subsection-small-potrero.tif");
   const auto net = b.xodr.parent_path() / "imported.net.xml";
   const auto log = b.xodr.parent_path() / "netconvert.log";
-  const std::string cmd = "SUMO_HOME=${SUMO_HOME:-/usr/share/sumo} netconvert --opendrive-files '" + b.xodr.string() +
-                          "' -o '" + net.string() + "' --offset.disable-normalization true 2>'" + log.string() + "'";
+  const std::string cmd = "SUMO_HOME=${SUMO_HOME:-/usr/share/sumo} netconvert --opendrive-files '" +
+                          b.xodr.string() + "' -o '" + net.string() +
+                          "' --offset.disable-normalization true 2>'" + log.string() + "'";
   ASSERT_EQ(std::system(cmd.c_str()), 0) << "see " << log;
   std::ifstream log_in(log);
   std::stringstream log_text;
@@ -101,7 +108,8 @@ TEST(OpenDrive, NetconvertImportsItWithOurHeights) {
   double worst = 0.0;
   std::size_t points = 0;
   std::vector<double> errors;
-  for (auto it = std::sregex_iterator(xml.begin(), xml.end(), lane_shape); it != std::sregex_iterator(); ++it) {
+  for (auto it = std::sregex_iterator(xml.begin(), xml.end(), lane_shape); it != std::sregex_iterator();
+       ++it) {
     const int index = model.road_index(std::stoi((*it)[1].str()));
     if (index < 0) continue;
     const ModelRoad& road = model.roads[index];

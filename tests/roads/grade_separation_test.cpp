@@ -33,8 +33,8 @@ TEST(GradeSeparation, FindsTheCrossingOfDifferentLayersOnly) {
   WayAttributes bridge;
   bridge.bridge = true;
   // Road 0 (bridge) crosses road 1 at (30, 0); road 2 (same layer as 1) crosses road 1 too.
-  const RoadNetwork net = test::make_network(
-      {{{0, 0}, {100, 0}}, {{30, -50}, {30, 50}}, {{60, -50}, {20, 40}}}, {bridge});
+  const RoadNetwork net =
+      test::make_network({{{0, 0}, {100, 0}}, {{30, -50}, {30, 50}}, {{60, -50}, {20, 40}}}, {bridge});
   auto profiles = flat(net, 10.0);
   for (double& z : profiles[0].z) z = 16.5;
   const auto seps = find_grade_separations(net, profiles);

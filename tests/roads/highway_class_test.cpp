@@ -10,11 +10,11 @@ namespace {
 constexpr double kMph = 0.44704;
 
 TEST(HighwayClass, ParsesEveryModelledValueAndRoundTrips) {
-  const char* values[] = {
-      "motorway",  "motorway_link",  "trunk",      "trunk_link",    "primary",      "primary_link",
-      "secondary", "secondary_link", "tertiary",   "tertiary_link", "unclassified", "residential",
-      "service",   "living_street",  "pedestrian", "track",         "footway",      "path",
-      "cycleway",  "steps",          "bridleway"};
+  const char* values[] = {"motorway",     "motorway_link", "trunk",          "trunk_link",    "primary",
+                          "primary_link", "secondary",     "secondary_link", "tertiary",      "tertiary_link",
+                          "unclassified", "residential",   "service",        "living_street", "pedestrian",
+                          "track",        "footway",       "path",           "cycleway",      "steps",
+                          "bridleway"};
   int expected = 0;
   for (const char* value : values) {
     const auto cls = parse_highway_class(value);
@@ -27,8 +27,8 @@ TEST(HighwayClass, ParsesEveryModelledValueAndRoundTrips) {
 
 TEST(HighwayClass, UnmodelledValuesAreNullopt) {
   for (const char* value :
-       {"construction", "proposed", "platform", "bus_stop", "elevator", "corridor", "raceway",
-        "road", "crossing", "traffic_signals", "", "Residential", " residential"}) {
+       {"construction", "proposed", "platform", "bus_stop", "elevator", "corridor", "raceway", "road",
+        "crossing", "traffic_signals", "", "Residential", " residential"}) {
     EXPECT_FALSE(parse_highway_class(value).has_value()) << "'" << value << "'";
   }
 }
@@ -53,18 +53,12 @@ struct DefaultsRow {
 
 TEST(HighwayClass, Defaults) {
   const DefaultsRow rows[] = {
-      {HighwayClass::motorway, 2, 3.65, 65 * kMph},
-      {HighwayClass::trunk, 2, 3.5, 45 * kMph},
-      {HighwayClass::primary, 2, 3.5, 35 * kMph},
-      {HighwayClass::secondary, 1, 3.25, 30 * kMph},
-      {HighwayClass::tertiary, 1, 3.25, 25 * kMph},
-      {HighwayClass::motorway_link, 1, 3.5, 25 * kMph},
-      {HighwayClass::primary_link, 1, 3.5, 25 * kMph},
-      {HighwayClass::unclassified, 1, 3.0, 25 * kMph},
-      {HighwayClass::residential, 1, 3.0, 25 * kMph},
-      {HighwayClass::service, 1, 2.75, 15 * kMph},
-      {HighwayClass::living_street, 1, 2.75, 10 * kMph},
-      {HighwayClass::footway, 1, 1.5, 5 / 3.6},
+      {HighwayClass::motorway, 2, 3.65, 65 * kMph},      {HighwayClass::trunk, 2, 3.5, 45 * kMph},
+      {HighwayClass::primary, 2, 3.5, 35 * kMph},        {HighwayClass::secondary, 1, 3.25, 30 * kMph},
+      {HighwayClass::tertiary, 1, 3.25, 25 * kMph},      {HighwayClass::motorway_link, 1, 3.5, 25 * kMph},
+      {HighwayClass::primary_link, 1, 3.5, 25 * kMph},   {HighwayClass::unclassified, 1, 3.0, 25 * kMph},
+      {HighwayClass::residential, 1, 3.0, 25 * kMph},    {HighwayClass::service, 1, 2.75, 15 * kMph},
+      {HighwayClass::living_street, 1, 2.75, 10 * kMph}, {HighwayClass::footway, 1, 1.5, 5 / 3.6},
       {HighwayClass::cycleway, 1, 1.5, 5 / 3.6},
   };
   for (const auto& r : rows) {

@@ -21,7 +21,9 @@ using test::OsmSketch;
 // within a few cm.
 constexpr double kLengthTolerance_m = 0.05;
 // For longer lengths: the scale error plus rounding.
-double length_tolerance_m(double length) { return 5e-4 * length + 0.02; }
+double length_tolerance_m(double length) {
+  return 5e-4 * length + 0.02;
+}
 
 RoadNetwork build_file(const std::filesystem::path& path, Diagnostics& diagnostics,
                        const OsmReadOptions& options = {}) {
@@ -139,10 +141,9 @@ TEST(NetworkBuilder, WaysWithEqualTagsMergeIntoOneRoad) {
 }
 
 TEST(NetworkBuilder, DifferentTagsGiveAnAttributeChange) {
-  const auto sketch =
-      OsmSketch("A---B---C")
-          .way("AB", {{"highway", "residential"}})
-          .way("BC", {{"highway", "residential"}, {"bridge", "yes"}, {"layer", "1"}});
+  const auto sketch = OsmSketch("A---B---C")
+                          .way("AB", {{"highway", "residential"}})
+                          .way("BC", {{"highway", "residential"}, {"bridge", "yes"}, {"layer", "1"}});
   Diagnostics diagnostics;
   const RoadNetwork net = build(sketch, "builder_change", diagnostics);
   expect_consistent(net);
@@ -183,38 +184,37 @@ TEST(NetworkBuilder, OnewaysMergeOnlyHeadToTail) {
   const OsmSketch::Tags oneway{{"highway", "residential"}, {"oneway", "yes"}};
   Diagnostics diagnostics;
 
-  const RoadNetwork chained = build(OsmSketch("A---B---C").way("AB", oneway).way("BC", oneway),
-                                    "builder_ow_chain", diagnostics);
+  const RoadNetwork chained =
+      build(OsmSketch("A---B---C").way("AB", oneway).way("BC", oneway), "builder_ow_chain", diagnostics);
   ASSERT_EQ(chained.roads.size(), 1u);
   EXPECT_EQ(chained.roads[0].osm_node_ids, ids("ABC"));
   EXPECT_TRUE(chained.roads[0].attributes.oneway);
 
   // Chained by walking back from the second way: the road still runs A -> C.
-  const RoadNetwork backwards = build(OsmSketch("A---B---C").way("BC", oneway).way("AB", oneway),
-                                      "builder_ow_backwards", diagnostics);
+  const RoadNetwork backwards =
+      build(OsmSketch("A---B---C").way("BC", oneway).way("AB", oneway), "builder_ow_backwards", diagnostics);
   ASSERT_EQ(backwards.roads.size(), 1u);
   EXPECT_EQ(backwards.roads[0].osm_node_ids, ids("ABC"));
   EXPECT_EQ(backwards.roads[0].osm_way_ids, (std::vector<std::int64_t>{2, 1}));
 
-  const RoadNetwork head_to_head = build(OsmSketch("A---B---C").way("AB", oneway).way("CB", oneway),
-                                         "builder_ow_h2h", diagnostics);
+  const RoadNetwork head_to_head =
+      build(OsmSketch("A---B---C").way("AB", oneway).way("CB", oneway), "builder_ow_h2h", diagnostics);
   expect_consistent(head_to_head);
   ASSERT_EQ(head_to_head.roads.size(), 2u);
   EXPECT_EQ(head_to_head.roads[0].osm_node_ids, ids("AB"));
   EXPECT_EQ(head_to_head.roads[1].osm_node_ids, ids("CB"));
   EXPECT_EQ(junction_at(head_to_head, 'B').kind, JunctionKind::attribute_change);
 
-  const RoadNetwork tail_to_tail = build(OsmSketch("A---B---C").way("BA", oneway).way("BC", oneway),
-                                         "builder_ow_t2t", diagnostics);
+  const RoadNetwork tail_to_tail =
+      build(OsmSketch("A---B---C").way("BA", oneway).way("BC", oneway), "builder_ow_t2t", diagnostics);
   ASSERT_EQ(tail_to_tail.roads.size(), 2u);
   EXPECT_EQ(tail_to_tail.roads[0].osm_node_ids, ids("BA"));
   EXPECT_EQ(tail_to_tail.roads[1].osm_node_ids, ids("BC"));
 
   // oneway=-1 is normalised first, then merges head to tail.
-  const RoadNetwork reversed = build(OsmSketch("A---B---C")
-                                         .way("BA", {{"highway", "residential"}, {"oneway", "-1"}})
-                                         .way("BC", oneway),
-                                     "builder_ow_reverse", diagnostics);
+  const RoadNetwork reversed = build(
+      OsmSketch("A---B---C").way("BA", {{"highway", "residential"}, {"oneway", "-1"}}).way("BC", oneway),
+      "builder_ow_reverse", diagnostics);
   ASSERT_EQ(reversed.roads.size(), 1u);
   EXPECT_EQ(reversed.roads[0].osm_node_ids, ids("ABC"));
 }
@@ -373,8 +373,8 @@ TEST(NetworkBuilder, DuplicatePointsAreRemovedAndZeroLengthPiecesReported) {
   OsmRoads osm;
   // Nodes 1 and 2 share a position, as do 4 and 5.
   osm.ways.push_back(make_way(10, {{1, -122.4, 37.75}, {2, -122.4, 37.75}}));
-  osm.ways.push_back(make_way(
-      11, {{2, -122.4, 37.75}, {3, -122.399, 37.75}, {4, -122.398, 37.75}, {5, -122.398, 37.75}}));
+  osm.ways.push_back(
+      make_way(11, {{2, -122.4, 37.75}, {3, -122.399, 37.75}, {4, -122.398, 37.75}, {5, -122.398, 37.75}}));
   osm.bounds = {-122.4, 37.75, -122.398, 37.75};
   Diagnostics diagnostics;
   const RoadNetwork net = build_network(osm, GeoFrame::utm_at({-122.399, 37.75}), diagnostics);
@@ -435,20 +435,18 @@ NetworkFigures figures(const RoadNetwork& net, const char* label) {
     f.oneways += r.attributes.oneway ? 1 : 0;
     f.km += length_m(r.points) / 1000.0;
   }
-  std::cout << "[" << label << "] roads " << f.roads << ", junctions " << f.junctions
-            << " (intersections " << f.intersections << ", attribute changes "
-            << f.attribute_changes << ", dead ends " << f.dead_ends << "), signalised junctions "
-            << f.signals << ", bridge roads " << f.bridges << ", tunnel roads " << f.tunnels
-            << ", one-way roads " << f.oneways << ", roundabouts " << net.roundabouts << ", "
-            << f.km << " km\n";
+  std::cout << "[" << label << "] roads " << f.roads << ", junctions " << f.junctions << " (intersections "
+            << f.intersections << ", attribute changes " << f.attribute_changes << ", dead ends "
+            << f.dead_ends << "), signalised junctions " << f.signals << ", bridge roads " << f.bridges
+            << ", tunnel roads " << f.tunnels << ", one-way roads " << f.oneways << ", roundabouts "
+            << net.roundabouts << ", " << f.km << " km\n";
   return f;
 }
 
 TEST(NetworkBuilder, PotreroRealData) {
   RELIEF_REQUIRE_SHARED_DATA();
   Diagnostics diagnostics;
-  const RoadNetwork net =
-      build_file(test::shared_data("sf-potrero/sf-potrero.osm.gz"), diagnostics);
+  const RoadNetwork net = build_file(test::shared_data("sf-potrero/sf-potrero.osm.gz"), diagnostics);
   expect_consistent(net);
   const NetworkFigures f = figures(net, "potrero");
   EXPECT_EQ(net.frame.crs(), "EPSG:32610");
@@ -470,8 +468,7 @@ TEST(NetworkBuilder, PotreroRealData) {
 TEST(NetworkBuilder, NortheastRealData) {
   RELIEF_REQUIRE_SHARED_DATA();
   Diagnostics diagnostics;
-  const RoadNetwork net =
-      build_file(test::shared_data("sf-ne/sf_ne_drive_2017.osm.gz"), diagnostics);
+  const RoadNetwork net = build_file(test::shared_data("sf-ne/sf_ne_drive_2017.osm.gz"), diagnostics);
   expect_consistent(net);
   const NetworkFigures f = figures(net, "ne");
   // Measured (Oct 2017 drive network); the build is deterministic. 57 of the attribute changes

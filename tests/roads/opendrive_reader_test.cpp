@@ -322,20 +322,24 @@ TEST(OpenDriveReader, BadNumbersAreInvalidInputNamingRoadAndElement) {
   EXPECT_NE(message.find("north"), std::string::npos) << message;
 
   const std::string nan_elevation =
-      std::string(kPlan) + R"(<elevationProfile><elevation s="0" a="nan" b="0" c="0" d="0"/></elevationProfile>)" +
-      kLanes;
-  EXPECT_NE(invalid_input_message(minimal_road(nan_elevation)).find("<elevation> attribute 'a'"), std::string::npos);
+      std::string(kPlan) +
+      R"(<elevationProfile><elevation s="0" a="nan" b="0" c="0" d="0"/></elevationProfile>)" + kLanes;
+  EXPECT_NE(invalid_input_message(minimal_road(nan_elevation)).find("<elevation> attribute 'a'"),
+            std::string::npos);
 
-  const std::string missing_length = R"(<planView><geometry s="0" x="0" y="0" hdg="0"><line/></geometry></planView>)";
+  const std::string missing_length =
+      R"(<planView><geometry s="0" x="0" y="0" hdg="0"><line/></geometry></planView>)";
   EXPECT_NE(invalid_input_message(minimal_road(missing_length + kLanes)).find("'length' is missing"),
             std::string::npos);
 
-  EXPECT_NE(invalid_input_message(R"(<OpenDRIVE><header/><road id="A1" junction="-1" length="1"/></OpenDRIVE>)")
-                .find("not an integer"),
-            std::string::npos);
+  EXPECT_NE(
+      invalid_input_message(R"(<OpenDRIVE><header/><road id="A1" junction="-1" length="1"/></OpenDRIVE>)")
+          .find("not an integer"),
+      std::string::npos);
 
-  const std::string bad_width = std::string(kPlan) +
-                                R"(<lanes><laneSection s="0"><center><lane id="0" type="none"/></center><right>
+  const std::string bad_width =
+      std::string(kPlan) +
+      R"(<lanes><laneSection s="0"><center><lane id="0" type="none"/></center><right>
       <lane id="-1" type="driving"><width sOffset="0" a="3,5" b="0" c="0" d="0"/></lane></right></laneSection></lanes>)";
   EXPECT_NE(invalid_input_message(minimal_road(bad_width)).find("<width> attribute 'a'"), std::string::npos);
 }

@@ -22,14 +22,13 @@ namespace {
 
 using test::OsmSketch;
 
-OsmRoads read(const std::filesystem::path& path, Diagnostics& diagnostics,
-              OsmReadOptions options = {}) {
+OsmRoads read(const std::filesystem::path& path, Diagnostics& diagnostics, OsmReadOptions options = {}) {
   return read_osm(path, options, diagnostics);
 }
 
 const OsmWay* find_way(const OsmRoads& roads, std::int64_t id) {
-  const auto it = std::find_if(roads.ways.begin(), roads.ways.end(),
-                               [id](const OsmWay& w) { return w.id == id; });
+  const auto it =
+      std::find_if(roads.ways.begin(), roads.ways.end(), [id](const OsmWay& w) { return w.id == id; });
   return it == roads.ways.end() ? nullptr : &*it;
 }
 
@@ -53,8 +52,7 @@ void gzip_file(const std::filesystem::path& in, const std::filesystem::path& out
   const std::string data = read_bytes(in);
   gzFile gz = gzopen(out.string().c_str(), "wb9");
   ASSERT_NE(gz, nullptr);
-  ASSERT_EQ(gzwrite(gz, data.data(), static_cast<unsigned>(data.size())),
-            static_cast<int>(data.size()));
+  ASSERT_EQ(gzwrite(gz, data.data(), static_cast<unsigned>(data.size())), static_cast<int>(data.size()));
   ASSERT_EQ(gzclose(gz), Z_OK);
 }
 
@@ -211,10 +209,9 @@ TEST(OsmReader, DegenerateWayIsReportedAndSkipped) {
 TEST(OsmReader, BadTagValuesAreReported) {
   const auto dir = test::scratch_dir("osm_reader_bad_tags");
   Diagnostics diagnostics;
-  const OsmRoads roads = read(OsmSketch("A--B")
-                                  .way("AB", {{"highway", "residential"}, {"lanes", "many"}})
-                                  .write(dir / "t.osm"),
-                              diagnostics);
+  const OsmRoads roads =
+      read(OsmSketch("A--B").way("AB", {{"highway", "residential"}, {"lanes", "many"}}).write(dir / "t.osm"),
+           diagnostics);
   ASSERT_EQ(roads.ways.size(), 1u);
   EXPECT_EQ(diagnostics.count("osm.tag_value"), 1u);
   EXPECT_EQ(diagnostics.kept().at(0).osm_way_id, 1);
@@ -289,8 +286,7 @@ TEST(OsmReader, MissingFileThrowsIoError) {
     (void)read(path, diagnostics);
     FAIL() << "no exception";
   } catch (const IoError& e) {
-    EXPECT_NE(std::string(e.what()).find("cannot open OSM file '" + path.string() + "'"),
-              std::string::npos)
+    EXPECT_NE(std::string(e.what()).find("cannot open OSM file '" + path.string() + "'"), std::string::npos)
         << e.what();
   }
 }
@@ -323,8 +319,7 @@ TEST(OsmReader, MalformedXmlThrowsInvalidInput) {
 
 TEST(OsmReader, UnknownExtensionThrowsInvalidInput) {
   const auto dir = test::scratch_dir("osm_reader_extension");
-  const auto path =
-      OsmSketch("A--B").way("AB", {{"highway", "residential"}}).write(dir / "roads.txt");
+  const auto path = OsmSketch("A--B").way("AB", {{"highway", "residential"}}).write(dir / "roads.txt");
   Diagnostics diagnostics;
   try {
     (void)read(path, diagnostics);
@@ -348,8 +343,7 @@ TEST(OsmReader, TruncatedGzipThrowsInvalidInput) {
     (void)read(dir / "half.osm.gz", diagnostics);
     FAIL() << "no exception";
   } catch (const InvalidInput& e) {
-    EXPECT_NE(std::string(e.what()).find("is malformed or truncated"), std::string::npos)
-        << e.what();
+    EXPECT_NE(std::string(e.what()).find("is malformed or truncated"), std::string::npos) << e.what();
   }
 }
 
@@ -417,8 +411,7 @@ TEST(OsmReader, PotreroRealData) {
   const OsmRoads roads = read(test::shared_data("sf-potrero/sf-potrero.osm.gz"), diagnostics);
   OsmReadOptions all;
   all.include_non_motor = true;
-  const OsmRoads with_paths =
-      read(test::shared_data("sf-potrero/sf-potrero.osm.gz"), diagnostics, all);
+  const OsmRoads with_paths = read(test::shared_data("sf-potrero/sf-potrero.osm.gz"), diagnostics, all);
 
   const auto count = [](const OsmRoads& r, auto pred) {
     return std::count_if(r.ways.begin(), r.ways.end(), pred);
@@ -427,11 +420,11 @@ TEST(OsmReader, PotreroRealData) {
   const auto motorway =
       count(roads, [](const OsmWay& w) { return w.attributes.highway == HighwayClass::motorway; });
   std::cout << "[potrero] ways read " << roads.ways_read << ", highway ways " << roads.highway_ways
-            << ", motor road ways " << roads.ways.size() << " (with paths "
-            << with_paths.ways.size() << "), bridges " << bridges << " (with paths "
+            << ", motor road ways " << roads.ways.size() << " (with paths " << with_paths.ways.size()
+            << "), bridges " << bridges << " (with paths "
             << count(with_paths, [](const OsmWay& w) { return w.attributes.bridge; })
-            << "), missing node refs " << roads.missing_node_refs << " in "
-            << roads.ways_with_missing_nodes << " ways\n";
+            << "), missing node refs " << roads.missing_node_refs << " in " << roads.ways_with_missing_nodes
+            << " ways\n";
 
   EXPECT_EQ(roads.ways_read, 671u);
   EXPECT_EQ(roads.highway_ways, 90u);
@@ -460,9 +453,7 @@ TEST(OsmReader, NortheastRealData) {
   RELIEF_REQUIRE_SHARED_DATA();
   Diagnostics diagnostics;
   const OsmRoads roads = read(test::shared_data("sf-ne/sf_ne_drive_2017.osm.gz"), diagnostics);
-  const auto count = [&](auto pred) {
-    return std::count_if(roads.ways.begin(), roads.ways.end(), pred);
-  };
+  const auto count = [&](auto pred) { return std::count_if(roads.ways.begin(), roads.ways.end(), pred); };
   const auto tunnels = count([](const OsmWay& w) { return w.attributes.tunnel; });
   const auto bridges = count([](const OsmWay& w) { return w.attributes.bridge; });
   const auto oneways = count([](const OsmWay& w) { return w.attributes.oneway; });

@@ -34,7 +34,9 @@ TEST(ProfileFit, NoisyRampIsRecovered) {
   std::mt19937 rng(42);
   std::normal_distribution<double> noise(0.0, 0.25);
   const auto truth = [](const Vec2& p) { return 10.0 + 0.05 * p.x(); };
-  auto raw = drape(net, [&](const Vec2& p) { return truth(p) + noise(rng) + 0.3 * std::sin(p.x() / 10.0 * 2 * std::numbers::pi); });
+  auto raw = drape(net, [&](const Vec2& p) {
+    return truth(p) + noise(rng) + 0.3 * std::sin(p.x() / 10.0 * 2 * std::numbers::pi);
+  });
   Diagnostics d;
   const ProfileFitResult fit = fit_profiles(net, raw, {}, d);
   EXPECT_TRUE(fit.converged);
@@ -48,8 +50,9 @@ TEST(ProfileFit, NoisyRampIsRecovered) {
   const std::vector<double> g = segment_grades_percent(p);
   double worst_inner = 0.0;
   for (std::size_t i = 20; i + 20 < g.size(); ++i) worst_inner = std::max(worst_inner, std::abs(g[i] - 5.0));
-  std::cout << "noisy ramp: rmse " << rmse << " m, worst inner grade error " << worst_inner << " %, max grade "
-            << max_grade_percent(fit.profiles) << " %, " << fit.iterations << " iterations\n";
+  std::cout << "noisy ramp: rmse " << rmse << " m, worst inner grade error " << worst_inner
+            << " %, max grade " << max_grade_percent(fit.profiles) << " %, " << fit.iterations
+            << " iterations\n";
   EXPECT_LT(worst_inner, 1.5);  // white noise of 0.25 m at every metre leaves ~1 % of slope noise
   EXPECT_NEAR(max_grade_percent(fit.profiles), 5.0, 2.0);  // the free ends are the least certain
 }
@@ -83,9 +86,12 @@ TEST(ProfileFit, BridgeOverAValleyStaysASmoothDeck) {
   WayAttributes bridge = with_class(HighwayClass::primary);
   bridge.bridge = true;
   bridge.layer = 1;
-  const RoadNetwork net = test::make_network({{{0, 0}, {150, 0}}, {{150, 0}, {350, 0}}, {{350, 0}, {500, 0}}},
-                                             {with_class(HighwayClass::primary), bridge, with_class(HighwayClass::primary)});
-  const auto ground = [](const Vec2& p) { return 50.0 - std::max(0.0, 30.0 - 0.3 * std::abs(p.x() - 250.0)); };
+  const RoadNetwork net =
+      test::make_network({{{0, 0}, {150, 0}}, {{150, 0}, {350, 0}}, {{350, 0}, {500, 0}}},
+                         {with_class(HighwayClass::primary), bridge, with_class(HighwayClass::primary)});
+  const auto ground = [](const Vec2& p) {
+    return 50.0 - std::max(0.0, 30.0 - 0.3 * std::abs(p.x() - 250.0));
+  };
   const auto raw = drape(net, ground);
   Diagnostics d;
   const ProfileFitResult fit = fit_profiles(net, raw, {}, d);
@@ -109,7 +115,8 @@ TEST(ProfileFit, CrossingLayersKeepTheClearanceAndTheLowerRoadStaysOnTheGround) 
   // bridge's approaches are ground roads.
   const RoadNetwork net = test::make_network(
       {{{-300, 0}, {-60, 0}}, {{-60, 0}, {60, 0}}, {{60, 0}, {300, 0}}, {{0, -200}, {0, 200}}},
-      {with_class(HighwayClass::motorway), upper, with_class(HighwayClass::motorway), with_class(HighwayClass::residential)});
+      {with_class(HighwayClass::motorway), upper, with_class(HighwayClass::motorway),
+       with_class(HighwayClass::residential)});
   const auto raw = drape(net, [](const Vec2&) { return 20.0; });
   Diagnostics d;
   const ProfileFitResult fit = fit_profiles(net, raw, {}, d);
@@ -200,7 +207,8 @@ bool is_highway(const Road& r) {
 
 TEST(ProfileFitRealData, PotreroBridgeSpansAndTheGridKeepsItsGrades) {
   RELIEF_REQUIRE_SHARED_DATA();
-  const RealSet set = load_real("sf-potrero/sf-potrero.osm.gz", "sf-potrero/USGS_13_n38w123-subsection-small-potrero.tif");
+  const RealSet set =
+      load_real("sf-potrero/sf-potrero.osm.gz", "sf-potrero/USGS_13_n38w123-subsection-small-potrero.tif");
   Diagnostics d;
   const ProfileFitResult fit = fit_profiles(set.network, set.raw, {}, d);
   EXPECT_TRUE(fit.converged);
@@ -217,17 +225,16 @@ TEST(ProfileFitRealData, PotreroBridgeSpansAndTheGridKeepsItsGrades) {
       min_above = std::min(min_above, f.z[i] - r.z[i]);
       max_above = std::max(max_above, f.z[i] - r.z[i]);
     }
-    std::cout << "Potrero bridge road " << road.id << " '" << road.attributes.name << "': deck "
-              << min_above << " .. " << max_above << " m above the DEM, max grade "
-              << max_grade_percent({f}) << " % (raw " << max_grade_percent({r}) << " %)\n";
+    std::cout << "Potrero bridge road " << road.id << " '" << road.attributes.name << "': deck " << min_above
+              << " .. " << max_above << " m above the DEM, max grade " << max_grade_percent({f}) << " % (raw "
+              << max_grade_percent({r}) << " %)\n";
     EXPECT_GT(min_above, -0.5);
     EXPECT_GT(max_above, 1.0);
   }
   EXPECT_EQ(bridges, 1);
   // Fidelity keeps Potrero Hill's steep residential streets (24th St is ~24 %).
-  const double residential = max_grade_for(set, fit.profiles, [](const Road& r) {
-    return r.attributes.highway == HighwayClass::residential;
-  });
+  const double residential = max_grade_for(
+      set, fit.profiles, [](const Road& r) { return r.attributes.highway == HighwayClass::residential; });
   std::cout << "Potrero residential max grade after the fit: " << residential << " %\n";
   EXPECT_GT(residential, 20.0);
   EXPECT_LE(max_grade_for(set, fit.profiles, [](const Road&) { return true; }), 35.0 + 1e-3);
@@ -257,7 +264,8 @@ TEST(ProfileFitRealData, NortheastTunnelsRunBelowTheTerrainAndNothingIsTooSteep)
       deepest = std::max(deepest, r.z[i] - f.z[i]);
     }
     std::cout << "NE tunnel road " << road.id << " '" << name << "' (" << f.s.back() << " m): between "
-              << worst << " and " << deepest << " m below the terrain, max grade " << max_grade_percent({f}) << " %\n";
+              << worst << " and " << deepest << " m below the terrain, max grade " << max_grade_percent({f})
+              << " %\n";
     EXPECT_GT(worst, 2.0);
     EXPECT_GT(deepest, 10.0);
   }
@@ -276,8 +284,8 @@ TEST(ProfileFitRealData, NortheastTunnelsRunBelowTheTerrainAndNothingIsTooSteep)
   const ProfileFitResult designed = fit_profiles(set.network, set.raw, design, d);
   const GradeStats g = grade_stats(set.network, designed.profiles, GradeLimits::paper());
   std::cout << "NE design policy: " << designed.iterations << " rounds, converged " << designed.converged
-            << ", max violation " << designed.max_violation_m << " m; compliance " << g.compliance_percent << " %, max " << g.max_percent
-            << " %, max departure from the DEM "
+            << ", max violation " << designed.max_violation_m << " m; compliance " << g.compliance_percent
+            << " %, max " << g.max_percent << " %, max departure from the DEM "
             << cut_fill(designed.profiles, set.raw, ground_mask(set.network)).max_cut_m << " m cut / "
             << cut_fill(designed.profiles, set.raw, ground_mask(set.network)).max_fill_m << " m fill\n";
   EXPECT_NEAR(g.compliance_percent, 100.0, 1e-9);

@@ -13,7 +13,9 @@ namespace {
 
 const auto plane = [](const Vec2& p) { return 10.0 + 0.05 * p.x() + 0.02 * p.y(); };
 
-std::vector<RoadProfile> drape(const RoadNetwork& net) { return test::drape(net, plane); }
+std::vector<RoadProfile> drape(const RoadNetwork& net) {
+  return test::drape(net, plane);
+}
 
 WayAttributes street(int forward, int backward, bool oneway = false) {
   WayAttributes a;
@@ -108,7 +110,8 @@ TEST(RoadModelBuilder, AttributeChangesLinkDirectlyOrThroughATransitionRoad) {
 
 TEST(RoadModelBuilder, ACornerGetsATransitionRoad) {
   // Two streets meeting at a right angle with no third road: no junction, a curved link.
-  const RoadNetwork net = test::make_network({{{-60, 0}, {0, 0}}, {{0, 0}, {0, 60}}}, {street(1, 1), street(1, 1)});
+  const RoadNetwork net =
+      test::make_network({{{-60, 0}, {0, 0}}, {{0, 0}, {0, 60}}}, {street(1, 1), street(1, 1)});
   Diagnostics d;
   const RoadModelBuild b = build_road_model(net, drape(net), {}, d);
   EXPECT_EQ(b.stats.transition_roads, 1u);
@@ -129,9 +132,9 @@ TEST(RoadModelBuilder, TurnLanesDecideWhichLaneMakesWhichMovement) {
   // A four-way crossing; the arm from the west has two lanes towards it, tagged left | through;right.
   WayAttributes west = street(2, 1);
   west.turn_forward = {"left", "through;right"};
-  const RoadNetwork net = test::make_network(
-      {{{-80, 0}, {0, 0}}, {{0, 0}, {80, 0}}, {{0, 0}, {0, 80}}, {{0, 0}, {0, -80}}},
-      {west, street(1, 1), street(1, 1), street(1, 1)});
+  const RoadNetwork net =
+      test::make_network({{{-80, 0}, {0, 0}}, {{0, 0}, {80, 0}}, {{0, 0}, {0, 80}}, {{0, 0}, {0, -80}}},
+                         {west, street(1, 1), street(1, 1), street(1, 1)});
   Diagnostics d;
   const RoadModelBuild b = build_road_model(net, test::drape(net, plane), {}, d);
   const int west_id = b.model.roads[b.model_road_of[0]].id;

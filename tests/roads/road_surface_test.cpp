@@ -11,7 +11,9 @@ namespace {
 
 constexpr double kRadius = 100.0;
 
-double elevation(double s) { return 100.0 + 0.02 * s + 1e-4 * s * s - 1e-6 * s * s * s; }
+double elevation(double s) {
+  return 100.0 + 0.02 * s + 1e-4 * s * s - 1e-6 * s * s * s;
+}
 
 LaneModel lane(int id, double width, double width_slope = 0.0) {
   LaneModel l;
@@ -77,7 +79,7 @@ TEST(RoadSurface, UnknownLanesThrow) {
   const ModelRoad road = test_road();
   EXPECT_THROW((void)lane_border_t(road, 10.0, 2), InvalidInput);
   EXPECT_THROW((void)lane_border_t(road, 10.0, -3), InvalidInput);
-  EXPECT_THROW((void)lane_border_t(road, 70.0, 1), InvalidInput);   // no left lane there
+  EXPECT_THROW((void)lane_border_t(road, 70.0, 1), InvalidInput);  // no left lane there
   EXPECT_THROW((void)lane_border_t(road, 70.0, -2), InvalidInput);
   EXPECT_THROW((void)lane_centre_t(road, 10.0, 0), InvalidInput);
   EXPECT_THROW((void)lane_centre_t(road, 10.0, 5), InvalidInput);

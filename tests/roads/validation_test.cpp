@@ -56,9 +56,9 @@ TEST(Validation, GradeComplianceByClass) {
   const GradeStats g = grade_stats(net, profiles, GradeLimits::paper());
   EXPECT_NEAR(g.max_percent, 10.0, 1e-9);
   EXPECT_NEAR(g.p99_percent, 10.0, 1e-9);
-  EXPECT_NEAR(g.by_class.at("motorway").compliance_percent, 0.0, 1e-9);    // 10 % > 8 %
+  EXPECT_NEAR(g.by_class.at("motorway").compliance_percent, 0.0, 1e-9);       // 10 % > 8 %
   EXPECT_NEAR(g.by_class.at("residential").compliance_percent, 100.0, 1e-9);  // 10 % <= 15 %
-  EXPECT_NEAR(g.compliance_percent, 75.0, 1e-9);  // 300 of 400 m comply
+  EXPECT_NEAR(g.compliance_percent, 75.0, 1e-9);                              // 300 of 400 m comply
   EXPECT_NEAR(g.by_class.at("motorway").length_km, 0.1, 1e-12);
 }
 
@@ -73,7 +73,8 @@ TEST(Validation, P99IsWeightedByLength) {
 }
 
 TEST(Validation, JunctionGapIsTheSpreadOfRoadEnds) {
-  const RoadNetwork net = test::make_network({{{0, 0}, {100, 0}}, {{100, 0}, {200, 0}}, {{100, 0}, {100, 100}}});
+  const RoadNetwork net =
+      test::make_network({{{0, 0}, {100, 0}}, {{100, 0}, {200, 0}}, {{100, 0}, {100, 100}}});
   std::vector<RoadProfile> profiles{ramp(100, 0, 0.1), ramp(100, 10.3, 0.0), ramp(100, 10.05, 0.0)};
   const JunctionGapStats j = junction_gaps(net, profiles);
   EXPECT_NEAR(j.max_gap_m, 0.3, 1e-9);
@@ -85,8 +86,8 @@ TEST(Validation, JunctionGapIsTheSpreadOfRoadEnds) {
 TEST(Validation, NetworkCounts) {
   WayAttributes bridge;
   bridge.bridge = true;
-  const RoadNetwork net = test::make_network({{{0, 0}, {100, 0}}, {{100, 0}, {200, 0}}, {{100, 0}, {100, 100}}},
-                                             {WayAttributes{}, bridge});
+  const RoadNetwork net = test::make_network(
+      {{{0, 0}, {100, 0}}, {{100, 0}, {200, 0}}, {{100, 0}, {100, 100}}}, {WayAttributes{}, bridge});
   const NetworkStats s = network_stats(net);
   EXPECT_EQ(s.roads, 3u);
   EXPECT_EQ(s.intersections, 1u);
@@ -100,7 +101,8 @@ TEST(Validation, NetworkCounts) {
 TEST(Validation, HeightsOnAPlaneHaveNoErrorAndAReferenceOffsetShows) {
   const auto plane = [](double x, double y) { return 20.0 + 0.05 * x + 0.01 * y; };
   const std::string dem = test::write_local_dem("val_plane", 300, 10, plane);
-  const std::string ref = test::write_local_dem("val_ref", 300, 10, [&](double x, double y) { return plane(x, y) - 0.7; });
+  const std::string ref =
+      test::write_local_dem("val_ref", 300, 10, [&](double x, double y) { return plane(x, y) - 0.7; });
   RoadProfile p;
   for (int i = 0; i <= 200; ++i) {
     const Vec2 xy(-100.0 + i * 0.6, -50.0 + i * 0.8);

@@ -17,25 +17,33 @@ ParsedWay parse(const Tags& tags, std::string* warnings = nullptr) {
 }
 
 TEST(ParseWayTags, TurnLanesPerDirection) {
-  const ParsedWay one = parse({{"highway", "primary"}, {"oneway", "yes"}, {"lanes", "3"},
+  const ParsedWay one = parse({{"highway", "primary"},
+                               {"oneway", "yes"},
+                               {"lanes", "3"},
                                {"turn:lanes", "left|through| through;right"}});
   EXPECT_EQ(one.attributes.turn_forward, (std::vector<std::string>{"left", "through", "through;right"}));
   EXPECT_TRUE(one.attributes.turn_backward.empty());
   // A reversed one-way keeps turn:lanes (it describes the direction of travel).
-  const ParsedWay rev = parse({{"highway", "primary"}, {"oneway", "-1"}, {"lanes", "2"}, {"turn:lanes", "left|"}});
+  const ParsedWay rev =
+      parse({{"highway", "primary"}, {"oneway", "-1"}, {"lanes", "2"}, {"turn:lanes", "left|"}});
   EXPECT_EQ(rev.attributes.turn_forward, (std::vector<std::string>{"left", ""}));
   // Two-way: each direction has its own tag, and its lane count must match.
-  const ParsedWay two = parse({{"highway", "secondary"}, {"lanes:forward", "2"}, {"lanes:backward", "1"},
-                               {"turn:lanes:forward", "left|through"}, {"turn:lanes:backward", "none"}});
+  const ParsedWay two = parse({{"highway", "secondary"},
+                               {"lanes:forward", "2"},
+                               {"lanes:backward", "1"},
+                               {"turn:lanes:forward", "left|through"},
+                               {"turn:lanes:backward", "none"}});
   EXPECT_EQ(two.attributes.turn_forward.size(), 2u);
   EXPECT_EQ(two.attributes.turn_backward, (std::vector<std::string>{"none"}));
   // Without a lanes tag, turn:lanes says how many lanes there are.
-  const ParsedWay implied = parse({{"highway", "residential"}, {"oneway", "yes"}, {"turn:lanes", "left|through|right"}});
+  const ParsedWay implied =
+      parse({{"highway", "residential"}, {"oneway", "yes"}, {"turn:lanes", "left|through|right"}});
   EXPECT_EQ(implied.attributes.lanes_forward, 3);
   EXPECT_EQ(implied.attributes.turn_forward.size(), 3u);
   std::string warnings;
-  const ParsedWay bad = parse({{"highway", "primary"}, {"oneway", "yes"}, {"lanes", "2"}, {"turn:lanes", "left|through|right"}},
-                              &warnings);
+  const ParsedWay bad =
+      parse({{"highway", "primary"}, {"oneway", "yes"}, {"lanes", "2"}, {"turn:lanes", "left|through|right"}},
+            &warnings);
   EXPECT_TRUE(bad.attributes.turn_forward.empty());
   EXPECT_NE(warnings.find("turn:lanes"), std::string::npos);
 }
@@ -126,11 +134,7 @@ TEST(ParseWayTags, OnewayAndLanesTable) {
       {{{"highway", "motorway"}}, true, false, 2, 0},
       {{{"highway", "motorway"}, {"oneway", "no"}}, false, false, 2, 2},
       {{{"highway", "secondary"}, {"junction", "roundabout"}}, true, false, 1, 0},
-      {{{"highway", "secondary"}, {"junction", "roundabout"}, {"oneway", "no"}},
-       false,
-       false,
-       1,
-       1},
+      {{{"highway", "secondary"}, {"junction", "roundabout"}, {"oneway", "no"}}, false, false, 1, 1},
       // lanes: one-way -> all forward; two-way -> split, odd lane forward.
       {{{"highway", "primary"}, {"lanes", "3"}, {"oneway", "yes"}}, true, false, 3, 0},
       {{{"highway", "primary"}, {"lanes", "3"}}, false, false, 2, 1},
@@ -200,16 +204,15 @@ TEST(ParseWayTags, WidthGivesLaneWidth) {
 }
 
 TEST(ParseWayTags, MaxspeedMphAndKmh) {
-  EXPECT_NEAR(*parse({{"highway", "residential"}, {"maxspeed", "25 mph"}}).attributes.maxspeed_mps,
-              11.176, 1e-9);
-  EXPECT_NEAR(*parse({{"highway", "residential"}, {"maxspeed", "50"}}).attributes.maxspeed_mps,
-              50 / 3.6, 1e-9);
+  EXPECT_NEAR(*parse({{"highway", "residential"}, {"maxspeed", "25 mph"}}).attributes.maxspeed_mps, 11.176,
+              1e-9);
+  EXPECT_NEAR(*parse({{"highway", "residential"}, {"maxspeed", "50"}}).attributes.maxspeed_mps, 50 / 3.6,
+              1e-9);
   std::string warnings;
-  EXPECT_FALSE(parse({{"highway", "residential"}, {"maxspeed", "US:urban"}}, &warnings)
-                   .attributes.maxspeed_mps);
-  EXPECT_TRUE(warnings.empty()) << warnings;
   EXPECT_FALSE(
-      parse({{"highway", "residential"}, {"maxspeed", "fast"}}, &warnings).attributes.maxspeed_mps);
+      parse({{"highway", "residential"}, {"maxspeed", "US:urban"}}, &warnings).attributes.maxspeed_mps);
+  EXPECT_TRUE(warnings.empty()) << warnings;
+  EXPECT_FALSE(parse({{"highway", "residential"}, {"maxspeed", "fast"}}, &warnings).attributes.maxspeed_mps);
   EXPECT_NE(warnings.find("maxspeed='fast'"), std::string::npos) << warnings;
 }
 

@@ -13,24 +13,39 @@ namespace relief::test {
 
 namespace {
 
-bool is_letter(char c) { return (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z'); }
+bool is_letter(char c) {
+  return (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z');
+}
 
 std::string escape(const std::string& text) {
   std::string out;
   for (const char c : text) {
     switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      case '\'': out += "&apos;"; break;
-      default: out += c;
+      case '&':
+        out += "&amp;";
+        break;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      case '\'':
+        out += "&apos;";
+        break;
+      default:
+        out += c;
     }
   }
   return out;
 }
 
-double round7(double deg) { return std::round(deg * 1e7) / 1e7; }
+double round7(double deg) {
+  return std::round(deg * 1e7) / 1e7;
+}
 
 std::string degrees(double deg) {
   char text[32];
@@ -39,8 +54,7 @@ std::string degrees(double deg) {
 }
 
 void write_tags(std::ostringstream& out, const OsmSketch::Tags& tags) {
-  for (const auto& [k, v] : tags)
-    out << "    <tag k=\"" << escape(k) << "\" v=\"" << escape(v) << "\"/>\n";
+  for (const auto& [k, v] : tags) out << "    <tag k=\"" << escape(k) << "\" v=\"" << escape(v) << "\"/>\n";
 }
 
 }  // namespace
@@ -68,19 +82,18 @@ OsmSketch::OsmSketch(std::string_view art, double grid_m, LonLat origin) : origi
       if (!is_letter(c)) continue;
       if (offsets_.contains(c))
         throw std::invalid_argument(std::string("OsmSketch: node '") + c + "' drawn twice");
-      offsets_[c] = Vec2(static_cast<double>(col - indent) * grid_m,
-                         -static_cast<double>(row) * 2.0 * grid_m);
+      offsets_[c] =
+          Vec2(static_cast<double>(col - indent) * grid_m, -static_cast<double>(row) * 2.0 * grid_m);
     }
   }
 }
 
 OsmSketch& OsmSketch::way(std::string_view letters, Tags tags, std::optional<std::int64_t> id) {
   for (const char c : letters) {
-    if (!offsets_.contains(c))
-      throw std::invalid_argument(std::string("OsmSketch: no node '") + c + "'");
+    if (!offsets_.contains(c)) throw std::invalid_argument(std::string("OsmSketch: no node '") + c + "'");
   }
-  ways_.push_back({id.value_or(static_cast<std::int64_t>(ways_.size()) + 1), std::string(letters),
-                   std::move(tags)});
+  ways_.push_back(
+      {id.value_or(static_cast<std::int64_t>(ways_.size()) + 1), std::string(letters), std::move(tags)});
   return *this;
 }
 
@@ -105,8 +118,7 @@ std::int64_t OsmSketch::node_id(char letter) {
 
 Vec2 OsmSketch::offset_m(char letter) const {
   const auto it = offsets_.find(letter);
-  if (it == offsets_.end())
-    throw std::invalid_argument(std::string("OsmSketch: no node '") + letter + "'");
+  if (it == offsets_.end()) throw std::invalid_argument(std::string("OsmSketch: no node '") + letter + "'");
   return it->second;
 }
 
@@ -130,9 +142,9 @@ std::string OsmSketch::xml() const {
   out << "<?xml version='1.0' encoding='UTF-8'?>\n<osm version=\"0.6\" generator=\"relief "
          "OsmSketch\">\n";
   if (bounds_) {
-    out << "  <bounds minlat=\"" << degrees(bounds_->min_lat) << "\" minlon=\""
-        << degrees(bounds_->min_lon) << "\" maxlat=\"" << degrees(bounds_->max_lat)
-        << "\" maxlon=\"" << degrees(bounds_->max_lon) << "\"/>\n";
+    out << "  <bounds minlat=\"" << degrees(bounds_->min_lat) << "\" minlon=\"" << degrees(bounds_->min_lon)
+        << "\" maxlat=\"" << degrees(bounds_->max_lat) << "\" maxlon=\"" << degrees(bounds_->max_lon)
+        << "\"/>\n";
   }
   for (const auto& [letter, offset] : offsets_) {
     const LonLat p = lonlat(letter);

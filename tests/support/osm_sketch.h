@@ -43,8 +43,7 @@ class OsmSketch {
 
   /// Adds a way through the nodes named by `letters`, in order. Throws std::invalid_argument
   /// for a letter that is not in the sketch.
-  OsmSketch& way(std::string_view letters, Tags tags,
-                 std::optional<std::int64_t> id = std::nullopt);
+  OsmSketch& way(std::string_view letters, Tags tags, std::optional<std::int64_t> id = std::nullopt);
   /// Adds tags to the node `letter`.
   OsmSketch& node_tags(char letter, Tags tags);
   /// Writes a <bounds> element with this box.

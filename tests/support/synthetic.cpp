@@ -7,7 +7,9 @@
 
 namespace relief::test {
 
-GeoFrame synthetic_frame() { return GeoFrame("EPSG:32610", Vec2(550000.0, 4180000.0)); }
+GeoFrame synthetic_frame() {
+  return GeoFrame("EPSG:32610", Vec2(550000.0, 4180000.0));
+}
 
 std::string write_local_dem(const std::string& name, double extent_m, double cell_m,
                             const std::function<double(double, double)>& f, std::optional<double> nodata) {
@@ -45,7 +47,8 @@ RoadNetwork make_network(const std::vector<Polyline2>& roads, const std::vector<
     road.id = static_cast<int>(i);
     road.points = roads[i];
     road.osm_way_ids = {static_cast<std::int64_t>(100 + i)};
-    for (std::size_t k = 0; k < road.points.size(); ++k) road.osm_node_ids.push_back(static_cast<std::int64_t>(1000 * (i + 1) + k));
+    for (std::size_t k = 0; k < road.points.size(); ++k)
+      road.osm_node_ids.push_back(static_cast<std::int64_t>(1000 * (i + 1) + k));
     if (i < attributes.size()) road.attributes = attributes[i];
     road.start_junction = junction(road.points.front());
     road.end_junction = junction(road.points.back());
@@ -54,7 +57,7 @@ RoadNetwork make_network(const std::vector<Polyline2>& roads, const std::vector<
     net.roads.push_back(road);
   }
   for (Junction& j : net.junctions) {
-    j.kind = j.ends.size() >= 3 ? JunctionKind::intersection
+    j.kind = j.ends.size() >= 3   ? JunctionKind::intersection
              : j.ends.size() == 2 ? JunctionKind::attribute_change
                                   : JunctionKind::dead_end;
   }

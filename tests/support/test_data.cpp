@@ -9,7 +9,9 @@ std::filesystem::path shared_data(const std::string& relative) {
   return std::filesystem::path(RELIEF_SOURCE_DIR).parent_path() / "shared" / "data" / relative;
 }
 
-bool have_shared_data() { return std::filesystem::is_directory(shared_data("")); }
+bool have_shared_data() {
+  return std::filesystem::is_directory(shared_data(""));
+}
 
 std::filesystem::path fixture(const std::string& relative) {
   return std::filesystem::path(RELIEF_SOURCE_DIR) / "fixtures" / relative;

@@ -19,7 +19,7 @@ namespace relief::test {
 }  // namespace relief::test
 
 /// Skips the current test when ../shared/data is not present.
-#define RELIEF_REQUIRE_SHARED_DATA()                                        \
-  do {                                                                      \
+#define RELIEF_REQUIRE_SHARED_DATA()                                              \
+  do {                                                                            \
     if (!::relief::test::have_shared_data()) GTEST_SKIP() << "no ../shared/data"; \
   } while (0)

@@ -23,7 +23,9 @@ constexpr double kX0 = 550000.0;
 constexpr double kY0 = 4180000.0;
 constexpr double kPixel = 10.0;
 
-GeoFrame utm_frame() { return GeoFrame("EPSG:32610", Vec2(550100.0, 4179900.0)); }
+GeoFrame utm_frame() {
+  return GeoFrame("EPSG:32610", Vec2(550100.0, 4179900.0));
+}
 
 // A surface given in metres relative to the DEM's north-west corner.
 using Surface = std::function<double(double, double)>;
@@ -33,8 +35,7 @@ DemGrid grid_of(int width, int height, const Surface& f, double x0 = kX0, double
                        [&](double x, double y) { return f(x - kX0, y - kY0); });
 }
 
-std::string write_dem(const std::filesystem::path& dir, const std::string& name,
-                      const DemGrid& grid) {
+std::string write_dem(const std::filesystem::path& dir, const std::string& name, const DemGrid& grid) {
   const auto path = (dir / name).string();
   write_geotiff(path, grid);
   return path;
@@ -50,9 +51,13 @@ Aabb2 local_extent(const DemGrid& g) {
 }
 
 // Local coordinates of a point given relative to the DEM's north-west corner.
-Vec2 local_at(double dx, double dy) { return Vec2(kX0 + dx, kY0 + dy) - utm_frame().origin(); }
+Vec2 local_at(double dx, double dy) {
+  return Vec2(kX0 + dx, kY0 + dy) - utm_frame().origin();
+}
 
-double plane(double x, double y) { return 100.0 + 0.05 * x + 0.02 * y; }
+double plane(double x, double y) {
+  return 100.0 + 0.05 * x + 0.02 * y;
+}
 
 // Points off the cell centres, inside the raster (relative to the north-west corner).
 std::vector<Vec2> interior_offsets() {
@@ -95,8 +100,7 @@ TEST(DemSampler, BatchEqualsSinglePointQueries) {
   points.push_back(local_at(-500.0, 0.0));  // outside
   std::vector<std::optional<double>> heights(points.size());
   sampler.heights_at(points, heights);
-  for (std::size_t i = 0; i < points.size(); ++i)
-    EXPECT_EQ(heights[i], sampler.height_at(points[i]));
+  for (std::size_t i = 0; i < points.size(); ++i) EXPECT_EQ(heights[i], sampler.height_at(points[i]));
   EXPECT_FALSE(heights.back());
 
   std::vector<std::optional<double>> too_few(points.size() - 1);
@@ -105,9 +109,7 @@ TEST(DemSampler, BatchEqualsSinglePointQueries) {
 
 TEST(DemSampler, BilinearSurfaceIsExactForBilinearButNotForIdw) {
   // z = a + b x + c y + d x y is reproduced exactly by bilinear interpolation of cell centres.
-  const Surface surface = [](double x, double y) {
-    return 10.0 + 0.1 * x - 0.05 * y + 0.001 * x * y;
-  };
+  const Surface surface = [](double x, double y) { return 10.0 + 0.1 * x - 0.05 * y + 0.001 * x * y; };
   const auto dir = test::scratch_dir("dem_sampler_bilinear_surface");
   const DemGrid grid = grid_of(20, 20, surface);
   const auto path = write_dem(dir, "surface.tif", grid);
@@ -176,8 +178,7 @@ TEST(DemSampler, NearestReturnsTheContainingCell) {
   grid.values = {1.0, 2.0, 3.0, 4.0, 5.0, 6.0};
   DemOptions options;
   options.interpolation = Interpolation::nearest;
-  const DemSampler sampler({write_dem(dir, "cells.tif", grid)}, utm_frame(), local_extent(grid),
-                           options);
+  const DemSampler sampler({write_dem(dir, "cells.tif", grid)}, utm_frame(), local_extent(grid), options);
   EXPECT_EQ(*sampler.height_at(local_at(0.5, -0.5)), 1.0);
   EXPECT_EQ(*sampler.height_at(local_at(19.9, -9.9)), 2.0);   // near the corner, still cell (1, 0)
   EXPECT_EQ(*sampler.height_at(local_at(20.1, -10.1)), 6.0);  // just across it: cell (2, 1)
@@ -219,8 +220,8 @@ TEST(DemSampler, OnlyTheAreaPlusMarginIsRead) {
 // ---------------------------------------------------------------- georeferencing variants
 
 // A VRT (text) over `source` with its own geotransform and band metadata.
-std::string write_vrt(const std::filesystem::path& path, const std::string& source, int width,
-                      int height, const std::string& geo_transform, const std::string& band_extra) {
+std::string write_vrt(const std::filesystem::path& path, const std::string& source, int width, int height,
+                      const std::string& geo_transform, const std::string& band_extra) {
   std::ofstream out(path);
   out << "<VRTDataset rasterXSize=\"" << width << "\" rasterYSize=\"" << height << "\">\n"
       << "  <SRS>EPSG:32610</SRS>\n"
@@ -239,12 +240,11 @@ TEST(DemSampler, SouthUpRasterIsSampledRightSideUp) {
   const auto dir = test::scratch_dir("dem_sampler_south_up");
   // Row 0 is the southernmost: row r has its centre at y = ys + (r + 0.5) * 10.
   const double ys = kY0 - 300.0;
-  const DemGrid rows =
-      make_dem_grid("EPSG:32610", kX0, 0.0, kPixel, kPixel, 40, 30,
-                    [&](double x, double y) { return plane(x - kX0, ys - y - kY0); });
+  const DemGrid rows = make_dem_grid("EPSG:32610", kX0, 0.0, kPixel, kPixel, 40, 30,
+                                     [&](double x, double y) { return plane(x - kX0, ys - y - kY0); });
   const auto source = write_dem(dir, "rows.tif", rows);
-  const auto vrt = write_vrt(dir / "south_up.vrt", source, 40, 30,
-                             "550000, 10, 0, " + std::to_string(ys) + ", 0, 10", "");
+  const auto vrt =
+      write_vrt(dir / "south_up.vrt", source, 40, 30, "550000, 10, 0, " + std::to_string(ys) + ", 0, 10", "");
   Aabb2 area;
   area.extend(local_at(0.0, 0.0));
   area.extend(local_at(400.0, -300.0));
@@ -260,8 +260,7 @@ TEST(DemSampler, RotatedRasterIsRejected) {
   const auto dir = test::scratch_dir("dem_sampler_rotated");
   const DemGrid grid = grid_of(4, 4, plane);
   const auto source = write_dem(dir, "g.tif", grid);
-  const auto vrt =
-      write_vrt(dir / "rotated.vrt", source, 4, 4, "550000, 10, 0.5, 4180000, 0.5, -10", "");
+  const auto vrt = write_vrt(dir / "rotated.vrt", source, 4, 4, "550000, 10, 0.5, 4180000, 0.5, -10", "");
   EXPECT_THROW(DemSampler({vrt}, utm_frame(), local_extent(grid)), InvalidInput);
 }
 
@@ -269,9 +268,8 @@ TEST(DemSampler, ScaleOffsetThenUnitAreApplied) {
   const auto dir = test::scratch_dir("dem_sampler_scale");
   const DemGrid grid = grid_of(4, 4, [](double, double) { return 100.0; });
   const auto source = write_dem(dir, "raw.tif", grid);
-  const auto vrt =
-      write_vrt(dir / "scaled.vrt", source, 4, 4, "550000, 10, 0, 4180000, 0, -10",
-                "    <UnitType>ft</UnitType>\n    <Offset>10</Offset>\n    <Scale>2</Scale>\n");
+  const auto vrt = write_vrt(dir / "scaled.vrt", source, 4, 4, "550000, 10, 0, 4180000, 0, -10",
+                             "    <UnitType>ft</UnitType>\n    <Offset>10</Offset>\n    <Scale>2</Scale>\n");
   const DemSampler sampler({vrt}, utm_frame(), local_extent(grid));
   EXPECT_NEAR(*sampler.height_at(local_at(20.0, -20.0)), (100.0 * 2.0 + 10.0) * 0.3048, 1e-9);
   EXPECT_EQ(sampler.sources()[0].scale, 2.0);
@@ -345,7 +343,7 @@ TEST(DemSampler, MosaicFirstValidValueWinsAndVoidsFallThrough) {
   EXPECT_NEAR(*ab.height_at(local_at(50.0, -50.0)), plane(50.0, -50.0), 1e-9);    // A only
   EXPECT_NEAR(*ab.height_at(local_at(120.0, -20.0)), plane(120.0, -20.0), 1e-9);  // both: A
   EXPECT_NEAR(*ab.height_at(local_at(150.0, -50.0)), plane(150.0, -50.0) + 1000.0,
-              1e-9);  // A's void
+              1e-9);                                                                       // A's void
   EXPECT_NEAR(*ab.height_at(local_at(250.0, -50.0)), plane(250.0, -50.0) + 1000.0, 1e-9);  // B only
   EXPECT_EQ(ab.sources().size(), 2U);
 
@@ -407,8 +405,7 @@ TEST(DemSampler, MissingFileIsAnIoErrorNamingIt) {
   try {
     DemSampler sampler({path}, utm_frame(), area);
   } catch (const IoError& e) {
-    EXPECT_NE(std::string(e.what()).find("cannot open DEM '" + path + "'"), std::string::npos)
-        << e.what();
+    EXPECT_NE(std::string(e.what()).find("cannot open DEM '" + path + "'"), std::string::npos) << e.what();
   }
 }
 
@@ -500,8 +497,7 @@ std::uint32_t crc32(const std::string& data) {
 }
 
 // A zip archive holding `content` as `name`, stored uncompressed (PKWARE APPNOTE 4.3).
-void write_stored_zip(const std::filesystem::path& zip, const std::string& name,
-                      const std::string& content) {
+void write_stored_zip(const std::filesystem::path& zip, const std::string& name, const std::string& content) {
   const auto size = static_cast<std::uint32_t>(content.size());
   const auto name_size = static_cast<std::uint32_t>(name.size());
   const std::uint32_t crc = crc32(content);
@@ -561,9 +557,9 @@ TEST(DemSampler, ReadsARasterInsideAZipArchive) {
   const DemSampler sampler({path}, utm_frame(), local_extent(grid));
   EXPECT_NEAR(*sampler.height_at(local_at(55.5, -77.7)), plane(55.5, -77.7), 1e-9);
   EXPECT_EQ(sampler.sources()[0].path, path);
-  EXPECT_THROW(DemSampler({"/vsizip/" + (dir / "dem.zip").string() + "/missing.tif"}, utm_frame(),
-                          local_extent(grid)),
-               IoError);
+  EXPECT_THROW(
+      DemSampler({"/vsizip/" + (dir / "dem.zip").string() + "/missing.tif"}, utm_frame(), local_extent(grid)),
+      IoError);
 }
 
 // ---------------------------------------------------------------- real data
@@ -583,24 +579,21 @@ Aabb2 local_box(const GeoFrame& frame, const LonLatBox& b) {
 }
 
 // n_lon x n_lat points of `b` (WGS84), inset by `inset` of the box on every side, in the frame.
-std::vector<Vec2> lonlat_grid(const GeoFrame& frame, const LonLatBox& b, int n_lon, int n_lat,
-                              double inset) {
+std::vector<Vec2> lonlat_grid(const GeoFrame& frame, const LonLatBox& b, int n_lon, int n_lat, double inset) {
   const CrsTransform to_frame("EPSG:4326", frame.crs());
   std::vector<Vec2> out;
   for (int i = 0; i < n_lon; ++i) {
     for (int j = 0; j < n_lat; ++j) {
       const double s = inset + (1.0 - 2.0 * inset) * i / (n_lon - 1);
       const double t = inset + (1.0 - 2.0 * inset) * j / (n_lat - 1);
-      const Vec2 ll(b.min_lon + s * (b.max_lon - b.min_lon),
-                    b.min_lat + t * (b.max_lat - b.min_lat));
+      const Vec2 ll(b.min_lon + s * (b.max_lon - b.min_lon), b.min_lat + t * (b.max_lat - b.min_lat));
       out.push_back(to_frame.apply(ll) - frame.origin());
     }
   }
   return out;
 }
 
-std::vector<std::optional<double>> heights(const DemSampler& sampler,
-                                           const std::vector<Vec2>& points) {
+std::vector<std::optional<double>> heights(const DemSampler& sampler, const std::vector<Vec2>& points) {
   std::vector<std::optional<double>> out(points.size());
   sampler.heights_at(points, out);
   return out;
@@ -613,11 +606,10 @@ TEST(DemSamplerRealData, PotreroTenMetreAndThirtyMetreDemsAgreeAfterTheDatumShif
   Diagnostics ten_diagnostics;
   Diagnostics diagnostics;
   const DemSampler ten(
-      {test::shared_data("sf-potrero/USGS_13_n38w123-subsection-small-potrero.tif").string()},
-      frame, area, {}, &ten_diagnostics);
-  const DemSampler thirty(
-      {test::shared_data("sf-dem/sf_north_quad_usgs24k_30m_nad27utm10_m.tif").string()}, frame,
-      area, {}, &diagnostics);
+      {test::shared_data("sf-potrero/USGS_13_n38w123-subsection-small-potrero.tif").string()}, frame, area,
+      {}, &ten_diagnostics);
+  const DemSampler thirty({test::shared_data("sf-dem/sf_north_quad_usgs24k_30m_nad27utm10_m.tif").string()},
+                          frame, area, {}, &diagnostics);
   EXPECT_EQ(ten.sources()[0].crs, "EPSG:4269");
   EXPECT_EQ(thirty.sources()[0].crs, "EPSG:26710");
   EXPECT_NE(thirty.sources()[0].transform_name.find("NAD27"), std::string::npos)
@@ -675,10 +667,8 @@ TEST(DemSamplerRealData, SouthQuadInFeetAgreesWithNorthQuadInMetres) {
   const LonLatBox band{-122.49, 37.7497, -122.38, 37.7500};
   const GeoFrame frame = GeoFrame::utm_at(band.centre());
   const Aabb2 area = local_box(frame, band);
-  const auto north_path =
-      test::shared_data("sf-dem/sf_north_quad_usgs24k_30m_nad27utm10_m.tif").string();
-  const auto south_path =
-      test::shared_data("sf-dem/sf_south_quad_usgs24k_30m_nad27utm10_ft.tif").string();
+  const auto north_path = test::shared_data("sf-dem/sf_north_quad_usgs24k_30m_nad27utm10_m.tif").string();
+  const auto south_path = test::shared_data("sf-dem/sf_south_quad_usgs24k_30m_nad27utm10_ft.tif").string();
   DemOptions feet;
   feet.unit = VerticalUnit::foot;
   DemOptions metres;  // a user stating the wrong unit
@@ -714,9 +704,8 @@ TEST(DemSamplerRealData, SouthQuadInFeetAgreesWithNorthQuadInMetres) {
   const double mean_abs = sum_abs / both;
   const double ratio = sum_m / sum_n;
   std::cout << "[sf quads] " << both << " of " << points.size()
-            << " points on both quads; mean |south(ft->m) - north(m)| " << mean_abs
-            << " m; mean north " << sum_n / both << " m; read as metres the south quad is " << ratio
-            << "x the north quad\n";
+            << " points on both quads; mean |south(ft->m) - north(m)| " << mean_abs << " m; mean north "
+            << sum_n / both << " m; read as metres the south quad is " << ratio << "x the north quad\n";
   RecordProperty("quads_mean_abs_diff_m", std::to_string(mean_abs));
   RecordProperty("quads_ratio_when_read_as_metres", std::to_string(ratio));
   EXPECT_LT(mean_abs, 5.0);
@@ -728,9 +717,8 @@ TEST(DemSamplerRealData, VoidyAdjacentSrtmTilesAsAMosaic) {
   // Two adjacent 1" tiles (EPSG:4326) with ~11 % voids (-32768).
   const LonLatBox both{-122.4093, 37.7902, -122.3965, 37.8004};
   const GeoFrame frame = GeoFrame::utm_at(both.centre());
-  const std::vector<std::string> paths{
-      test::shared_data("dsm-voids/osmnx_elevation1_srtm1.tif").string(),
-      test::shared_data("dsm-voids/osmnx_elevation2_srtm1.tif").string()};
+  const std::vector<std::string> paths{test::shared_data("dsm-voids/osmnx_elevation1_srtm1.tif").string(),
+                                       test::shared_data("dsm-voids/osmnx_elevation2_srtm1.tif").string()};
   DemOptions nearest;
   nearest.interpolation = Interpolation::nearest;
   const DemSampler by_cell(paths, frame, local_box(frame, both), nearest);
@@ -739,8 +727,7 @@ TEST(DemSamplerRealData, VoidyAdjacentSrtmTilesAsAMosaic) {
   const auto zn = heights(by_cell, points);
   const auto zb = heights(smooth, points);
   const auto voids = [](const auto& z) {
-    return static_cast<double>(std::count(z.begin(), z.end(), std::nullopt)) /
-           static_cast<double>(z.size());
+    return static_cast<double>(std::count(z.begin(), z.end(), std::nullopt)) / static_cast<double>(z.size());
   };
   // Points east of the first tile can only have been answered by the second one.
   const CrsTransform to_lonlat(frame.crs(), "EPSG:4326");
@@ -765,8 +752,8 @@ TEST(DemSamplerRealData, HundredFiftyThousandPointsAreFast) {
   const LonLatBox ne{-122.4389, 37.7761, -122.3915, 37.8058};
   const GeoFrame frame = GeoFrame::utm_at(ne.centre());
   const Aabb2 area = local_box(frame, ne);
-  const DemSampler sampler({test::shared_data("sf-ne/sf_ne_usgs24k_30m_nad27utm10_m.tif").string()},
-                           frame, area);
+  const DemSampler sampler({test::shared_data("sf-ne/sf_ne_usgs24k_30m_nad27utm10_m.tif").string()}, frame,
+                           area);
   std::mt19937 rng(42);
   std::uniform_real_distribution<double> ux(area.min.x(), area.max.x());
   std::uniform_real_distribution<double> uy(area.min.y(), area.max.y());
@@ -779,8 +766,7 @@ TEST(DemSamplerRealData, HundredFiftyThousandPointsAreFast) {
   sampler.heights_at(points, out);
   const double ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-  const auto valid =
-      std::count_if(out.begin(), out.end(), [](const auto& z) { return z.has_value(); });
+  const auto valid = std::count_if(out.begin(), out.end(), [](const auto& z) { return z.has_value(); });
   std::cout << "[speed] heights_at over " << points.size() << " points: " << ms << " ms (" << valid
             << " with a height)\n";
   RecordProperty("heights_at_150k_ms", std::to_string(ms));

@@ -86,8 +86,8 @@ TEST(InspectDem, ReportsGridCrsUnitAndNodata) {
 
 TEST(InspectDem, GeographicRaster) {
   const auto dir = test::scratch_dir("inspect_dem_geographic");
-  const DemGrid grid = make_dem_grid("EPSG:4269", -122.41, 37.76, 0.001, 0.001, 10, 10,
-                                     [](double, double) { return 1.0; });
+  const DemGrid grid =
+      make_dem_grid("EPSG:4269", -122.41, 37.76, 0.001, 0.001, 10, 10, [](double, double) { return 1.0; });
   const auto path = (dir / "g.tif").string();
   write_geotiff(path, grid);
   const DemInfo info = inspect_dem(path);
@@ -123,8 +123,7 @@ TEST(InspectDem, RasterWithoutCrsIsInvalidInput) {
   try {
     (void)inspect_dem(path.string());
   } catch (const InvalidInput& e) {
-    EXPECT_NE(std::string(e.what()).find("no coordinate reference system"), std::string::npos)
-        << e.what();
+    EXPECT_NE(std::string(e.what()).find("no coordinate reference system"), std::string::npos) << e.what();
   }
 }
 
@@ -142,8 +141,8 @@ TEST(InspectDem, RasterWithoutGeotransformIsInvalidInput) {
 
 TEST(InspectDem, UnknownUnitTypeIsInvalidInputUnlessTheUserStatesTheUnit) {
   const auto dir = test::scratch_dir("inspect_dem_unit");
-  DemGrid grid = make_dem_grid("EPSG:32610", 550000.0, 4180000.0, 10.0, 10.0, 2, 2,
-                               [](double, double) { return 1.0; });
+  DemGrid grid =
+      make_dem_grid("EPSG:32610", 550000.0, 4180000.0, 10.0, 10.0, 2, 2, [](double, double) { return 1.0; });
   grid.unit_type = "furlong";
   const auto path = (dir / "g.tif").string();
   write_geotiff(path, grid);
@@ -155,8 +154,8 @@ TEST(InspectDem, UnknownUnitTypeIsInvalidInputUnlessTheUserStatesTheUnit) {
 
 TEST(InspectDemRealData, SharedRasters) {
   RELIEF_REQUIRE_SHARED_DATA();
-  const DemInfo potrero = inspect_dem(
-      test::shared_data("sf-potrero/USGS_13_n38w123-subsection-small-potrero.tif").string());
+  const DemInfo potrero =
+      inspect_dem(test::shared_data("sf-potrero/USGS_13_n38w123-subsection-small-potrero.tif").string());
   EXPECT_EQ(potrero.crs, "EPSG:4269");
   EXPECT_EQ(potrero.width, 99);
   EXPECT_EQ(potrero.height, 49);

@@ -41,9 +41,9 @@ TEST(MakeDemGrid, RejectsDegenerateGrids) {
 
 TEST(WriteGeotiff, RoundTripsGridGeoreferencingNodataAndUnit) {
   const auto dir = test::scratch_dir("write_geotiff_round_trip");
-  DemGrid grid = make_dem_grid(
-      "EPSG:32610", 550000.0, 4180000.0, 10.0, 10.0, 4, 3,
-      [](double x, double y) { return 0.001 * (x - 550000.0) + 0.01 * (4180000.0 - y); });
+  DemGrid grid = make_dem_grid("EPSG:32610", 550000.0, 4180000.0, 10.0, 10.0, 4, 3, [](double x, double y) {
+    return 0.001 * (x - 550000.0) + 0.01 * (4180000.0 - y);
+  });
   grid.values[5] = -9999.0;  // cell (1, 1) void
   grid.nodata = -9999.0;
   grid.unit_type = "m";
@@ -84,10 +84,8 @@ TEST(WriteGeotiff, RoundTripsGridGeoreferencingNodataAndUnit) {
 TEST(WriteGeotiff, OverwritesAnExistingFile) {
   const auto dir = test::scratch_dir("write_geotiff_overwrite");
   const auto path = (dir / "dem.tif").string();
-  write_geotiff(path,
-                make_dem_grid("EPSG:32610", 0, 0, 1, 1, 2, 2, [](double, double) { return 1.0; }));
-  write_geotiff(path,
-                make_dem_grid("EPSG:4326", 0, 0, 1, 1, 5, 7, [](double, double) { return 1.0; }));
+  write_geotiff(path, make_dem_grid("EPSG:32610", 0, 0, 1, 1, 2, 2, [](double, double) { return 1.0; }));
+  write_geotiff(path, make_dem_grid("EPSG:4326", 0, 0, 1, 1, 5, 7, [](double, double) { return 1.0; }));
   const DemInfo info = inspect_dem(path);
   EXPECT_EQ(info.width, 5);
   EXPECT_EQ(info.crs, "EPSG:4326");
@@ -96,8 +94,7 @@ TEST(WriteGeotiff, OverwritesAnExistingFile) {
 
 TEST(WriteGeotiff, FailuresThrowAndLeaveNothingBehind) {
   const auto dir = test::scratch_dir("write_geotiff_failures");
-  const DemGrid grid =
-      make_dem_grid("EPSG:32610", 0, 0, 1, 1, 2, 2, [](double, double) { return 1.0; });
+  const DemGrid grid = make_dem_grid("EPSG:32610", 0, 0, 1, 1, 2, 2, [](double, double) { return 1.0; });
   EXPECT_THROW(write_geotiff((dir / "no" / "such" / "dir.tif").string(), grid), IoError);
 
   DemGrid unknown_crs = grid;

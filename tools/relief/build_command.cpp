@@ -40,16 +40,17 @@ void print_summary(const BuildResult& result) {
   std::ostringstream out;
   out << "relief build: " << r.name << "\n"
       << "  network    " << n.roads << " roads, " << n.junctions << " junctions (" << n.intersections
-      << " intersections, " << n.attribute_changes << " attribute changes), " << n.dead_ends
-      << " dead ends, " << n.roundabouts << " roundabouts, " << n.traffic_signals << " signals, "
-      << fixed(n.length_km, 2) << " km\n"
+      << " intersections, " << n.attribute_changes << " attribute changes), " << n.dead_ends << " dead ends, "
+      << n.roundabouts << " roundabouts, " << n.traffic_signals << " signals, " << fixed(n.length_km, 2)
+      << " km\n"
       << "  structures " << n.bridges << " bridges (" << fixed(n.bridge_km, 2) << " km), " << n.tunnels
       << " tunnels (" << fixed(n.tunnel_km, 2) << " km)\n"
       << "  elevation  " << r.samples << " samples every " << fixed(r.spacing_m, 2) << " m, "
       << to_string(r.interpolation) << "; " << r.void_samples << " in DEM voids, " << r.uncovered_samples
       << " uncovered\n"
-      << "  vs DEM     MAE " << fixed(r.heights.vs_dem.mae_m, 3) << " m, RMSE " << fixed(r.heights.vs_dem.rmse_m, 3)
-      << " m, max " << fixed(r.heights.vs_dem.max_m, 3) << " m (n = " << r.heights.vs_dem.n << ")\n";
+      << "  vs DEM     MAE " << fixed(r.heights.vs_dem.mae_m, 3) << " m, RMSE "
+      << fixed(r.heights.vs_dem.rmse_m, 3) << " m, max " << fixed(r.heights.vs_dem.max_m, 3)
+      << " m (n = " << r.heights.vs_dem.n << ")\n";
   if (r.heights.vs_reference) {
     const ErrorStats& e = *r.heights.vs_reference;
     out << "  vs ref DEM MAE " << fixed(e.mae_m, 3) << " m, RMSE " << fixed(e.rmse_m, 3) << " m, max "
@@ -58,14 +59,15 @@ void print_summary(const BuildResult& result) {
   for (const MethodReport& m : r.methods) {
     out << "  " << (m.method == r.profile_method ? "* " : "  ") << std::left << std::setw(8) << m.method
         << " ground vs DEM RMSE " << fixed(m.ground.vs_dem.rmse_m, 3) << " m, max grade "
-        << fixed(m.gradient.max_percent, 1) << " %, p99 " << fixed(m.gradient.p99_percent, 1) << " %, compliance "
-        << fixed(m.gradient.compliance_percent, 1) << " %, clearance ok at " << (m.separations - m.below_clearance)
-        << "/" << m.separations << " crossings\n";
+        << fixed(m.gradient.max_percent, 1) << " %, p99 " << fixed(m.gradient.p99_percent, 1)
+        << " %, compliance " << fixed(m.gradient.compliance_percent, 1) << " %, clearance ok at "
+        << (m.separations - m.below_clearance) << "/" << m.separations << " crossings\n";
   }
   if (r.fit) {
-    out << "  fit        " << r.fit->policy << " policy, " << r.fit->variables << " heights, " << r.fit->constraints
-        << " constraints, " << r.fit->iterations << " rounds" << (r.fit->converged ? "" : " (not settled)")
-        << ", largest violation " << fixed(r.fit->max_violation_m, 6) << " m\n";
+    out << "  fit        " << r.fit->policy << " policy, " << r.fit->variables << " heights, "
+        << r.fit->constraints << " constraints, " << r.fit->iterations << " rounds"
+        << (r.fit->converged ? "" : " (not settled)") << ", largest violation "
+        << fixed(r.fit->max_violation_m, 6) << " m\n";
   }
   if (r.paper) {
     out << "  paper      " << r.paper->roads_not_converged << " roads still over their limit after "
@@ -75,17 +77,18 @@ void print_summary(const BuildResult& result) {
     const OpenDriveSummary& o = *r.opendrive;
     out << "  opendrive  " << o.file << " (" << o.version << "): " << o.roads << " roads, " << o.junctions
         << " junctions";
-    if (o.junctions_without_movements) out << " (+" << o.junctions_without_movements << " with no possible movement)";
+    if (o.junctions_without_movements)
+      out << " (+" << o.junctions_without_movements << " with no possible movement)";
     out << ", " << o.connecting_roads << " connecting roads, " << o.transition_roads
-        << " transition roads; largest lane-border gap at links "
-        << fixed(o.max_link_gap_m, 4) << " m horizontal, " << fixed(o.max_link_step_m, 4)
-        << " m vertical; read back within " << fixed(std::max(o.round_trip_max_xy_m, o.round_trip_max_z_m), 6)
-        << " m\n";
+        << " transition roads; largest lane-border gap at links " << fixed(o.max_link_gap_m, 4)
+        << " m horizontal, " << fixed(o.max_link_step_m, 4) << " m vertical; read back within "
+        << fixed(std::max(o.round_trip_max_xy_m, o.round_trip_max_z_m), 6) << " m\n";
   }
-  out << "  gradient   max " << fixed(r.gradient.max_percent, 1) << " %, p99 " << fixed(r.gradient.p99_percent, 1)
-      << " %, compliance with class limits " << fixed(r.gradient.compliance_percent, 1) << " %\n"
-      << "  junctions  max elevation gap " << fixed(r.junctions.max_gap_m, 3) << " m (" << r.junctions.over_bound
-      << " over " << fixed(r.junctions.bound_m, 2) << " m)\n";
+  out << "  gradient   max " << fixed(r.gradient.max_percent, 1) << " %, p99 "
+      << fixed(r.gradient.p99_percent, 1) << " %, compliance with class limits "
+      << fixed(r.gradient.compliance_percent, 1) << " %\n"
+      << "  junctions  max elevation gap " << fixed(r.junctions.max_gap_m, 3) << " m ("
+      << r.junctions.over_bound << " over " << fixed(r.junctions.bound_m, 2) << " m)\n";
   double total = 0.0;
   for (const auto& [stage, s] : r.timings_s) total += s;
   out << "  time       " << fixed(total, 3) << " s\n";
@@ -96,29 +99,35 @@ void print_summary(const BuildResult& result) {
 }  // namespace
 
 Runner add_build_command(CLI::App& app) {
-  auto* cmd = app.add_subcommand("build", "Build the 3D road network from OSM and DEM(s) and write its outputs");
+  auto* cmd =
+      app.add_subcommand("build", "Build the 3D road network from OSM and DEM(s) and write its outputs");
   auto args = std::make_shared<BuildArgs>();
   args->input.add_to(*cmd);
   cmd->add_option("--out", args->out_dir, "output directory (created if missing)")->required();
   cmd->add_option("--name", args->name, "base name of the outputs (default: the OSM file's stem)");
   cmd->add_option("--reference-dem", args->reference_dems,
                   "independent DEM(s) to validate the road heights against (e.g. a finer one)");
-  cmd->add_option("--reference-dem-unit", args->reference_dem_unit, "vertical unit of the reference DEM(s): m, ft, us-ft");
+  cmd->add_option("--reference-dem-unit", args->reference_dem_unit,
+                  "vertical unit of the reference DEM(s): m, ft, us-ft");
   cmd->add_option("--nodata-fill", args->nodata_fill,
                   "DEM voids under roads: interpolate (along the road, reported) or error")
       ->capture_default_str();
-  cmd->add_flag("--allow-partial", args->allow_partial, "accept roads partly outside the DEM(s) (filled, reported)");
+  cmd->add_flag("--allow-partial", args->allow_partial,
+                "accept roads partly outside the DEM(s) (filled, reported)");
   cmd->add_option("--grade-limits", args->grade_limits,
                   "override grade limits, e.g. highway=8,arterial=12,local=15,residential=18 (percent)");
-  cmd->add_option("--outputs", args->outputs, "comma-separated outputs to write: xodr, geojson, report (report.json), html (report.html), or all")
+  cmd->add_option(
+         "--outputs", args->outputs,
+         "comma-separated outputs to write: xodr, geojson, report (report.json), html (report.html), or all")
       ->capture_default_str();
   cmd->add_flag("-q,--quiet", args->quiet, "print only errors and the summary");
   cmd->add_option("--profiles", args->profiles,
                   "road profiles the outputs carry: relief (network-wide constrained fit), paper (the seed "
                   "paper's 3-point moving average), raw (DEM drape)")
       ->capture_default_str();
-  cmd->add_option("--grade-policy", args->grade_policy,
-                  "fit policy: fidelity (keep real grades, cap at --max-grade) or design (enforce the class limits)")
+  cmd->add_option(
+         "--grade-policy", args->grade_policy,
+         "fit policy: fidelity (keep real grades, cap at --max-grade) or design (enforce the class limits)")
       ->capture_default_str();
   cmd->add_option("--max-grade", args->max_grade_percent, "fidelity: grade cap for streets, percent")
       ->capture_default_str()
@@ -127,7 +136,8 @@ Runner add_build_command(CLI::App& app) {
                   "fidelity: grade cap for motorways, trunks and their links, percent")
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
-  cmd->add_option("--clearance", args->clearance_m, "minimum vertical clearance where roads on different layers cross, m")
+  cmd->add_option("--clearance", args->clearance_m,
+                  "minimum vertical clearance where roads on different layers cross, m")
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
   cmd->add_option("--smoothing-wavelength", args->wavelength_m,
@@ -140,7 +150,8 @@ Runner add_build_command(CLI::App& app) {
   cmd->add_option("--opendrive-version", args->opendrive_minor, "OpenDRIVE 1.N to write: 4, 7 (default) or 8")
       ->capture_default_str()
       ->check(CLI::IsMember({4, 7, 8}));
-  cmd->add_flag("--no-compare", args->no_compare, "run only the chosen profile method (no comparison in the report)");
+  cmd->add_flag("--no-compare", args->no_compare,
+                "run only the chosen profile method (no comparison in the report)");
 
   return [args] {
     return run_reporting_errors([&] {
@@ -152,18 +163,24 @@ Runner add_build_command(CLI::App& app) {
       if (!args->reference_dem_unit.empty()) {
         options.reference_dem.unit = parse_vertical_unit(args->reference_dem_unit);
         if (!options.reference_dem.unit) {
-          throw CLI::ValidationError("--reference-dem-unit", "'" + args->reference_dem_unit + "' is not one of m, ft, us-ft");
+          throw CLI::ValidationError("--reference-dem-unit",
+                                     "'" + args->reference_dem_unit + "' is not one of m, ft, us-ft");
         }
       }
       const auto fill = parse_nodata_fill(args->nodata_fill);
-      if (!fill) throw CLI::ValidationError("--nodata-fill", "'" + args->nodata_fill + "' is not interpolate or error");
+      if (!fill)
+        throw CLI::ValidationError("--nodata-fill",
+                                   "'" + args->nodata_fill + "' is not interpolate or error");
       options.sampling.nodata_fill = *fill;
       options.sampling.allow_partial = args->allow_partial;
       const auto method = parse_profile_method(args->profiles);
-      if (!method) throw CLI::ValidationError("--profiles", "'" + args->profiles + "' is not one of relief, paper, raw");
+      if (!method)
+        throw CLI::ValidationError("--profiles", "'" + args->profiles + "' is not one of relief, paper, raw");
       options.profile_method = *method;
       const auto policy = parse_grade_policy(args->grade_policy);
-      if (!policy) throw CLI::ValidationError("--grade-policy", "'" + args->grade_policy + "' is not fidelity or design");
+      if (!policy)
+        throw CLI::ValidationError("--grade-policy",
+                                   "'" + args->grade_policy + "' is not fidelity or design");
       options.fit.policy = *policy;
       options.fit.fidelity_max_grade_percent = args->max_grade_percent;
       options.fit.fidelity_highway_max_grade_percent = args->highway_max_grade_percent;
@@ -179,7 +196,9 @@ Runner add_build_command(CLI::App& app) {
         std::string item;
         while (std::getline(in, item, ',')) {
           const auto output = parse_output(item);
-          if (!output) throw CLI::ValidationError("--outputs", "'" + item + "' is not one of xodr, geojson, report, html, all");
+          if (!output)
+            throw CLI::ValidationError("--outputs",
+                                       "'" + item + "' is not one of xodr, geojson, report, html, all");
           options.outputs.insert(*output);
         }
       }

@@ -11,14 +11,16 @@ namespace relief::cli {
 namespace {
 
 std::string box_text(const LonLatBox& b) {
-  return fixed(b.min_lon, 6) + "," + fixed(b.min_lat, 6) + "," + fixed(b.max_lon, 6) + "," + fixed(b.max_lat, 6);
+  return fixed(b.min_lon, 6) + "," + fixed(b.min_lat, 6) + "," + fixed(b.max_lon, 6) + "," +
+         fixed(b.max_lat, 6);
 }
 
 void print_info(const InfoResult& info) {
   std::cout << "OSM        " << info.osm_path << "\n"
             << "  ways     " << info.ways_read << " read, " << info.highway_ways << " with highway, "
             << info.road_ways << " built as roads\n";
-  if (info.osm_header_bounds) std::cout << "  bounds   " << box_text(*info.osm_header_bounds) << " (file header)\n";
+  if (info.osm_header_bounds)
+    std::cout << "  bounds   " << box_text(*info.osm_header_bounds) << " (file header)\n";
   std::cout << "  roads    " << box_text(info.roads_bounds) << " (lon/lat of the road nodes)\n"
             << "frame      " << info.frame.crs() << ", origin " << fixed(info.frame.origin().x(), 1) << " "
             << fixed(info.frame.origin().y(), 1) << "\n"
@@ -31,23 +33,27 @@ void print_info(const InfoResult& info) {
               << "  grid     " << d.width << " x " << d.height << " px of " << d.pixel_size.x() << " x "
               << d.pixel_size.y() << " (" << d.crs << ")\n"
               << "  unit     " << to_string(d.unit)
-              << (d.unit_stated_by_user ? " (stated)" : d.unit_from_metadata ? " (metadata)" : " (assumed: metadata silent)")
+              << (d.unit_stated_by_user  ? " (stated)"
+                  : d.unit_from_metadata ? " (metadata)"
+                                         : " (assumed: metadata silent)")
               << ", nodata " << (d.nodata ? fixed(*d.nodata, 1) : std::string("none")) << "\n"
               << "  datum    " << d.transform_name;
     if (d.transform_accuracy_m) std::cout << ", accuracy " << fixed(*d.transform_accuracy_m, 2) << " m";
     std::cout << "\n";
-    if (!d.missing_grids.empty()) std::cout << "  note     a more accurate shift needs grid(s) " << d.missing_grids << "\n";
+    if (!d.missing_grids.empty())
+      std::cout << "  note     a more accurate shift needs grid(s) " << d.missing_grids << "\n";
     if (d.extent_wgs84) std::cout << "  extent   " << box_text(*d.extent_wgs84) << "\n";
   }
-  std::cout << "coverage   " << info.samples << " road samples: " << fixed(info.covered_percent, 2) << " % with height, "
-            << fixed(info.void_percent, 2) << " % in voids, " << fixed(info.uncovered_percent, 2)
-            << " % outside the DEM(s)\n";
+  std::cout << "coverage   " << info.samples << " road samples: " << fixed(info.covered_percent, 2)
+            << " % with height, " << fixed(info.void_percent, 2) << " % in voids, "
+            << fixed(info.uncovered_percent, 2) << " % outside the DEM(s)\n";
 }
 
 }  // namespace
 
 Runner add_info_command(CLI::App& app) {
-  auto* cmd = app.add_subcommand("info", "Describe the OSM and DEM inputs and their coverage, without building");
+  auto* cmd =
+      app.add_subcommand("info", "Describe the OSM and DEM inputs and their coverage, without building");
   auto args = std::make_shared<InputArgs>();
   args->add_to(*cmd);
   return [args] {

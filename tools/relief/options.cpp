@@ -13,10 +13,12 @@ void InputArgs::add_to(CLI::App& app) {
   app.add_option("--dem", dems, "DEM raster(s) GDAL can read; repeat for a mosaic (first valid wins)")
       ->required();
   app.add_option("--crs", crs, "metric CRS of the local frame (default: WGS84 UTM zone of the data)");
-  app.add_option("--dem-unit", dem_unit, "vertical unit of the DEM(s) when their metadata is wrong or silent: m, ft, us-ft");
+  app.add_option("--dem-unit", dem_unit,
+                 "vertical unit of the DEM(s) when their metadata is wrong or silent: m, ft, us-ft");
   app.add_option("--interp", interp, "DEM interpolation: bilinear (default), idw (the seed paper's), nearest")
       ->capture_default_str();
-  app.add_option("--bbox", bbox, "clip the roads to MIN_LON,MIN_LAT,MAX_LON,MAX_LAT (ways are cut at the edge)");
+  app.add_option("--bbox", bbox,
+                 "clip the roads to MIN_LON,MIN_LAT,MAX_LON,MAX_LAT (ways are cut at the edge)");
   app.add_flag("--include-paths", include_paths, "also build footways, paths, cycleways, steps, tracks");
   app.add_option("--spacing", spacing_m, "elevation sample spacing along roads, metres")
       ->capture_default_str()
@@ -37,7 +39,8 @@ LonLatBox parse_bbox(const std::string& text) {
     }
   }
   if (v.size() != 4 || v[0] >= v[2] || v[1] >= v[3] || v[0] < -180 || v[2] > 180 || v[1] < -90 || v[3] > 90) {
-    throw CLI::ValidationError("--bbox", "'" + text + "' is not MIN_LON,MIN_LAT,MAX_LON,MAX_LAT with min < max");
+    throw CLI::ValidationError("--bbox",
+                               "'" + text + "' is not MIN_LON,MIN_LAT,MAX_LON,MAX_LAT with min < max");
   }
   return {v[0], v[1], v[2], v[3]};
 }
@@ -48,10 +51,12 @@ void InputArgs::apply_to(BuildOptions& options) const {
   if (!crs.empty()) options.crs = crs;
   if (!dem_unit.empty()) {
     options.dem.unit = parse_vertical_unit(dem_unit);
-    if (!options.dem.unit) throw CLI::ValidationError("--dem-unit", "'" + dem_unit + "' is not one of m, ft, us-ft");
+    if (!options.dem.unit)
+      throw CLI::ValidationError("--dem-unit", "'" + dem_unit + "' is not one of m, ft, us-ft");
   }
   const auto method = parse_interpolation(interp);
-  if (!method) throw CLI::ValidationError("--interp", "'" + interp + "' is not one of bilinear, idw, nearest");
+  if (!method)
+    throw CLI::ValidationError("--interp", "'" + interp + "' is not one of bilinear, idw, nearest");
   options.dem.interpolation = *method;
   options.reference_dem.interpolation = Interpolation::bilinear;
   if (!bbox.empty()) options.osm.bbox = parse_bbox(bbox);

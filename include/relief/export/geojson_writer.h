@@ -19,7 +19,6 @@ inline constexpr const char* kOsmAttribution =
 /// length_m, max_grade_percent, start_junction, end_junction, osm_way_ids. The collection
 /// carries foreign members "relief_frame" {crs, origin, proj} and "attribution".
 /// Roads without height are left out. Lon/lat at 1e-7 degrees, z at 1 mm.
-void write_geojson(std::ostream& out, const RoadNetwork& network,
-                   const std::vector<RoadProfile>& profiles);
+void write_geojson(std::ostream& out, const RoadNetwork& network, const std::vector<RoadProfile>& profiles);
 
 }  // namespace relief

@@ -20,11 +20,11 @@
 namespace relief {
 
 struct OpenDriveOptions {
-  int rev_minor = 7;          ///< OpenDRIVE 1.<rev_minor>: 4, 7 or 8
-  std::string name;           ///< header name (default: the model's name)
-  std::string date;           ///< header date, ISO 8601 (default: empty)
+  int rev_minor = 7;  ///< OpenDRIVE 1.<rev_minor>: 4, 7 or 8
+  std::string name;   ///< header name (default: the model's name)
+  std::string date;   ///< header date, ISO 8601 (default: empty)
   std::string vendor = "relief";
-  int decimals = 9;           ///< digits after the point for coordinates and coefficients
+  int decimals = 9;  ///< digits after the point for coordinates and coefficients
 };
 
 /// Writes the model. Throws InvalidInput, naming the road or junction, for a model OpenDRIVE

@@ -15,16 +15,16 @@
 namespace relief {
 
 struct HtmlReportInput {
-  const RunReport* report = nullptr;             ///< the figures (required)
-  const RoadNetwork* network = nullptr;          ///< required
-  const std::vector<RoadProfile>* raw = nullptr; ///< DEM drape (required), parallel to roads
+  const RunReport* report = nullptr;                 ///< the figures (required)
+  const RoadNetwork* network = nullptr;              ///< required
+  const std::vector<RoadProfile>* raw = nullptr;     ///< DEM drape (required), parallel to roads
   const std::vector<RoadProfile>* paper = nullptr;   ///< optional
   const std::vector<RoadProfile>* fitted = nullptr;  ///< optional (relief's fit)
-  int steepest_roads = 6;                        ///< how many steepest roads to plot
+  int steepest_roads = 6;                            ///< how many steepest roads to plot
   /// Only roads on the ground at least this long compete for "steepest" (short stubs next to
   /// structures or DEM steps give meaningless 1 m grades).
   double steep_road_min_length_m = 20.0;
-  int max_structure_plots = 12;                  ///< bridges and tunnels plotted, longest first
+  int max_structure_plots = 12;  ///< bridges and tunnels plotted, longest first
 };
 
 /// Writes a self-contained HTML5 page that is also well-formed XML (every text from the data

@@ -16,17 +16,17 @@ namespace relief {
 
 /// The figures of one way of making the profiles (raw drape, the paper's smoothing, relief's fit).
 struct MethodReport {
-  std::string method;            ///< "raw", "paper", "relief"
-  HeightValidation all;          ///< every road
-  HeightValidation ground;       ///< roads on the ground
-  HeightValidation structures;   ///< bridges and tunnels
+  std::string method;           ///< "raw", "paper", "relief"
+  HeightValidation all;         ///< every road
+  HeightValidation ground;      ///< roads on the ground
+  HeightValidation structures;  ///< bridges and tunnels
   GradeStats gradient;
   JunctionGapStats junctions;
   CutFillStats cut_fill;         ///< departure from the DEM drape, roads on the ground
   std::size_t separations = 0;   ///< crossings of roads on different layers
   double min_clearance_m = 0.0;  ///< smallest upper-minus-lower height at those crossings
   std::size_t below_clearance = 0;
-  double seconds = 0.0;          ///< time to make the profiles
+  double seconds = 0.0;  ///< time to make the profiles
 };
 
 /// relief's fit, as run.
@@ -52,18 +52,18 @@ struct PaperSummary {
 /// The OpenDRIVE written, and its checks.
 struct OpenDriveSummary {
   std::string file;
-  std::string version;                 ///< "1.7"
-  std::size_t roads = 0;               ///< roads from the network
+  std::string version;    ///< "1.7"
+  std::size_t roads = 0;  ///< roads from the network
   std::size_t connecting_roads = 0;
   std::size_t junctions = 0;
   std::size_t junctions_without_movements = 0;  ///< intersections left out: no movement possible
   std::size_t direct_links = 0;
   std::size_t transition_roads = 0;
   std::size_t roads_skipped = 0;
-  double max_link_gap_m = 0.0;         ///< horizontal, between linked lane borders
-  double max_link_step_m = 0.0;        ///< vertical, the same
+  double max_link_gap_m = 0.0;   ///< horizontal, between linked lane borders
+  double max_link_step_m = 0.0;  ///< vertical, the same
   std::size_t link_borders_checked = 0;
-  double round_trip_max_xy_m = 0.0;    ///< file read back vs the model written
+  double round_trip_max_xy_m = 0.0;  ///< file read back vs the model written
   double round_trip_max_z_m = 0.0;
   std::size_t round_trip_points = 0;
   double elevation_max_deviation_m = 0.0;  ///< elevation records vs the fitted profile
@@ -71,7 +71,7 @@ struct OpenDriveSummary {
 
 struct RunReport {
   std::string name;
-  std::string created_utc;             ///< ISO 8601
+  std::string created_utc;  ///< ISO 8601
   GeoFrame frame;
   std::string osm_path;
   std::vector<DemInfo> dems;
@@ -84,10 +84,10 @@ struct RunReport {
   std::size_t void_samples = 0;
   std::size_t uncovered_samples = 0;
   std::size_t roads_without_height = 0;
-  std::string profile_method;   ///< the method whose profiles the outputs carry
-  HeightValidation heights;      ///< of profile_method, every road
-  GradeStats gradient;           ///< of profile_method
-  JunctionGapStats junctions;    ///< of profile_method
+  std::string profile_method;         ///< the method whose profiles the outputs carry
+  HeightValidation heights;           ///< of profile_method, every road
+  GradeStats gradient;                ///< of profile_method
+  JunctionGapStats junctions;         ///< of profile_method
   std::vector<MethodReport> methods;  ///< raw, paper, relief: the comparison
   std::optional<FitSummary> fit;
   std::optional<PaperSummary> paper;

@@ -18,8 +18,7 @@ class CrsTransform {
   /// `from` and `to` are anything PROJ accepts: "EPSG:4326", a WKT string, a PROJ string.
   /// `area` (WGS84 degrees), when given, lets PROJ pick the most accurate operation for it.
   /// Throws ProjectionError if either CRS is unknown or no operation exists.
-  CrsTransform(std::string_view from, std::string_view to,
-               std::optional<LonLatBox> area = std::nullopt);
+  CrsTransform(std::string_view from, std::string_view to, std::optional<LonLatBox> area = std::nullopt);
   ~CrsTransform();
   CrsTransform(CrsTransform&&) noexcept;
   CrsTransform& operator=(CrsTransform&&) noexcept;

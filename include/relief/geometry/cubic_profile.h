@@ -42,9 +42,9 @@ class CubicProfile {
 /// (exponential then binary search for the longest piece), O(n log n). One sample gives a
 /// constant (or a line with the first end slope). Throws InvalidInput for no samples, sizes that
 /// differ, stations not strictly increasing, non-finite values, or a negative tolerance.
-[[nodiscard]] CubicProfile fit_cubic_profile(const std::vector<double>& s, const std::vector<double>& z,
-                                             double tolerance,
-                                             const std::optional<std::pair<double, double>>& end_slopes = std::nullopt);
+[[nodiscard]] CubicProfile fit_cubic_profile(
+    const std::vector<double>& s, const std::vector<double>& z, double tolerance,
+    const std::optional<std::pair<double, double>>& end_slopes = std::nullopt);
 
 /// The cubic on [0, length] with value z0, slope g0 at 0 and value z1, slope g1 at length.
 /// Throws InvalidInput unless length is positive and finite.

@@ -27,10 +27,10 @@ struct Poly3 {
 struct PlanGeometry {
   enum class Kind { line, arc, spiral, param_poly3 };
   Kind kind = Kind::line;
-  double s = 0.0;       ///< start arc length along the reference line (m)
+  double s = 0.0;  ///< start arc length along the reference line (m)
   Vec2 start = Vec2::Zero();
-  double heading = 0.0; ///< at the start (rad)
-  double length = 0.0;  ///< arc length (m), > 0
+  double heading = 0.0;          ///< at the start (rad)
+  double length = 0.0;           ///< arc length (m), > 0
   double curvature = 0.0;        ///< arc
   double curvature_start = 0.0;  ///< spiral (clothoid): curvature varies linearly in s
   double curvature_end = 0.0;
@@ -77,8 +77,8 @@ class PlanView {
 
 /// Options for fitting a reference line to a polyline.
 struct ReferenceLineOptions {
-  double tolerance_m = 0.05;    ///< max distance of the reference line from the polyline
-  double min_length_m = 1e-3;   ///< records shorter than this are merged away
+  double tolerance_m = 0.05;   ///< max distance of the reference line from the polyline
+  double min_length_m = 1e-3;  ///< records shorter than this are merged away
 };
 
 /// G1 reference line through a polyline: straight segments as `line` records joined by `arc`

@@ -57,12 +57,9 @@ struct LonLatBox {
   double max_lat = 0.0;
 
   [[nodiscard]] bool contains(const LonLat& p) const {
-    return p.lon_deg >= min_lon && p.lon_deg <= max_lon && p.lat_deg >= min_lat &&
-           p.lat_deg <= max_lat;
+    return p.lon_deg >= min_lon && p.lon_deg <= max_lon && p.lat_deg >= min_lat && p.lat_deg <= max_lat;
   }
-  [[nodiscard]] LonLat centre() const {
-    return {0.5 * (min_lon + max_lon), 0.5 * (min_lat + max_lat)};
-  }
+  [[nodiscard]] LonLat centre() const { return {0.5 * (min_lon + max_lon), 0.5 * (min_lat + max_lat)}; }
 };
 
 }  // namespace relief

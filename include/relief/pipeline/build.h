@@ -40,15 +40,15 @@ struct BuildOptions {
   std::vector<std::string> dem_paths;            ///< >= 1, mosaic in the order given
   std::vector<std::string> reference_dem_paths;  ///< optional independent check
   std::filesystem::path out_dir;
-  std::string name;                              ///< default: the OSM file's stem
-  std::optional<std::string> crs;                ///< default: the WGS84 UTM zone of the data
+  std::string name;                ///< default: the OSM file's stem
+  std::optional<std::string> crs;  ///< default: the WGS84 UTM zone of the data
   OsmReadOptions osm;
   DemOptions dem;
   DemOptions reference_dem;
   SamplingOptions sampling;
   GradeLimits grade_limits = GradeLimits::paper();  ///< compliance table; also the design policy's
   ProfileMethod profile_method = ProfileMethod::relief;
-  ProfileFitOptions fit;        ///< its `limits` are replaced by grade_limits
+  ProfileFitOptions fit;  ///< its `limits` are replaced by grade_limits
   int paper_max_iterations = 1000;
   /// Also run the other methods and put the comparison in the report.
   bool compare_methods = true;
@@ -58,8 +58,8 @@ struct BuildOptions {
 };
 
 struct BuildResult {
-  RunReport report;                               ///< what report.json says
-  std::vector<std::filesystem::path> written;     ///< final paths of the outputs
+  RunReport report;                            ///< what report.json says
+  std::vector<std::filesystem::path> written;  ///< final paths of the outputs
 };
 
 /// Runs the whole job. Outputs are written to temporaries and renamed only when everything

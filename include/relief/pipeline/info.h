@@ -13,17 +13,17 @@ namespace relief {
 struct InfoResult {
   std::string osm_path;
   std::optional<LonLatBox> osm_header_bounds;
-  LonLatBox roads_bounds;           ///< of the road nodes (after --bbox)
+  LonLatBox roads_bounds;  ///< of the road nodes (after --bbox)
   GeoFrame frame;
   std::size_t ways_read = 0;
   std::size_t highway_ways = 0;
   std::size_t road_ways = 0;
   NetworkStats network;
   std::vector<DemInfo> dems;
-  std::size_t samples = 0;          ///< road samples at the chosen spacing
-  double covered_percent = 0.0;     ///< samples with a DEM height
-  double void_percent = 0.0;        ///< samples in a void inside the DEM extent
-  double uncovered_percent = 0.0;   ///< samples outside every DEM
+  std::size_t samples = 0;         ///< road samples at the chosen spacing
+  double covered_percent = 0.0;    ///< samples with a DEM height
+  double void_percent = 0.0;       ///< samples in a void inside the DEM extent
+  double uncovered_percent = 0.0;  ///< samples outside every DEM
 };
 
 /// Reads and inspects; throws like build() for unreadable inputs, but not for partial coverage.

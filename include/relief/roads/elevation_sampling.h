@@ -30,12 +30,12 @@ struct SamplingOptions {
 
 /// Heights along one road. All vectors have one entry per sample.
 struct RoadProfile {
-  std::vector<double> s;             ///< arc length from the road's start (m), s[0] = 0
-  std::vector<Vec2> xy;              ///< local frame
-  std::vector<double> z;             ///< metres
-  std::vector<std::uint8_t> at_node; ///< 1 where the sample is an OSM node of the road
-  std::vector<std::uint8_t> filled;  ///< 1 where the DEM had no height and z was filled
-  bool has_height = true;            ///< false: no height could be found for any sample
+  std::vector<double> s;              ///< arc length from the road's start (m), s[0] = 0
+  std::vector<Vec2> xy;               ///< local frame
+  std::vector<double> z;              ///< metres
+  std::vector<std::uint8_t> at_node;  ///< 1 where the sample is an OSM node of the road
+  std::vector<std::uint8_t> filled;   ///< 1 where the DEM had no height and z was filled
+  bool has_height = true;             ///< false: no height could be found for any sample
 
   [[nodiscard]] std::size_t size() const { return s.size(); }
 };
@@ -61,7 +61,6 @@ struct ElevationSamples {
 /// NodataFill::error when a sample is a void. Voids and fills are reported to `diagnostics`
 /// ("elevation.void", "elevation.uncovered", "elevation.road_without_height").
 [[nodiscard]] ElevationSamples sample_elevation(const RoadNetwork& network, const DemSampler& dem,
-                                                const SamplingOptions& options,
-                                                Diagnostics& diagnostics);
+                                                const SamplingOptions& options, Diagnostics& diagnostics);
 
 }  // namespace relief

@@ -11,7 +11,7 @@
 namespace relief {
 
 struct GradeSeparation {
-  int upper_road = -1;   ///< the road on the higher layer
+  int upper_road = -1;  ///< the road on the higher layer
   int lower_road = -1;
   double s_upper = 0.0;  ///< arc length of the crossing on each road (m)
   double s_lower = 0.0;
@@ -27,11 +27,10 @@ struct GradeSeparation {
 /// Crossings of roads whose effective layers differ; one per crossing point (crossings of the
 /// same two roads closer than 1 m are merged). Heights (raw_clearance_m, clearance_m) from
 /// `profiles`.
-[[nodiscard]] std::vector<GradeSeparation> find_grade_separations(
-    const RoadNetwork& network, const std::vector<RoadProfile>& profiles);
+[[nodiscard]] std::vector<GradeSeparation> find_grade_separations(const RoadNetwork& network,
+                                                                  const std::vector<RoadProfile>& profiles);
 
 /// Recomputes clearance_m from `profiles` (e.g. after a fit).
-void update_clearances(std::vector<GradeSeparation>& separations,
-                       const std::vector<RoadProfile>& profiles);
+void update_clearances(std::vector<GradeSeparation>& separations, const std::vector<RoadProfile>& profiles);
 
 }  // namespace relief

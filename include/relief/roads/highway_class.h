@@ -7,10 +7,28 @@
 namespace relief {
 
 enum class HighwayClass {
-  motorway, motorway_link, trunk, trunk_link, primary, primary_link, secondary, secondary_link,
-  tertiary, tertiary_link, unclassified, residential, service, living_street,
+  motorway,
+  motorway_link,
+  trunk,
+  trunk_link,
+  primary,
+  primary_link,
+  secondary,
+  secondary_link,
+  tertiary,
+  tertiary_link,
+  unclassified,
+  residential,
+  service,
+  living_street,
   // Skipped unless OsmReadOptions::include_non_motor is set:
-  pedestrian, track, footway, path, cycleway, steps, bridleway,
+  pedestrian,
+  track,
+  footway,
+  path,
+  cycleway,
+  steps,
+  bridleway,
 };
 
 /// Parses an OSM highway value ("residential"); nullopt for values relief does not model

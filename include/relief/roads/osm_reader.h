@@ -35,11 +35,11 @@ struct OsmWay {
 struct OsmRoads {
   std::vector<OsmWay> ways;
   std::unordered_set<std::int64_t> traffic_signals;  ///< nodes tagged highway=traffic_signals
-  LonLatBox bounds;             ///< of the nodes of `ways` (after clipping)
-  std::optional<LonLatBox> header_bounds;  ///< <bounds> of the file, when present
-  std::size_t ways_read = 0;    ///< every way in the file
-  std::size_t highway_ways = 0; ///< ways with a highway tag
-  std::size_t ways_skipped_class = 0;    ///< highway classes not built (footway by default, ...)
+  LonLatBox bounds;                                  ///< of the nodes of `ways` (after clipping)
+  std::optional<LonLatBox> header_bounds;            ///< <bounds> of the file, when present
+  std::size_t ways_read = 0;                         ///< every way in the file
+  std::size_t highway_ways = 0;                      ///< ways with a highway tag
+  std::size_t ways_skipped_class = 0;                ///< highway classes not built (footway by default, ...)
   std::size_t ways_with_missing_nodes = 0;
   std::size_t missing_node_refs = 0;
 };

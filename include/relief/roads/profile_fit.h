@@ -6,11 +6,11 @@
 //               z_upper - z_lower >= clearance       (where roads on different layers cross)
 // with one shared variable per junction (exact continuity: every road end there has the same
 // height) and a tangent plane per junction that every road leaves along (the junction is a
-// smooth surface: no step and no kink between its roads, and a plane costs nothing). Bridge and tunnel samples have w = 0, so decks span smoothly
-// between their abutments and portals instead of following the valley or the hill.
-// Solved by a primal active-set method: exact sparse LDL^T solves (pattern analysed once) with
-// the violated rows enforced as stiff penalties, a few rounds; the cost is linear in the number
-// of samples (the factor of a network of chains between junctions stays sparse).
+// smooth surface: no step and no kink between its roads, and a plane costs nothing). Bridge and tunnel
+// samples have w = 0, so decks span smoothly between their abutments and portals instead of following the
+// valley or the hill. Solved by a primal active-set method: exact sparse LDL^T solves (pattern analysed once)
+// with the violated rows enforced as stiff penalties, a few rounds; the cost is linear in the number of
+// samples (the factor of a network of chains between junctions stays sparse).
 
 #include <optional>
 #include <string_view>
@@ -45,19 +45,19 @@ struct ProfileFitOptions {
   /// The same for bridge and tunnel decks, which are stiff over hundreds of metres: a deck
   /// arches smoothly over the roads it must clear instead of bumping up at each of them.
   double structure_cutoff_wavelength_m = 200.0;
-  double max_curvature_per_m = 0.05;          ///< |z''| bound (1/m); 0 disables it
-  double clearance_m = 5.0;                   ///< minimum vertical clearance at grade separations
-  double tolerance_m = 1e-6;                  ///< a row counts as violated beyond this (m)
-  int max_iterations = 40;                    ///< active-set rounds
+  double max_curvature_per_m = 0.05;  ///< |z''| bound (1/m); 0 disables it
+  double clearance_m = 5.0;           ///< minimum vertical clearance at grade separations
+  double tolerance_m = 1e-6;          ///< a row counts as violated beyond this (m)
+  int max_iterations = 40;            ///< active-set rounds
 };
 
 struct ProfileFitResult {
   std::vector<RoadProfile> profiles;  ///< same stations as the input, fitted z
   std::vector<double> junction_z;     ///< height of each junction (m)
   std::vector<GradeSeparation> separations;
-  int iterations = 0;                 ///< active-set rounds
-  bool converged = false;             ///< the active set settled
-  double max_violation_m = 0.0;       ///< largest constraint violation left (m)
+  int iterations = 0;            ///< active-set rounds
+  bool converged = false;        ///< the active set settled
+  double max_violation_m = 0.0;  ///< largest constraint violation left (m)
   std::size_t variables = 0;
   std::size_t constraints = 0;
 };
@@ -68,9 +68,7 @@ struct ProfileFitResult {
 /// Fits every road's profile. `raw` are the DEM samples (elevation_sampling.h). Reports
 /// "fit.not_converged" and "fit.infeasible" to `diagnostics` when the constraints cannot all
 /// be met (e.g. a clearance that no grade-limited ramp can reach).
-[[nodiscard]] ProfileFitResult fit_profiles(const RoadNetwork& network,
-                                            const std::vector<RoadProfile>& raw,
-                                            const ProfileFitOptions& options,
-                                            Diagnostics& diagnostics);
+[[nodiscard]] ProfileFitResult fit_profiles(const RoadNetwork& network, const std::vector<RoadProfile>& raw,
+                                            const ProfileFitOptions& options, Diagnostics& diagnostics);
 
 }  // namespace relief

@@ -28,10 +28,10 @@ struct RoadMark {
 };
 
 struct LaneModel {
-  int id = 0;                    ///< OpenDRIVE lane id (see above)
-  std::string type = "driving";  ///< "driving", "shoulder", "sidewalk", "border", "none"
-  CubicProfile width;            ///< in ds from the lane section's start
-  RoadMark mark;                 ///< mark on the lane's outer border
+  int id = 0;                      ///< OpenDRIVE lane id (see above)
+  std::string type = "driving";    ///< "driving", "shoulder", "sidewalk", "border", "none"
+  CubicProfile width;              ///< in ds from the lane section's start
+  RoadMark mark;                   ///< mark on the lane's outer border
   std::optional<int> predecessor;  ///< lane id in the predecessor road / section
   std::optional<int> successor;
 };
@@ -47,14 +47,14 @@ struct RoadLink {
   enum class Element { road, junction };
   enum class Contact { start, end };
   Element element = Element::road;
-  int id = -1;                        ///< road or junction id
-  Contact contact = Contact::start;   ///< for roads: which end of that road we touch
+  int id = -1;                       ///< road or junction id
+  Contact contact = Contact::start;  ///< for roads: which end of that road we touch
 };
 
 struct ModelRoad {
-  int id = -1;                        ///< OpenDRIVE road id
+  int id = -1;  ///< OpenDRIVE road id
   std::string name;
-  int junction = -1;                  ///< -1, or the junction this connecting road belongs to
+  int junction = -1;  ///< -1, or the junction this connecting road belongs to
   PlanView plan;
   CubicProfile elevation;             ///< z(s), metres
   CubicProfile superelevation;        ///< radians (roll), 0 unless configured
@@ -62,9 +62,9 @@ struct ModelRoad {
   std::vector<LaneSection> sections;  ///< sorted by s, first at s = 0
   std::optional<RoadLink> predecessor;
   std::optional<RoadLink> successor;
-  std::string type = "town";          ///< OpenDRIVE road type
+  std::string type = "town";  ///< OpenDRIVE road type
   std::optional<double> speed_mps;
-  int source_road = -1;               ///< RoadNetwork road it came from (-1: connecting road)
+  int source_road = -1;  ///< RoadNetwork road it came from (-1: connecting road)
   std::vector<std::int64_t> osm_way_ids;
 
   [[nodiscard]] double length() const { return plan.length(); }
@@ -88,7 +88,7 @@ struct JunctionModel {
 struct RoadModel {
   GeoFrame frame;
   std::string name;
-  std::vector<ModelRoad> roads;          ///< index == position; ids need not equal indices
+  std::vector<ModelRoad> roads;  ///< index == position; ids need not equal indices
   std::vector<JunctionModel> junctions;
 
   /// Index of the road with OpenDRIVE id `id`, or -1.

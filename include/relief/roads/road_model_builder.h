@@ -33,11 +33,11 @@ struct RoadModelOptions {
 };
 
 struct RoadModelStats {
-  std::size_t roads = 0;             ///< from the network
+  std::size_t roads = 0;  ///< from the network
   std::size_t connecting_roads = 0;
-  std::size_t junctions = 0;         ///< OpenDRIVE junctions (= network intersections)
+  std::size_t junctions = 0;                    ///< OpenDRIVE junctions (= network intersections)
   std::size_t junctions_without_movements = 0;  ///< intersections where no movement is possible
-  std::size_t direct_links = 0;      ///< road-to-road links at attribute changes
+  std::size_t direct_links = 0;                 ///< road-to-road links at attribute changes
   std::size_t transition_roads = 0;  ///< short roads where two roads meet at an angle or change lanes
   std::size_t roads_skipped = 0;     ///< roads without height or too short once trimmed
   /// Largest |elevation record - fitted profile| over the profile's stations (mapped onto the
@@ -54,7 +54,6 @@ struct RoadModelBuild {
 /// `profiles` are parallel to network.roads (stations with fitted z).
 [[nodiscard]] RoadModelBuild build_road_model(const RoadNetwork& network,
                                               const std::vector<RoadProfile>& profiles,
-                                              const RoadModelOptions& options,
-                                              Diagnostics& diagnostics);
+                                              const RoadModelOptions& options, Diagnostics& diagnostics);
 
 }  // namespace relief

@@ -13,8 +13,8 @@ struct LinkContinuity {
   double max_horizontal_m = 0.0;  ///< largest horizontal gap between matching lane borders
   double max_vertical_m = 0.0;    ///< largest height step there
   std::size_t borders_checked = 0;
-  std::size_t over_tolerance = 0; ///< border pairs with a gap above the tolerance
-  int worst_road = -1;            ///< road id where the largest gap is
+  std::size_t over_tolerance = 0;  ///< border pairs with a gap above the tolerance
+  int worst_road = -1;             ///< road id where the largest gap is
 };
 
 /// At every road-to-road link and at both ends of every connecting road, the inner and outer

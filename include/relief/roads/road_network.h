@@ -40,7 +40,7 @@ struct Junction {
 /// `end_junction`; both ends are OSM nodes.
 struct Road {
   int id = -1;
-  Polyline2 points;                      ///< local frame, >= 2 distinct points
+  Polyline2 points;                        ///< local frame, >= 2 distinct points
   std::vector<std::int64_t> osm_node_ids;  ///< parallel to `points`
   std::vector<std::int64_t> osm_way_ids;   ///< ways it came from, in order along the road
   WayAttributes attributes;

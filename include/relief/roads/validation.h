@@ -20,8 +20,8 @@ namespace relief {
 struct ErrorStats {
   double mae_m = 0.0;
   double rmse_m = 0.0;
-  double max_m = 0.0;    ///< largest absolute error
-  double bias_m = 0.0;   ///< mean signed error (road minus reference)
+  double max_m = 0.0;   ///< largest absolute error
+  double bias_m = 0.0;  ///< mean signed error (road minus reference)
   std::size_t n = 0;
 };
 
@@ -61,25 +61,23 @@ struct GradeStats {
 /// |grade| of each segment between consecutive samples (percent, dz over horizontal ds).
 [[nodiscard]] std::vector<double> segment_grades_percent(const RoadProfile& profile);
 
-[[nodiscard]] GradeStats grade_stats(const RoadNetwork& network,
-                                     const std::vector<RoadProfile>& profiles,
+[[nodiscard]] GradeStats grade_stats(const RoadNetwork& network, const std::vector<RoadProfile>& profiles,
                                      const GradeLimits& limits);
 
 struct JunctionGapStats {
-  double max_gap_m = 0.0;           ///< largest z spread among the road ends at one junction
+  double max_gap_m = 0.0;  ///< largest z spread among the road ends at one junction
   std::optional<int> worst_junction;
-  std::size_t over_bound = 0;       ///< junctions whose gap exceeds bound_m
+  std::size_t over_bound = 0;  ///< junctions whose gap exceeds bound_m
   double bound_m = 0.1;
-  std::size_t checked = 0;          ///< junctions with two or more road ends
+  std::size_t checked = 0;  ///< junctions with two or more road ends
 };
 
 [[nodiscard]] JunctionGapStats junction_gaps(const RoadNetwork& network,
-                                             const std::vector<RoadProfile>& profiles,
-                                             double bound_m = 0.1);
+                                             const std::vector<RoadProfile>& profiles, double bound_m = 0.1);
 
 struct NetworkStats {
   std::size_t roads = 0;
-  std::size_t junctions = 0;        ///< intersections + attribute changes (not dead ends)
+  std::size_t junctions = 0;  ///< intersections + attribute changes (not dead ends)
   std::size_t intersections = 0;
   std::size_t attribute_changes = 0;
   std::size_t dead_ends = 0;
@@ -123,7 +121,7 @@ class HeightValidator {
   std::vector<std::size_t> first_midpoint_;  // per road, index of its first midpoint
   std::vector<std::optional<double>> dem_mid_;
   std::vector<std::optional<Vec2>> gradient_mid_;
-  std::vector<std::size_t> first_station_;   // per road, index of its first station
+  std::vector<std::size_t> first_station_;  // per road, index of its first station
   std::vector<std::optional<double>> reference_;
   bool has_reference_ = false;
 };
@@ -132,11 +130,11 @@ class HeightValidator {
 /// fill where it runs above the terrain, cut where below.
 struct CutFillStats {
   double max_fill_m = 0.0;
-  double max_cut_m = 0.0;          ///< as a positive depth
+  double max_cut_m = 0.0;  ///< as a positive depth
   double mean_abs_m = 0.0;
-  double km_over_0_5_m = 0.0;      ///< length departing by more than 0.5 m
-  double km_over_2_m = 0.0;        ///< ... by more than 2 m
-  std::optional<int> worst_road;   ///< where the largest departure is
+  double km_over_0_5_m = 0.0;     ///< length departing by more than 0.5 m
+  double km_over_2_m = 0.0;       ///< ... by more than 2 m
+  std::optional<int> worst_road;  ///< where the largest departure is
   double worst_s_m = 0.0;
 };
 

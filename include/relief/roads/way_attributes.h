@@ -14,18 +14,18 @@ namespace relief {
 
 struct WayAttributes {
   HighwayClass highway = HighwayClass::residential;
-  bool oneway = false;            ///< traffic only in the way's (normalised) direction
-  int lanes_forward = 1;          ///< lanes in the direction of the way
-  int lanes_backward = 1;         ///< lanes against it (0 for one-ways)
-  bool lanes_tagged = false;      ///< lanes came from tags, not class defaults
-  double lane_width_m = 3.0;      ///< from `width` / total lanes, else the class default
+  bool oneway = false;        ///< traffic only in the way's (normalised) direction
+  int lanes_forward = 1;      ///< lanes in the direction of the way
+  int lanes_backward = 1;     ///< lanes against it (0 for one-ways)
+  bool lanes_tagged = false;  ///< lanes came from tags, not class defaults
+  double lane_width_m = 3.0;  ///< from `width` / total lanes, else the class default
   bool width_tagged = false;
-  bool bridge = false;            ///< bridge=* other than "no"
-  bool tunnel = false;            ///< tunnel=* other than "no" (building_passage, culvert count)
+  bool bridge = false;  ///< bridge=* other than "no"
+  bool tunnel = false;  ///< tunnel=* other than "no" (building_passage, culvert count)
   int layer = 0;
   std::optional<double> maxspeed_mps;  ///< from `maxspeed` ("25 mph", "50", "50 km/h")
   std::string name;
-  bool roundabout = false;        ///< junction=roundabout (or circular); implies oneway
+  bool roundabout = false;  ///< junction=roundabout (or circular); implies oneway
   /// `turn:lanes` per lane, left to right in the direction of travel ("left", "through;right",
   /// "none", ...), for the lanes along the way and against it; empty when untagged or when the
   /// tag's lane count does not match the lanes.

@@ -33,9 +33,8 @@ struct DemGrid {
 
 /// Grid whose value at each cell centre is f(x, y) (CRS units). Throws InvalidInput unless
 /// dx, dy, width and height are > 0.
-[[nodiscard]] DemGrid make_dem_grid(std::string crs, double x0, double y0, double dx, double dy,
-                                    int width, int height,
-                                    const std::function<double(double, double)>& f);
+[[nodiscard]] DemGrid make_dem_grid(std::string crs, double x0, double y0, double dx, double dy, int width,
+                                    int height, const std::function<double(double, double)>& f);
 
 /// Writes `grid` as a Float64 GeoTIFF (atomically: to `path`.tmp-N.tif, then renamed; the
 /// temporary is removed on failure). Throws IoError (cannot create, write or rename),
