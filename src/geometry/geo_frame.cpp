@@ -27,21 +27,20 @@ GeoFrame GeoFrame::in_crs(std::string crs, const LonLat& centre) {
 }
 
 std::string GeoFrame::proj_string() const {
-  // UTM written as its transverse Mercator so the origin can be folded into x_0 / y_0.
-  std::smatch m;
-  const std::regex wgs84_utm(R"(EPSG:(32[67])(\d\d))");
-  std::ostringstream out;
-  out.precision(17);
-  if (std::regex_match(crs_, m, wgs84_utm)) {
-    const bool south = m[1] == "327";
-    const int zone = std::stoi(m[2]);
-    out << "+proj=tmerc +lat_0=0 +lon_0=" << (zone * 6 - 183)
-        << " +k=0.9996 +x_0=" << (500000.0 - origin_.x())
-        << " +y_0=" << ((south ? 10000000.0 : 0.0) - origin_.y()) << " +datum=WGS84 +units=m +no_defs";
-    return out.str();
-  }
-  // Any other projected CRS: shift its false easting / northing by the origin.
   std::string text = crs_proj_string(crs_);
+  // PROJ's utm fixes its own false easting, so UTM is written as the transverse Mercator it is
+  // (datum and units kept) and the origin folded into its x_0 / y_0.
+  std::smatch m;
+  const std::regex utm(R"(\+proj=utm \+zone=(\d+)( \+south)?)");
+  if (std::regex_search(text, m, utm)) {
+    const int zone = std::stoi(m[1]);
+    const bool south = m[2].matched;
+    std::ostringstream tmerc;
+    tmerc << "+proj=tmerc +lat_0=0 +lon_0=" << (zone * 6 - 183) << " +k=0.9996 +x_0=500000 +y_0="
+          << (south ? 10000000 : 0);
+    text = m.prefix().str() + tmerc.str() + m.suffix().str();
+  }
+  // Shift the false easting / northing by the origin.
   const auto shift = [&](const std::string& key, double delta) {
     const std::regex param(" \\+" + key + "=([-0-9.eE+]+)");
     std::smatch pm;

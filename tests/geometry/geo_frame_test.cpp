@@ -45,6 +45,18 @@ TEST(GeoFrame, ProjStringOfANonUtmCrsShiftsFalseOrigin) {
   EXPECT_NEAR((to_local.apply(lonlat) - f.to_local(to_crs.apply(lonlat))).norm(), 0.0, 1e-3);
 }
 
+TEST(GeoFrame, ProjStringOfANad83UtmFrameKeepsItsDatumAndOrigin) {
+  // PROJ's utm ignores x_0: the frame must come out as tmerc with the origin folded in.
+  const GeoFrame f = GeoFrame::in_crs("EPSG:26910", {-122.40, 37.75});
+  const std::string text = f.proj_string();
+  EXPECT_NE(text.find("+proj=tmerc"), std::string::npos) << text;
+  EXPECT_NE(text.find("NAD83"), std::string::npos) << text;
+  const CrsTransform to_local("EPSG:4326", text);
+  const CrsTransform to_crs("EPSG:4326", f.crs());
+  const Vec2 lonlat(-122.41, 37.76);
+  EXPECT_NEAR((to_local.apply(lonlat) - f.to_local(to_crs.apply(lonlat))).norm(), 0.0, 1e-3);
+}
+
 TEST(GeoFrame, UnknownCrsThrowsProjectionError) {
   EXPECT_THROW((void)GeoFrame::in_crs("EPSG:999999", {-122.4, 37.75}), ProjectionError);
 }
