@@ -9,6 +9,8 @@
 #include <string>
 #include <string_view>
 
+#include "export/html_text.h"
+#include "export/svg_plot.h"
 #include "relief/core/errors.h"
 #include "relief/core/number_format.h"
 #include "relief/export/geojson_writer.h"
@@ -18,74 +20,7 @@
 namespace relief {
 namespace {
 
-// ---------------------------------------------------------------------------------------------
-// Text: escaping and numbers.
-
-// Appends `text` escaped for HTML and XML alike. Bytes that are not valid UTF-8 and control
-// characters XML 1.0 forbids become U+FFFD, so that the page always parses.
-void append_escaped(std::string& out, std::string_view text) {
-  const auto* p = reinterpret_cast<const unsigned char*>(text.data());
-  const std::size_t n = text.size();
-  for (std::size_t i = 0; i < n;) {
-    const unsigned char c = p[i];
-    if (c < 0x80) {
-      switch (c) {
-        case '&':
-          out += "&amp;";
-          break;
-        case '<':
-          out += "&lt;";
-          break;
-        case '>':
-          out += "&gt;";
-          break;
-        case '"':
-          out += "&quot;";
-          break;
-        case '\'':
-          out += "&#39;";
-          break;
-        default:
-          if (c < 0x20 && c != '\t' && c != '\n' && c != '\r') {
-            out += "\xEF\xBF\xBD";
-          } else {
-            out += static_cast<char>(c);
-          }
-      }
-      ++i;
-      continue;
-    }
-    // Length of the UTF-8 sequence from its lead byte; 0 = invalid lead byte.
-    const std::size_t len = (c & 0xE0) == 0xC0 ? 2 : (c & 0xF0) == 0xE0 ? 3 : (c & 0xF8) == 0xF0 ? 4 : 0;
-    bool ok = len != 0 && i + len <= n && c >= 0xC2 && c <= 0xF4;
-    for (std::size_t k = 1; ok && k < len; ++k) ok = (p[i + k] & 0xC0) == 0x80;
-    if (ok) {
-      out.append(text.substr(i, len));
-      i += len;
-    } else {
-      out += "\xEF\xBF\xBD";
-      ++i;
-    }
-  }
-}
-
-std::string esc(std::string_view text) {
-  std::string out;
-  append_escaped(out, text);
-  return out;
-}
-
-std::string fixed(double value, int decimals) {
-  std::string out;
-  append_fixed(out, value, decimals);
-  return out;
-}
-
-std::string integer(std::size_t value) {
-  std::string out;
-  append_int(out, static_cast<long long>(value));
-  return out;
-}
+using namespace html;
 
 constexpr std::string_view kDash = "\xE2\x80\x94";  // em dash: no value
 
@@ -420,79 +355,6 @@ void write_timings(std::string& h, const RunReport& r) {
   h += "</div>\n";
 }
 
-// ---------------------------------------------------------------------------------------------
-// SVG helpers.
-
-// A "nice" tick step (1, 2 or 5 times a power of ten) giving about `count` ticks over `range`.
-double nice_step(double range, int count) {
-  if (!(range > 0.0)) return 1.0;
-  const double raw = range / count;
-  const double mag = std::pow(10.0, std::floor(std::log10(raw)));
-  const double f = raw / mag;
-  return (f < 1.5 ? 1.0 : f < 3.5 ? 2.0 : f < 7.5 ? 5.0 : 10.0) * mag;
-}
-
-int decimals_for(double step) {
-  return step >= 1.0 ? 0 : static_cast<int>(std::ceil(-std::log10(step) - 1e-9));
-}
-
-// Linear map of data to pixels on one axis.
-struct Scale {
-  double d0, d1, p0, p1;
-  [[nodiscard]] double operator()(double v) const { return p0 + (v - d0) / (d1 - d0) * (p1 - p0); }
-};
-
-// A plot area with data ranges; y grows up in data, down in pixels.
-struct Axes {
-  Scale x, y;
-};
-
-void svg_open(std::string& h, double width, double height, std::string_view label,
-              std::string_view cls = "") {
-  h += "<svg viewBox=\"0 0 " + fixed(width, 0) + " " + fixed(height, 0) + "\" width=\"" + fixed(width, 0) +
-       "\" height=\"" + fixed(height, 0) + "\" role=\"img\"";
-  if (!cls.empty()) {
-    h += " class=\"";
-    h += cls;
-    h += "\"";
-  }
-  h += "><title>";
-  h += label;
-  h += "</title>\n";
-}
-
-void svg_text(std::string& h, double x, double y, std::string_view anchor, const std::string& text_html,
-              std::string_view extra = "") {
-  h += "<text x=\"" + fixed(x, 1) + "\" y=\"" + fixed(y, 1) + "\" text-anchor=\"";
-  h += anchor;
-  h += "\"";
-  h += extra;
-  h += ">" + text_html + "</text>\n";
-}
-
-// Grid lines, axes and tick labels for `a`; `x_suffix`/`y_suffix` follow the labels.
-void draw_axes(std::string& h, const Axes& a, std::string_view x_title, std::string_view y_title, int x_ticks,
-               int y_ticks) {
-  const double xs = nice_step(a.x.d1 - a.x.d0, x_ticks), ys = nice_step(a.y.d1 - a.y.d0, y_ticks);
-  for (double v = std::ceil(a.y.d0 / ys - 1e-9) * ys; v <= a.y.d1 + 1e-9 * ys; v += ys) {
-    const double py = a.y(v);
-    h += "<line class=\"grid\" x1=\"" + fixed(a.x.p0, 1) + "\" x2=\"" + fixed(a.x.p1, 1) + "\" y1=\"" +
-         fixed(py, 1) + "\" y2=\"" + fixed(py, 1) + "\"/>\n";
-    svg_text(h, a.x.p0 - 5, py + 4, "end", fixed(v, decimals_for(ys)));
-  }
-  for (double v = std::ceil(a.x.d0 / xs - 1e-9) * xs; v <= a.x.d1 + 1e-9 * xs; v += xs) {
-    const double px = a.x(v);
-    h += "<line class=\"ax\" x1=\"" + fixed(px, 1) + "\" x2=\"" + fixed(px, 1) + "\" y1=\"" +
-         fixed(a.y.p0, 1) + "\" y2=\"" + fixed(a.y.p0 + 4, 1) + "\"/>\n";
-    svg_text(h, px, a.y.p0 + 16, "middle", fixed(v, decimals_for(xs)));
-  }
-  h += "<path class=\"ax\" fill=\"none\" d=\"M" + fixed(a.x.p0, 1) + " " + fixed(a.y.p1, 1) + "V" +
-       fixed(a.y.p0, 1) + "H" + fixed(a.x.p1, 1) + "\"/>\n";
-  svg_text(h, (a.x.p0 + a.x.p1) / 2, a.y.p0 + 31, "middle", std::string(x_title));
-  svg_text(h, 12, (a.y.p0 + a.y.p1) / 2, "middle", std::string(y_title),
-           " transform=\"rotate(-90 12 " + fixed((a.y.p0 + a.y.p1) / 2, 1) + ")\"");
-}
-
 // Indices of at most ~max_points samples keeping each bucket's minimum and maximum of z (so that
 // peaks and dips survive) plus both ends.
 std::vector<std::size_t> downsample(const RoadProfile& p, std::size_t max_points) {
@@ -735,25 +597,6 @@ ColourScale departure_scale() {
            "0.5\xE2\x80\x93"
            "2",
            "fill &gt; 2 m"}};
-}
-
-// Perpendicular-distance Douglas–Peucker over pts[i0..i1]; marks kept vertices.
-void douglas_peucker(const std::vector<Vec2>& pts, std::size_t i0, std::size_t i1, double tol,
-                     std::vector<std::uint8_t>& keep) {
-  if (i1 <= i0 + 1) return;
-  const Vec2 a = pts[i0], d = pts[i1] - a;
-  const double len = d.norm();
-  double worst = -1.0;
-  std::size_t at = i0;
-  for (std::size_t i = i0 + 1; i < i1; ++i) {
-    const Vec2 v = pts[i] - a;
-    const double dist = len > 0.0 ? std::abs(d.x() * v.y() - d.y() * v.x()) / len : v.norm();
-    if (dist > worst) worst = dist, at = i;
-  }
-  if (worst <= tol) return;
-  keep[at] = 1;
-  douglas_peucker(pts, i0, at, tol, keep);
-  douglas_peucker(pts, at, i1, tol, keep);
 }
 
 constexpr double kMapPieceM = 5.0;      // colour resolution along a road
