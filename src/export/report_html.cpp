@@ -194,6 +194,15 @@ void write_cards(std::string& h, const RunReport& r) {
     card(h, integer(r.paper->roads_not_converged),
          "paper: roads not converged (of " + std::to_string(r.paper->max_iterations) + " iterations)");
   }
+  if (r.opendrive) {
+    const OpenDriveSummary& o = *r.opendrive;
+    card(h, integer(o.junctions) + " / " + integer(o.connecting_roads),
+         "OpenDRIVE " + esc(o.version) + " junctions / connecting roads");
+    card(h, fixed(1000.0 * std::max(o.max_link_gap_m, o.max_link_step_m), 2) + " mm",
+         "largest lane-border gap at links");
+    card(h, fixed(1000.0 * std::max(o.round_trip_max_xy_m, o.round_trip_max_z_m), 3) + " mm",
+         "OpenDRIVE read back vs written");
+  }
   h += "</div>\n";
 }
 

@@ -156,6 +156,23 @@ TEST(ReportHtml, EscapesTextFromTheData) {
   EXPECT_NE(html.find("misses &lt;node&gt; 7 &amp; \xEF\xBF\xBD \xEF\xBF\xBD bytes"), std::string::npos);
 }
 
+TEST(ReportHtml, OpenDriveFiguresAppearWhenAFileWasWritten) {
+  World w = make_world();
+  EXPECT_EQ(render(input_of(w, true)).find("OpenDRIVE"), std::string::npos);
+  OpenDriveSummary o;
+  o.version = "1.7";
+  o.junctions = 43;
+  o.connecting_roads = 257;
+  o.max_link_gap_m = 0.00088;
+  o.round_trip_max_z_m = 4e-6;
+  w.report.opendrive = o;
+  const std::string html = render(input_of(w, true));
+  EXPECT_NE(html.find("43 / 257"), std::string::npos);
+  EXPECT_NE(html.find("0.88 mm"), std::string::npos);
+  EXPECT_NE(html.find("0.004 mm"), std::string::npos);
+  EXPECT_EQ(parse_with_python(html, 7), 0);
+}
+
 TEST(ReportHtml, ComparisonTableHasEachMethodsRmseAndHighlightsTheWrittenOne) {
   const World w = make_world();
   const std::string html = render(input_of(w, true));
