@@ -183,7 +183,8 @@ BuildResult build(const BuildOptions& options, Diagnostics& diagnostics, const P
   }
   timer.run("validate", [&] {
     const HeightValidator validator(raw, dem, reference ? &*reference : nullptr);
-    const std::vector<GradeSeparation> separations = find_grade_separations(network, raw);
+    // The fit found the crossings of different layers on the same stations already.
+    const std::vector<GradeSeparation> separations = fit ? fit->separations : find_grade_separations(network, raw);
     if (wanted(ProfileMethod::raw)) {
       report.methods.push_back(evaluate("raw", network, raw, raw, validator, separations, options, 0.0));
     }
