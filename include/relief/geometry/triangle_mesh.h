@@ -1,0 +1,57 @@
+#pragma once
+// The mesh vocabulary shared by the road, junction and terrain builders, the mesh-quality
+// report and the mesh writers: an indexed triangle mesh in double precision, in the local
+// frame (metres, x east, y north, z up). Writers convert to float and to the target
+// format's axes only when they write (export/mesh_writer.h).
+
+#include <array>
+#include <cstdint>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "relief/geometry/geo_frame.h"
+#include "relief/geometry/types.h"
+
+namespace relief {
+
+/// What a mesh is, for materials and for CARLA's classification of imported meshes.
+enum class SurfaceKind { road, marking, sidewalk, shoulder, junction, terrain };
+
+/// Indexed triangle mesh. Triangles are counter-clockwise seen from their front side (from
+/// above, +z, for every surface relief builds). `normals` and `uvs` are either empty or one
+/// per vertex.
+struct TriangleMesh {
+  std::string name;  ///< e.g. "Road_Road", "Road_Marking", "Terrain"
+  SurfaceKind kind = SurfaceKind::road;
+  std::vector<Vec3> vertices;
+  std::vector<std::array<std::uint32_t, 3>> triangles;
+  std::vector<Vec3> normals;
+  std::vector<Vec2> uvs;
+
+  [[nodiscard]] bool empty() const { return triangles.empty(); }
+  /// Appends `other`'s vertices and triangles (indices shifted), and normals/uvs when both
+  /// meshes carry them (dropped otherwise).
+  void append(const TriangleMesh& other);
+};
+
+/// A set of named meshes in one frame, as written to one file.
+struct MeshScene {
+  GeoFrame frame;                              ///< the local frame the vertices are in
+  std::vector<TriangleMesh> meshes;
+  std::map<std::string, std::string> metadata;  ///< e.g. "relief:proj" -> frame PROJ string
+};
+
+/// The triangles with keep[i] != 0 (keep.size() == triangles.size(), else InvalidInput), with
+/// only the vertices they use (renumbered in order of first use); normals/uvs follow.
+[[nodiscard]] TriangleMesh submesh(const TriangleMesh& mesh, const std::vector<std::uint8_t>& keep);
+
+/// Closed boundary loops of a mesh: edges used by exactly one triangle, chained head to tail
+/// (first vertex not repeated), as vertex indices. Where loops touch at a vertex they are
+/// split there, so every loop is simple in index terms.
+[[nodiscard]] std::vector<std::vector<std::uint32_t>> boundary_loops(const TriangleMesh& mesh);
+
+/// Area-weighted vertex normals (unit length; +z for a vertex with no non-degenerate triangle).
+[[nodiscard]] std::vector<Vec3> vertex_normals(const TriangleMesh& mesh);
+
+}  // namespace relief

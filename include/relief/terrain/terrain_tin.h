@@ -1,0 +1,43 @@
+#pragma once
+// Terrain as a TIN: the DEM triangulated (CGAL, Projection_traits_xy_3) and simplified within a
+// vertical tolerance, with the paved area's outline inserted as constraints, the triangles under
+// the paved area removed, and cut/fill slopes between the road edges and the natural ground, so
+// that terrain and roads meet exactly (shared positions) with no hole and no overlap.
+
+#include <cstddef>
+#include <vector>
+
+#include "relief/geometry/triangle_mesh.h"
+#include "relief/terrain/dem_sampler.h"
+
+namespace relief {
+
+struct TerrainOptions {
+  double vertical_tolerance_m = 0.25;  ///< simplified TIN vs DEM, largest vertical error
+  double grid_step_m = 0.0;            ///< DEM sampling step; 0 = the DEM's own resolution
+  double margin_m = 30.0;              ///< terrain extends this far beyond the area given
+  double slope_run_per_rise = 1.5;     ///< cut/fill batter: horizontal metres per metre of height
+  double max_slope_width_m = 30.0;     ///< the batter never reaches further than this from a road edge
+};
+
+struct TerrainBuild {
+  TriangleMesh terrain;  ///< "Terrain"; its hole boundaries are exactly the outline's vertices
+  std::size_t dem_points = 0;          ///< DEM samples considered
+  std::size_t tin_vertices = 0;        ///< kept after simplification (before constraints)
+  double max_vertical_error_m = 0.0;   ///< measured at the DEM samples outside the slopes
+  std::size_t triangles_removed = 0;   ///< under the paved area
+  std::size_t vertices_on_slopes = 0;  ///< moved to a cut/fill batter
+  double max_cut_m = 0.0;              ///< natural ground above the batter, largest
+  double max_fill_m = 0.0;             ///< natural ground below the batter, largest
+};
+
+/// Builds the terrain over `area` (local frame) grown by options.margin_m. `outline` are closed
+/// loops (first point not repeated) of the paved area that sits on the ground, in 3D: the
+/// boundary loops of the ground part of the road mesh, whose exact vertices the terrain takes
+/// over. A point inside an odd number of loops is paved. Loops may touch; crossing constraints
+/// are split with exact constructions. Throws InvalidInput for options out of range;
+/// CoverageError when the DEM has no height anywhere in the area.
+[[nodiscard]] TerrainBuild build_terrain(const DemSampler& dem, const Aabb2& area,
+                                         const std::vector<Polyline3>& outline, const TerrainOptions& options = {});
+
+}  // namespace relief
