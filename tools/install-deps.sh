@@ -12,7 +12,7 @@ packages=(
   libassimp-dev assimp-utils
   libgtest-dev libgmock-dev libbenchmark-dev
   nlohmann-json3-dev libcli11-dev libpugixml-dev
-  libxml2-utils sumo sumo-tools python3-xmlschema zip
+  libxml2-utils sumo sumo-tools python3-xmlschema zip blender
 )
 
 missing=()
