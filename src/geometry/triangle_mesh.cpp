@@ -1,12 +1,18 @@
 #include "relief/geometry/triangle_mesh.h"
 
+#include <algorithm>
+#include <tuple>
+
+#include <Eigen/Geometry>  // cross()
+
 #include "relief/core/errors.h"
 
 namespace relief {
 
 void TriangleMesh::append(const TriangleMesh& other) {
   const auto base = static_cast<std::uint32_t>(vertices.size());
-  const bool keep_normals = normals.size() == vertices.size() && other.normals.size() == other.vertices.size();
+  const bool keep_normals =
+      normals.size() == vertices.size() && other.normals.size() == other.vertices.size();
   const bool keep_uvs = uvs.size() == vertices.size() && other.uvs.size() == other.vertices.size();
   vertices.insert(vertices.end(), other.vertices.begin(), other.vertices.end());
   for (const auto& t : other.triangles) triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
@@ -50,6 +56,88 @@ TriangleMesh submesh(const TriangleMesh& mesh, const std::vector<std::uint8_t>& 
     out.triangles.push_back(t);
   }
   return out;
+}
+
+std::vector<std::vector<std::uint32_t>> boundary_loops(const TriangleMesh& mesh) {
+  const std::size_t n = mesh.vertices.size();
+  // Every edge once per triangle, keyed by its sorted ends; keys seen once are the boundary.
+  struct Edge {
+    std::uint32_t lo, hi, from, to;
+  };
+  std::vector<Edge> edges;
+  edges.reserve(3 * mesh.triangles.size());
+  for (const auto& t : mesh.triangles) {
+    for (std::size_t k = 0; k < 3; ++k) {
+      const std::uint32_t a = t[k], b = t[(k + 1) % 3];
+      if (a >= n || b >= n) {
+        throw InvalidInput("boundary_loops: mesh '" + mesh.name + "' has a vertex index out of range");
+      }
+      if (a != b) edges.push_back({std::min(a, b), std::max(a, b), a, b});
+    }
+  }
+  std::sort(edges.begin(), edges.end(),
+            [](const Edge& x, const Edge& y) { return std::tie(x.lo, x.hi) < std::tie(y.lo, y.hi); });
+  std::vector<Edge> boundary;
+  for (std::size_t i = 0; i < edges.size();) {
+    std::size_t j = i + 1;
+    while (j < edges.size() && edges[j].lo == edges[i].lo && edges[j].hi == edges[i].hi) ++j;
+    if (j == i + 1) boundary.push_back(edges[i]);
+    i = j;
+  }
+
+  // Boundary edges incident to each vertex (compressed rows).
+  std::vector<std::uint32_t> first(n + 1, 0), incident(2 * boundary.size());
+  for (const Edge& e : boundary) {
+    ++first[e.from + 1];
+    ++first[e.to + 1];
+  }
+  for (std::size_t v = 0; v < n; ++v) first[v + 1] += first[v];
+  std::vector<std::uint32_t> fill(first.begin(), first.end() - 1);
+  for (std::uint32_t i = 0; i < boundary.size(); ++i) {
+    incident[fill[boundary[i].from]++] = i;
+    incident[fill[boundary[i].to]++] = i;
+  }
+
+  // Walk unused edges, following the triangles' direction where possible; when the walk comes
+  // back to a vertex already on its path, the part of the path since then is a loop (so loops
+  // that touch at a vertex come out separately). A walk that gets stuck (odd vertex degree at a
+  // non-manifold edge) leaves an open chain, which is dropped.
+  constexpr std::uint32_t kNone = ~std::uint32_t{0};
+  std::vector<std::uint8_t> used(boundary.size(), 0);
+  std::vector<std::uint32_t> position(n, kNone);
+  std::vector<std::uint32_t> path;
+  std::vector<std::vector<std::uint32_t>> loops;
+  const auto next_edge = [&](std::uint32_t v) {
+    std::uint32_t any = kNone;
+    for (std::uint32_t k = first[v]; k < first[v + 1]; ++k) {
+      const std::uint32_t e = incident[k];
+      if (used[e]) continue;
+      if (boundary[e].from == v) return e;
+      if (any == kNone) any = e;
+    }
+    return any;
+  };
+  for (std::uint32_t start = 0; start < boundary.size(); ++start) {
+    if (used[start]) continue;
+    std::uint32_t v = boundary[start].from;
+    path.assign(1, v);
+    position[v] = 0;
+    for (std::uint32_t e = start; e != kNone; e = next_edge(v)) {
+      used[e] = 1;
+      v = boundary[e].from == v ? boundary[e].to : boundary[e].from;
+      if (position[v] == kNone) {
+        position[v] = static_cast<std::uint32_t>(path.size());
+        path.push_back(v);
+        continue;
+      }
+      const auto begin = path.begin() + position[v];
+      loops.emplace_back(begin, path.end());
+      for (auto it = begin + 1; it != path.end(); ++it) position[*it] = kNone;
+      path.erase(begin + 1, path.end());
+    }
+    for (const std::uint32_t u : path) position[u] = kNone;
+  }
+  return loops;
 }
 
 std::vector<Vec3> vertex_normals(const TriangleMesh& mesh) {

@@ -19,6 +19,10 @@ struct MeshQualityOptions {
   bool self_intersections = true;       ///< the costly test; off for a quick look
 };
 
+/// Figures of one mesh. Edges and vertices are identified by index. Degenerate triangles
+/// (area <= MeshQualityOptions::degenerate_area_m2, or a vertex index repeated) are counted
+/// once, as degenerate: they are neither slivers nor upside down, and they do not enter
+/// min_angle_deg / max_aspect_ratio.
 struct MeshQuality {
   std::string name;
   std::size_t vertices = 0;
@@ -26,24 +30,35 @@ struct MeshQuality {
   std::size_t unused_vertices = 0;
   std::size_t components = 0;      ///< edge-connected triangle sets
   std::size_t boundary_edges = 0;  ///< edges with exactly one triangle
-  std::size_t boundary_loops = 0;
-  std::size_t holes = 0;  ///< boundary loops that are not the outer loop of their component
-  std::size_t non_manifold_edges = 0;     ///< edges with three or more triangles
-  std::size_t non_manifold_vertices = 0;  ///< vertices whose triangle fan is not one disc/half-disc
+  std::size_t boundary_loops = 0;  ///< closed loops of boundary edges (see boundary_loops())
+  /// Boundary loops that are not the outer loop of their component. The outer loop of a
+  /// component is its loop of largest vector area |sum p_i x p_i+1| / 2 (the projected area
+  /// for a 2.5-D surface), ties broken by length.
+  std::size_t holes = 0;
+  std::size_t non_manifold_edges = 0;  ///< edges with three or more triangles
+  /// Vertices whose triangles, joined through the edges with exactly two triangles, form more
+  /// than one fan (a vertex where two sheets touch, and both ends of a non-manifold edge).
+  std::size_t non_manifold_vertices = 0;
   std::size_t inconsistent_orientation_edges = 0;  ///< interior edges both triangles use the same way
   std::size_t upside_down_triangles = 0;           ///< normal with z < 0 (for 2.5-D surfaces)
-  std::size_t self_intersecting_pairs = 0;         ///< triangle pairs that intersect other than at shared vertices/edges
+  /// Triangle pairs that intersect other than at shared vertices/edges (exact predicates).
+  /// Vertices are compared by index: two triangles that touch at distinct vertices with equal
+  /// positions intersect. Triangles with collinear corners are left out (they are degenerate).
+  std::size_t self_intersecting_pairs = 0;
+  bool self_intersections_checked = false;  ///< false when MeshQualityOptions::self_intersections is off
   std::size_t degenerate_triangles = 0;
   std::size_t sliver_triangles = 0;
-  double min_angle_deg = 0.0;
-  double max_aspect_ratio = 0.0;
+  double min_angle_deg = 0.0;     ///< smallest angle of the non-degenerate triangles (0 if none)
+  double max_aspect_ratio = 0.0;  ///< largest longest-edge / shortest-altitude of the same
   double area_m2 = 0.0;
-  Aabb2 bounds;
-  double min_z = 0.0, max_z = 0.0;
+  Aabb2 bounds;                     ///< of the vertices the triangles use (empty if none)
+  double min_z = 0.0, max_z = 0.0;  ///< of the same vertices (0 if none)
 };
 
 /// Figures of one mesh. Vertices are taken by index (no welding of coincident vertices: a mesh
-/// whose pieces merely touch counts as separate components with boundaries).
+/// whose pieces merely touch counts as separate components with boundaries). Indices must be
+/// below mesh.vertices.size() (else InvalidInput). The self-intersection test takes about
+/// a few seconds per million triangles.
 [[nodiscard]] MeshQuality analyse_mesh(const TriangleMesh& mesh, const MeshQualityOptions& options = {});
 
 struct SeamGap {
@@ -53,7 +68,7 @@ struct SeamGap {
 
 /// Gap along the seam between two meshes: for every boundary vertex of `a` whose horizontal
 /// distance to a boundary edge of `b` is at most `reach_m`, the 3D distance to the nearest
-/// boundary edge of `b`. Shared positions give 0.
+/// boundary edge of `b`. Shared positions give 0. reach_m < 0 or not finite: InvalidInput.
 [[nodiscard]] SeamGap seam_gap(const TriangleMesh& a, const TriangleMesh& b, double reach_m = 0.5);
 
 }  // namespace relief
