@@ -18,26 +18,36 @@ struct TerrainOptions {
   double margin_m = 30.0;              ///< terrain extends this far beyond the area given
   double slope_run_per_rise = 1.5;     ///< cut/fill batter: horizontal metres per metre of height
   double max_slope_width_m = 30.0;     ///< the batter never reaches further than this from a road edge
+  /// DEM samples closer than this to the outline never become vertices (no slivers along the
+  /// road edges); > 0.
+  double constraint_clearance_m = 0.3;
 };
 
 struct TerrainBuild {
-  TriangleMesh terrain;  ///< "Terrain"; its hole boundaries are exactly the outline's vertices
-  std::size_t dem_points = 0;          ///< DEM samples considered
-  std::size_t tin_vertices = 0;        ///< kept after simplification (before constraints)
+  TriangleMesh terrain;                ///< "Terrain"; its hole boundaries are exactly the outline's vertices
+  std::size_t dem_points = 0;          ///< DEM samples considered (grid points with a height)
+  std::size_t dem_voids = 0;           ///< grid points without a height (skipped)
+  std::size_t tin_vertices = 0;        ///< DEM samples kept as vertices (outline points not counted)
   double max_vertical_error_m = 0.0;   ///< measured at the DEM samples outside the slopes
   std::size_t triangles_removed = 0;   ///< under the paved area
+  std::size_t outline_crossings = 0;   ///< vertices added where outline loops cross each other
   std::size_t vertices_on_slopes = 0;  ///< moved to a cut/fill batter
-  double max_cut_m = 0.0;              ///< natural ground above the batter, largest
-  double max_fill_m = 0.0;             ///< natural ground below the batter, largest
+  double max_cut_m = 0.0;              ///< natural ground above the batter, largest (at the DEM samples)
+  double max_fill_m = 0.0;             ///< natural ground below the batter, largest (at the DEM samples)
 };
 
 /// Builds the terrain over `area` (local frame) grown by options.margin_m. `outline` are closed
 /// loops (first point not repeated) of the paved area that sits on the ground, in 3D: the
 /// boundary loops of the ground part of the road mesh, whose exact vertices the terrain takes
 /// over. A point inside an odd number of loops is paved. Loops may touch; crossing constraints
-/// are split with exact constructions. Throws InvalidInput for options out of range;
-/// CoverageError when the DEM has no height anywhere in the area.
+/// are split by CGAL (exact predicates; the crossing point, rounded to double, gets the average
+/// of the two constraints' interpolated heights). Samples without a DEM height are skipped;
+/// triangles may span a void between valid samples. The TIN approximates the DEM moved onto the
+/// cut/fill batter, so the batter is refined like any other relief (no fixed densification).
+/// Throws InvalidInput for options out of range or an outline loop of < 3 (or non-finite)
+/// points; CoverageError when the DEM has no height anywhere in the area (or only along a line).
 [[nodiscard]] TerrainBuild build_terrain(const DemSampler& dem, const Aabb2& area,
-                                         const std::vector<Polyline3>& outline, const TerrainOptions& options = {});
+                                         const std::vector<Polyline3>& outline,
+                                         const TerrainOptions& options = {});
 
 }  // namespace relief
