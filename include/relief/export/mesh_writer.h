@@ -1,11 +1,28 @@
 #pragma once
 // Writing and reading 3D scenes: glTF 2.0 binary (.glb), Wavefront OBJ (+ .mtl) and binary
-// FBX 7.4. Vertices are relief's local frame (metres) converted to float only here; the
+// FBX 7.4. Vertices are relief's local frame (metres) converted to float only here (the same
+// float values in every format; half a float step is 0.24 mm at 4 km from the origin); the
 // georeference (frame PROJ string, origin) goes into the file's metadata where the format has
 // any. Axes: every file is written Y-up, right-handed, metres (glTF's convention; OBJ and FBX
 // declare/assume the same), i.e. file (x, y, z) = local (x, z, -y); readers convert back.
 // assimp stays behind this interface (src/export/); the FBX bytes are relief's own writer
 // because Debian's assimp 5.2.5 writes corrupt binary FBX.
+//
+// Metadata: the writer adds "relief:crs" (frame CRS), "relief:origin" ("x y", the frame origin
+// in CRS metres) and "relief:proj" (GeoFrame::proj_string()) to MeshScene::metadata (entries of
+// the scene override these). Where it goes:
+//   .glb  glTF "extras" of the asset and of the root node (assimp 5.2 writes none: relief edits
+//         the JSON chunk; Blender shows the root node's as custom properties of its empty).
+//   .obj  comment lines "# relief-metadata <key>\t<value>" before the first statement.
+//   .fbx  user properties (KString, flag "U") of every Model and of the document SceneInfo;
+//         Blender shows them as object custom properties.
+//
+// Counts through read_mesh_file (measured with assimp 5.2.5): triangles, their order, corner
+// order (winding) and the set of unique positions survive every format; vertex counts survive
+// .glb only. assimp's OBJ and FBX importers make one vertex per triangle corner (3 x triangles).
+// The OBJ writer also shares equal positions between meshes in its "v" list (Blender's importer
+// gives each object back only the vertices it uses, so Blender's counts equal relief's for all
+// three formats).
 
 #include <filesystem>
 #include <optional>
@@ -28,15 +45,25 @@ struct EncodedFile {
   std::string bytes;
 };
 
-/// Encodes `scene` as `base_name` + extension(format); OBJ also yields `base_name`.mtl.
-/// One mesh per TriangleMesh (name kept), one material per SurfaceKind used, normals and UVs
-/// when present. Throws InvalidInput for an index out of range, IoError when assimp fails.
+/// Encodes `scene` as `base_name` + extension(format); OBJ also yields `base_name`.mtl (and the
+/// .obj's "mtllib" names it). One mesh per TriangleMesh (name kept; in OBJ an "o" and a "g"
+/// statement of that name), one material per SurfaceKind used (named "Road", "Marking",
+/// "Sidewalk", "Shoulder", "Junction", "Terrain", distinct diffuse colours), normals and UVs
+/// when present (assimp's OBJ exporter computes smooth normals when a mesh has none). Equal
+/// scenes give equal bytes. Throws InvalidInput for an index out of range, IoError when assimp
+/// fails, ProjectionError when the frame's CRS is unknown and metadata has no "relief:proj".
 [[nodiscard]] std::vector<EncodedFile> encode_mesh_scene(const MeshScene& scene, MeshFormat format,
                                                          const std::string& base_name);
 
 /// Reads any mesh file assimp can import (.glb, .gltf, .obj, .fbx, .ply, .stl, ...) back into
-/// relief's axes: one TriangleMesh per mesh (polygons triangulated, no vertex joining, so the
-/// counts are the file's). Files relief wrote come back in the local frame with their metadata.
+/// relief's axes, taking every file as Y-up (assimp's convention; relief's files are): one
+/// TriangleMesh per mesh reference of a node, in world coordinates (node transforms applied),
+/// named after the mesh (else its node), SurfaceKind from the material name (road when unknown).
+/// Polygons are triangulated, vertices never joined (see above for the counts per format);
+/// points and lines are dropped. Metadata: the string entries of the scene and of its nodes
+/// (without assimp's own "SourceAsset_*" and FBX "UserProperties") and the OBJ comments above;
+/// `frame` is restored from "relief:crs" and "relief:origin" when both are present.
+/// Files relief wrote come back in the local frame with their metadata.
 /// Throws IoError naming the file and assimp's reason.
 [[nodiscard]] MeshScene read_mesh_file(const std::filesystem::path& path);
 

@@ -1,0 +1,378 @@
+#include "relief/export/mesh_writer.h"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <functional>
+#include <iostream>
+#include <map>
+#include <set>
+#include <sstream>
+
+#include "relief/core/errors.h"
+#include "support/test_data.h"
+
+namespace relief {
+namespace {
+
+constexpr double kTolM = 1e-3;
+
+// A unit square at height 2 m: 4 vertices, 2 triangles (counter-clockwise from above).
+TriangleMesh unit_square(const std::string& name, SurfaceKind kind) {
+  TriangleMesh m;
+  m.name = name;
+  m.kind = kind;
+  m.vertices = {{0, 0, 2}, {1, 0, 2}, {1, 1, 2}, {0, 1, 2}};
+  m.triangles = {{0, 1, 2}, {0, 2, 3}};
+  m.normals.assign(4, Vec3::UnitZ());
+  m.uvs = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+  return m;
+}
+
+// An n x n grid of 10 m cells far from the origin (x ~ 4.5 km, y ~ -3.2 km, z ~ 30 m), so that
+// float rounding at a realistic magnitude (half a float step at 4.5 km: 0.24 mm) is part of
+// the round trip.
+TriangleMesh grid(const std::string& name, SurfaceKind kind, int n) {
+  TriangleMesh m;
+  m.name = name;
+  m.kind = kind;
+  for (int j = 0; j <= n; ++j) {
+    for (int i = 0; i <= n; ++i) {
+      const double x = 4500.37 + 10.0 * i;
+      const double y = -3200.61 + 10.0 * j;
+      m.vertices.emplace_back(x, y, 30.0 + 0.3 * i + 0.01 * i * j);
+      m.uvs.emplace_back(static_cast<double>(i) / n, static_cast<double>(j) / n);
+    }
+  }
+  const auto at = [n](int i, int j) { return static_cast<std::uint32_t>(j * (n + 1) + i); };
+  for (int j = 0; j < n; ++j) {
+    for (int i = 0; i < n; ++i) {
+      m.triangles.push_back({at(i, j), at(i + 1, j), at(i + 1, j + 1)});
+      m.triangles.push_back({at(i, j), at(i + 1, j + 1), at(i, j + 1)});
+    }
+  }
+  m.normals = vertex_normals(m);
+  return m;
+}
+
+MeshScene test_scene() {
+  MeshScene s;
+  s.frame = GeoFrame("EPSG:32610", Vec2(551000.0, 4180000.0));
+  s.meshes.push_back(unit_square("Road_Road", SurfaceKind::road));
+  s.meshes.push_back(unit_square("Road_Marking", SurfaceKind::marking));
+  s.meshes.back().vertices[2].z() = 2.5;  // not a copy of Road_Road
+  s.meshes.push_back(grid("Terrain", SurfaceKind::terrain, 10));
+  s.metadata["relief:proj"] = s.frame.proj_string();
+  s.metadata["relief:source"] = "unit test";
+  return s;
+}
+
+std::filesystem::path write_files(const std::vector<EncodedFile>& files, const std::filesystem::path& dir) {
+  for (const EncodedFile& f : files) {
+    std::ofstream out(dir / f.filename, std::ios::binary);
+    out.write(f.bytes.data(), static_cast<std::streamsize>(f.bytes.size()));
+  }
+  return dir / files.front().filename;
+}
+
+const TriangleMesh* find_mesh(const MeshScene& scene, const std::string& name) {
+  for (const TriangleMesh& m : scene.meshes) {
+    if (m.name == name) return &m;
+  }
+  return nullptr;
+}
+
+std::set<std::array<long long, 3>> unique_positions_mm(const TriangleMesh& m) {
+  std::set<std::array<long long, 3>> out;
+  for (const Vec3& v : m.vertices) {
+    out.insert({std::llround(v.x() * 1000), std::llround(v.y() * 1000), std::llround(v.z() * 1000)});
+  }
+  return out;
+}
+
+// Round trip through a file: same names, triangle count, unique positions; each triangle the
+// same corners in the same order (so the winding survives) within 1 mm; and the vertex count
+// `expected_vertices(original)` (the importers differ: see mesh_writer.h).
+void expect_round_trip(MeshFormat format,
+                       const std::function<std::size_t(const TriangleMesh&)>& expected_vertices) {
+  const MeshScene scene = test_scene();
+  const auto dir = test::scratch_dir(std::string("mesh_writer_round_trip_") + std::string(to_string(format)));
+  const auto path = write_files(encode_mesh_scene(scene, format, "scene"), dir);
+  const MeshScene back = read_mesh_file(path);
+  ASSERT_EQ(back.meshes.size(), scene.meshes.size());
+  double max_error_m = 0.0;
+  for (const TriangleMesh& original : scene.meshes) {
+    SCOPED_TRACE(original.name);
+    const TriangleMesh* read = find_mesh(back, original.name);
+    ASSERT_NE(read, nullptr);
+    EXPECT_EQ(read->kind, original.kind);
+    EXPECT_EQ(read->vertices.size(), expected_vertices(original));
+    ASSERT_EQ(read->triangles.size(), original.triangles.size());
+    EXPECT_EQ(unique_positions_mm(*read), unique_positions_mm(original));
+    for (std::size_t t = 0; t < original.triangles.size(); ++t) {
+      for (int k = 0; k < 3; ++k) {
+        const Vec3& a = original.vertices[original.triangles[t][k]];
+        const Vec3& b = read->vertices[read->triangles[t][k]];
+        max_error_m = std::max(max_error_m, (a - b).cwiseAbs().maxCoeff());
+      }
+    }
+    ASSERT_EQ(read->normals.size(), read->vertices.size());
+    for (std::size_t t = 0; t < original.triangles.size(); ++t) {
+      const Vec3& a = original.normals[original.triangles[t][0]];
+      const Vec3& b = read->normals[read->triangles[t][0]];
+      EXPECT_NEAR((a - b).norm(), 0.0, 1e-4);
+    }
+  }
+  EXPECT_LT(max_error_m, kTolM);
+  EXPECT_EQ(back.metadata.at("relief:proj"), scene.metadata.at("relief:proj"));
+  EXPECT_EQ(back.metadata.at("relief:source"), "unit test");
+  EXPECT_EQ(back.frame.crs(), "EPSG:32610");
+  EXPECT_NEAR(back.frame.origin().x(), 551000.0, 1e-9);
+  EXPECT_NEAR(back.frame.origin().y(), 4180000.0, 1e-9);
+}
+
+TEST(MeshWriter, ParsesFormatNamesAndExtensions) {
+  EXPECT_EQ(parse_mesh_format("glb"), MeshFormat::glb);
+  EXPECT_EQ(parse_mesh_format("obj"), MeshFormat::obj);
+  EXPECT_EQ(parse_mesh_format("fbx"), MeshFormat::fbx);
+  EXPECT_EQ(parse_mesh_format("stl"), std::nullopt);
+  EXPECT_EQ(to_string(MeshFormat::fbx), "fbx");
+  EXPECT_EQ(extension(MeshFormat::glb), ".glb");
+}
+
+TEST(MeshWriter, ObjYieldsObjAndMtlThatReferencesIt) {
+  const auto files = encode_mesh_scene(test_scene(), MeshFormat::obj, "roads");
+  ASSERT_EQ(files.size(), 2u);
+  EXPECT_EQ(files[0].filename, "roads.obj");
+  EXPECT_EQ(files[1].filename, "roads.mtl");
+  EXPECT_NE(files[0].bytes.find("\nmtllib roads.mtl\n"), std::string::npos);
+  EXPECT_NE(files[1].bytes.find("newmtl Marking"), std::string::npos);
+  EXPECT_NE(files[0].bytes.find("# relief-metadata relief:proj\t+proj=tmerc"), std::string::npos);
+}
+
+TEST(MeshWriter, EqualScenesGiveEqualBytes) {
+  for (const MeshFormat f : {MeshFormat::glb, MeshFormat::obj, MeshFormat::fbx}) {
+    const auto a = encode_mesh_scene(test_scene(), f, "x");
+    const auto b = encode_mesh_scene(test_scene(), f, "x");
+    ASSERT_EQ(a.size(), b.size());
+    for (std::size_t i = 0; i < a.size(); ++i) EXPECT_EQ(a[i].bytes, b[i].bytes) << a[i].filename;
+  }
+}
+
+TEST(MeshWriter, ThrowsInvalidInputForIndexOutOfRange) {
+  MeshScene s = test_scene();
+  s.meshes[0].triangles.push_back({0, 1, 4});
+  for (const MeshFormat f : {MeshFormat::glb, MeshFormat::obj, MeshFormat::fbx}) {
+    EXPECT_THROW((void)encode_mesh_scene(s, f, "bad"), InvalidInput);
+  }
+}
+
+TEST(MeshWriter, ReadThrowsIoErrorNamingTheFile) {
+  const auto dir = test::scratch_dir("mesh_writer_read_error");
+  try {
+    (void)read_mesh_file(dir / "missing.glb");
+    FAIL() << "no exception";
+  } catch (const IoError& e) {
+    EXPECT_NE(std::string(e.what()).find("missing.glb"), std::string::npos) << e.what();
+  }
+  std::ofstream(dir / "garbage.fbx") << "not an fbx file";
+  EXPECT_THROW((void)read_mesh_file(dir / "garbage.fbx"), IoError);
+}
+
+// glTF keeps the indexed vertices: every count round-trips.
+TEST(MeshWriter, GlbRoundTripKeepsCountsPositionsAndMetadata) {
+  expect_round_trip(MeshFormat::glb, [](const TriangleMesh& m) { return m.vertices.size(); });
+}
+
+// assimp's OBJ and FBX importers make one vertex per triangle corner.
+TEST(MeshWriter, ObjRoundTripKeepsTrianglesPositionsAndMetadata) {
+  expect_round_trip(MeshFormat::obj, [](const TriangleMesh& m) { return 3 * m.triangles.size(); });
+}
+
+TEST(MeshWriter, FbxRoundTripKeepsTrianglesPositionsAndMetadata) {
+  expect_round_trip(MeshFormat::fbx, [](const TriangleMesh& m) { return 3 * m.triangles.size(); });
+}
+
+TEST(MeshWriter, UvsRoundTripThroughEveryFormat) {
+  for (const MeshFormat f : {MeshFormat::glb, MeshFormat::obj, MeshFormat::fbx}) {
+    SCOPED_TRACE(std::string(to_string(f)));
+    MeshScene s;
+    s.meshes.push_back(grid("Terrain", SurfaceKind::terrain, 3));
+    const auto dir = test::scratch_dir(std::string("mesh_writer_uv_") + std::string(to_string(f)));
+    const MeshScene back = read_mesh_file(write_files(encode_mesh_scene(s, f, "uv"), dir));
+    ASSERT_EQ(back.meshes.size(), 1u);
+    const TriangleMesh& a = s.meshes[0];
+    const TriangleMesh& b = back.meshes[0];
+    ASSERT_EQ(b.uvs.size(), b.vertices.size());
+    ASSERT_EQ(b.triangles.size(), a.triangles.size());
+    for (std::size_t t = 0; t < a.triangles.size(); ++t) {
+      for (int k = 0; k < 3; ++k) {
+        EXPECT_NEAR((a.uvs[a.triangles[t][k]] - b.uvs[b.triangles[t][k]]).norm(), 0.0, 1e-6);
+      }
+    }
+  }
+}
+
+// --- an independent look at the FBX bytes ---------------------------------------------------
+
+std::uint32_t u32_at(const std::string& b, std::size_t at) {
+  std::uint32_t v = 0;
+  std::memcpy(&v, b.data() + at, 4);
+  return v;
+}
+
+// Names of the top-level node records, walking the end offsets; stops at the null record.
+std::vector<std::string> fbx_top_level_names(const std::string& bytes, std::size_t& null_record_at) {
+  std::vector<std::string> names;
+  std::size_t at = 27;
+  while (at + 13 <= bytes.size()) {
+    const std::uint32_t end = u32_at(bytes, at);
+    if (end == 0) break;
+    const auto name_length = static_cast<unsigned char>(bytes[at + 12]);
+    names.push_back(bytes.substr(at + 13, name_length));
+    if (end <= at || end > bytes.size()) return {};
+    at = end;
+  }
+  null_record_at = at;
+  return names;
+}
+
+TEST(MeshWriter, FbxBytesHaveMagicVersionNodesAndFooter) {
+  const auto files = encode_mesh_scene(test_scene(), MeshFormat::fbx, "scene");
+  ASSERT_EQ(files.size(), 1u);
+  EXPECT_EQ(files[0].filename, "scene.fbx");
+  const std::string& b = files[0].bytes;
+  ASSERT_GT(b.size(), 200u);
+  EXPECT_EQ(b.substr(0, 23), std::string("Kaydara FBX Binary  \0\x1a\0", 23));
+  EXPECT_EQ(u32_at(b, 23), 7400u);
+  std::size_t null_at = 0;
+  const std::vector<std::string> expected{
+      "FBXHeaderExtension", "FileId",     "CreationTime", "Creator", "GlobalSettings",
+      "Documents",          "References", "Definitions",  "Objects", "Connections"};
+  EXPECT_EQ(fbx_top_level_names(b, null_at), expected);
+  // Null record, footer id, padding to 16, version, 120 zeros, 16 bytes closing magic.
+  EXPECT_EQ(b.substr(null_at, 13), std::string(13, '\0'));
+  EXPECT_EQ(static_cast<unsigned char>(b[null_at + 13]), 0xfa);
+  EXPECT_EQ(u32_at(b, b.size() - 16 - 120 - 4), 7400u);
+  EXPECT_EQ((b.size() - 16 - 120 - 4) % 16, 0u);
+  // Deterministic bytes.
+  EXPECT_EQ(encode_mesh_scene(test_scene(), MeshFormat::fbx, "scene")[0].bytes, b);
+}
+
+// --- Blender ---------------------------------------------------------------------------------
+
+bool have_blender() {
+  return std::system("command -v blender > /dev/null 2>&1") == 0;
+}
+
+std::string run_and_capture(const std::string& command) {
+  std::string out;
+  FILE* pipe = popen(command.c_str(), "r");
+  if (pipe == nullptr) return out;
+  char buffer[4096];
+  while (std::fgets(buffer, sizeof buffer, pipe) != nullptr) out += buffer;
+  pclose(pipe);
+  return out;
+}
+
+// Imports each file into an empty Blender scene and prints, per mesh object, its vertex and
+// polygon counts and world-space bounding box, as one JSON line per file.
+constexpr const char* kBlenderScript = R"PY(
+import bpy, json, sys
+import numpy
+if not hasattr(numpy, "bool"):
+    numpy.bool = bool  # Blender 3.4's glTF importer still uses np.bool, gone in numpy >= 1.24
+files = sys.argv[sys.argv.index("--") + 1:]
+for path in files:
+    bpy.ops.wm.read_factory_settings(use_empty=True)
+    try:
+        if path.endswith(".fbx"):
+            bpy.ops.import_scene.fbx(filepath=path)
+        elif path.endswith(".glb"):
+            bpy.ops.import_scene.gltf(filepath=path)
+        else:
+            bpy.ops.wm.obj_import(filepath=path)
+    except Exception as e:
+        print("RELIEF_JSON " + json.dumps({"file": path, "error": str(e), "objects": {}}))
+        continue
+    objects = {}
+    for o in bpy.context.scene.objects:
+        if o.type != "MESH":
+            continue
+        world = [o.matrix_world @ v.co for v in o.data.vertices]
+        objects[o.name] = {
+            "vertices": len(o.data.vertices), "polygons": len(o.data.polygons),
+            "min": [min(p[i] for p in world) for i in range(3)],
+            "max": [max(p[i] for p in world) for i in range(3)],
+            "materials": [m.name for m in o.data.materials if m],
+            "proj": str(o.get("relief:proj", "")),
+        }
+    carriers = sorted(o.name for o in bpy.context.scene.objects if "relief:proj" in o)
+    proj = [str(o["relief:proj"]) for o in bpy.context.scene.objects if "relief:proj" in o]
+    print("RELIEF_JSON " + json.dumps({"file": path, "objects": objects, "proj_carriers": carriers,
+                                       "proj": proj[0] if proj else ""}))
+)PY";
+
+TEST(MeshWriter, BlenderImportsFbxGlbAndObjInMetresZUp) {
+  if (!have_blender()) GTEST_SKIP() << "blender is not on PATH";
+  const MeshScene scene = test_scene();
+  const auto dir = test::scratch_dir("mesh_writer_blender");
+  std::vector<std::filesystem::path> paths;
+  for (const MeshFormat f : {MeshFormat::fbx, MeshFormat::glb, MeshFormat::obj}) {
+    paths.push_back(write_files(encode_mesh_scene(scene, f, "scene"), dir));
+  }
+  std::ofstream(dir / "inspect.py") << kBlenderScript;
+  std::string command = "blender -b --factory-startup --python '" + (dir / "inspect.py").string() + "' --";
+  for (const auto& p : paths) command += " '" + p.string() + "'";
+  const std::string output = run_and_capture(command + " 2>&1");
+
+  std::map<std::string, nlohmann::json> by_file;
+  std::istringstream lines(output);
+  for (std::string line; std::getline(lines, line);) {
+    if (line.starts_with("RELIEF_JSON ")) {
+      const auto j = nlohmann::json::parse(line.substr(12));
+      by_file[j["file"].get<std::string>()] = j;
+    }
+  }
+  ASSERT_EQ(by_file.size(), 3u) << output;
+  for (const auto& p : paths) {
+    SCOPED_TRACE(p.filename().string());
+    const nlohmann::json& imported = by_file.at(p.string());
+    const nlohmann::json& objects = imported["objects"];
+    ASSERT_EQ(objects.size(), scene.meshes.size()) << objects.dump();
+    for (const TriangleMesh& m : scene.meshes) {
+      SCOPED_TRACE(m.name);
+      ASSERT_TRUE(objects.contains(m.name)) << objects.dump();
+      const nlohmann::json& o = objects[m.name];
+      EXPECT_EQ(o["vertices"].get<std::size_t>(), m.vertices.size());
+      EXPECT_EQ(o["polygons"].get<std::size_t>(), m.triangles.size());
+      Vec3 lo = Vec3::Constant(1e300);
+      Vec3 hi = Vec3::Constant(-1e300);
+      for (const Vec3& v : m.vertices) {
+        lo = lo.cwiseMin(v);
+        hi = hi.cwiseMax(v);
+      }
+      for (int k = 0; k < 3; ++k) {
+        EXPECT_NEAR(o["min"][k].get<double>(), lo[k], 0.01);
+        EXPECT_NEAR(o["max"][k].get<double>(), hi[k], 0.01);
+      }
+      if (p.extension() == ".fbx") {
+        EXPECT_EQ(o["proj"].get<std::string>(), scene.metadata.at("relief:proj"));
+      }
+    }
+    // The georeference as custom properties: on every mesh object from FBX, on the root empty
+    // ("relief") from glTF; OBJ has none in Blender (only comments).
+    if (p.extension() != ".obj") {
+      EXPECT_EQ(imported["proj"].get<std::string>(), scene.metadata.at("relief:proj"));
+    }
+    std::cout << p.filename().string() << ": relief:proj on " << imported["proj_carriers"].dump() << "\n";
+  }
+}
+
+}  // namespace
+}  // namespace relief
