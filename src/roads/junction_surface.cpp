@@ -1,0 +1,290 @@
+#include "roads/junction_surface.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <deque>
+#include <numbers>
+#include <string>
+#include <unordered_set>
+#include <utility>
+
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wconversion"
+#pragma GCC diagnostic ignored "-Wshadow"
+#pragma GCC diagnostic ignored "-Wpedantic"
+#pragma GCC diagnostic ignored "-Wunused-parameter"
+#include <CGAL/Constrained_Delaunay_triangulation_2.h>
+#include <CGAL/Exact_predicates_exact_constructions_kernel.h>
+#include <CGAL/Triangulation_face_base_with_info_2.h>
+#include <CGAL/Triangulation_vertex_base_with_info_2.h>
+#pragma GCC diagnostic pop
+
+#include "relief/core/errors.h"
+#include "relief/roads/road_surface.h"
+#include "roads/lane_loft.h"
+
+namespace relief::detail {
+
+namespace {
+
+// Exact constructions: constraints of a bad outline may cross, and the crossing points must
+// then be computed exactly (they are reported, never kept).
+using Kernel = CGAL::Exact_predicates_exact_constructions_kernel;
+struct VertexInfo {
+  int index = -1;  ///< position in the outline; -1 for a vertex CGAL made at a crossing
+};
+struct FaceInfo {
+  int nesting = -1;  ///< constraints crossed from the outside (odd: inside the outline)
+};
+using VertexBase = CGAL::Triangulation_vertex_base_with_info_2<VertexInfo, Kernel>;
+using FaceBaseInfo = CGAL::Triangulation_face_base_with_info_2<FaceInfo, Kernel>;
+using FaceBase = CGAL::Constrained_triangulation_face_base_2<Kernel, FaceBaseInfo>;
+using Tds = CGAL::Triangulation_data_structure_2<VertexBase, FaceBase>;
+using Cdt = CGAL::Constrained_Delaunay_triangulation_2<Kernel, Tds, CGAL::Exact_intersections_tag>;
+
+constexpr double kKerbCornerGap = 0.01;  // kerb points this close to a corner are dropped (m)
+constexpr double kKerbMinAngle = 1e-6;   // kerb points must advance this much around the centre (rad)
+
+/// Nesting level of every face: a flood fill from the infinite face that counts the
+/// constrained edges crossed (the usual domain marking of a CDT).
+void mark_nesting(Cdt& cdt) {
+  for (auto f : cdt.all_face_handles()) f->info().nesting = -1;
+  std::deque<Cdt::Edge> borders;
+  const auto flood = [&](Cdt::Face_handle start, int level) {
+    if (start->info().nesting != -1) return;
+    std::deque<Cdt::Face_handle> queue{start};
+    while (!queue.empty()) {
+      const Cdt::Face_handle f = queue.front();
+      queue.pop_front();
+      if (f->info().nesting != -1) continue;
+      f->info().nesting = level;
+      for (int i = 0; i < 3; ++i) {
+        const Cdt::Face_handle n = f->neighbor(i);
+        if (n->info().nesting != -1) continue;
+        if (cdt.is_constrained(Cdt::Edge(f, i))) {
+          borders.emplace_back(f, i);
+        } else {
+          queue.push_back(n);
+        }
+      }
+    }
+  };
+  flood(cdt.infinite_face(), 0);
+  while (!borders.empty()) {
+    const Cdt::Edge e = borders.front();
+    borders.pop_front();
+    const Cdt::Face_handle n = e.first->neighbor(e.second);
+    if (n->info().nesting == -1) flood(n, e.first->info().nesting + 1);
+  }
+}
+
+struct OutlineVertex {
+  Vec3 p;
+  std::uint32_t mesh_index = kNoVertex;  ///< kNoVertex: a gap point not yet in the mesh
+};
+
+double signed_area(const std::vector<OutlineVertex>& outline) {
+  double twice = 0.0;
+  for (std::size_t i = 0; i < outline.size(); ++i) {
+    const Vec3& a = outline[i].p;
+    const Vec3& b = outline[(i + 1) % outline.size()].p;
+    twice += a.x() * b.y() - b.x() * a.y();
+  }
+  return 0.5 * twice;
+}
+
+/// Key of a road end: 2 * road index + (0 at the start, 1 at the end).
+long end_key(int road_index, bool at_start) {
+  return 2L * road_index + (at_start ? 0 : 1);
+}
+
+/// The two road ends a connecting road joins (-1 where its link is not to a road).
+std::pair<long, long> joined_ends(const RoadModel& model, const ModelRoad& road) {
+  const auto key = [&](const std::optional<RoadLink>& link) {
+    if (!link || link->element != RoadLink::Element::road) return -1L;
+    const int index = model.road_index(link->id);
+    return index < 0 ? -1L : end_key(index, link->contact == RoadLink::Contact::start);
+  };
+  return {key(road.predecessor), key(road.successor)};
+}
+
+/// Interior points of the kerb from `from` to `to`: the outermost lane border (farthest from
+/// `centre` at mid-length) of the connecting roads joining ends a and b.
+std::vector<Vec3> kerb_between(const RoadModel& model, const std::vector<int>& connecting, long a, long b,
+                               const Vec2& centre, const Vec3& from, const Vec3& to,
+                               const RoadMeshOptions& options) {
+  const ModelRoad* best_road = nullptr;
+  int best_lane = 0;
+  double best_distance = -1.0;
+  for (const int index : connecting) {
+    const ModelRoad& road = model.roads[static_cast<std::size_t>(index)];
+    const auto [p, q] = joined_ends(model, road);
+    if (!((p == a && q == b) || (p == b && q == a)) || road.sections.empty() || road.plan.records().empty()) {
+      continue;
+    }
+    const double mid = 0.5 * road.length();
+    const LaneSection& section = section_at(road, mid);
+    const int left = section.left.empty() ? 0 : section.left.back().id;
+    const int right = section.right.empty() ? 0 : section.right.back().id;
+    for (const int lane : {left, right}) {
+      try {
+        const Vec3 p3 = surface_point(road, mid, lane_border_t(road, mid, lane));
+        const double d = (p3.head<2>() - centre).norm();
+        if (d > best_distance) {
+          best_distance = d;
+          best_road = &road;
+          best_lane = lane;
+        }
+      } catch (const InvalidInput&) {
+        // a lane missing in that section: not a candidate
+      }
+    }
+  }
+  if (best_road == nullptr) return {};
+  std::vector<Vec3> points;
+  try {
+    points = sample_lane_border(*best_road, best_lane, options);
+  } catch (const InvalidInput&) {
+    return {};
+  }
+  if (points.size() < 3) return {};
+  if ((points.front() - from).norm() + (points.back() - to).norm() >
+      (points.front() - to).norm() + (points.back() - from).norm()) {
+    std::reverse(points.begin(), points.end());
+  }
+  // Keep the points that sweep monotonically counter-clockwise around the centre from `from`
+  // to `to`: a tight turn's border loops at its cusps, and such a chain cannot cross itself.
+  const auto angle_from = [&](const Vec3& p) {
+    const Vec2 d = p.head<2>() - centre;
+    const Vec2 f = from.head<2>() - centre;
+    double angle = std::atan2(d.y(), d.x()) - std::atan2(f.y(), f.x());
+    while (angle < 0.0) angle += 2.0 * std::numbers::pi;
+    while (angle >= 2.0 * std::numbers::pi) angle -= 2.0 * std::numbers::pi;
+    return angle;
+  };
+  const double end_angle = angle_from(to);
+  double last_angle = 0.0;
+  std::vector<Vec3> inner;
+  for (std::size_t i = 1; i + 1 < points.size(); ++i) {
+    const Vec2 xy = points[i].head<2>();
+    if ((xy - from.head<2>()).norm() < kKerbCornerGap || (xy - to.head<2>()).norm() < kKerbCornerGap)
+      continue;
+    const double angle = angle_from(points[i]);
+    if (angle <= last_angle + kKerbMinAngle || angle >= end_angle - kKerbMinAngle) continue;
+    inner.push_back(points[i]);
+    last_angle = angle;
+  }
+  return inner;
+}
+
+}  // namespace
+
+std::string build_junction_surface(const RoadModel& model, const JunctionModel& junction,
+                                   std::vector<JunctionEnd> ends, const std::vector<int>& connecting_roads,
+                                   const RoadMeshOptions& options, MeshBuilder& mesh) {
+  std::erase_if(ends, [](const JunctionEnd& e) { return e.vertices.size() < 2; });
+  if (ends.empty()) return "no road ends";
+  const auto& vertices = mesh.mesh.vertices;
+  const auto midpoint = [&](const JunctionEnd& e) -> Vec2 {
+    return 0.5 * (vertices[e.vertices.front()].head<2>() + vertices[e.vertices.back()].head<2>());
+  };
+  Vec2 centre = Vec2::Zero();
+  for (const JunctionEnd& e : ends) centre += midpoint(e);
+  centre /= static_cast<double>(ends.size());
+  std::vector<std::pair<double, std::size_t>> order;
+  for (std::size_t k = 0; k < ends.size(); ++k) {
+    const Vec2 d = midpoint(ends[k]) - centre;
+    order.emplace_back(std::atan2(d.y(), d.x()), k);
+  }
+  std::sort(order.begin(), order.end());
+  std::vector<JunctionEnd> sorted;
+  for (const auto& [angle, k] : order) sorted.push_back(std::move(ends[k]));
+
+  std::vector<OutlineGap> gaps(sorted.size());
+  for (std::size_t k = 0; k < sorted.size(); ++k) {
+    const JunctionEnd& a = sorted[k];
+    const JunctionEnd& b = sorted[(k + 1) % sorted.size()];
+    gaps[k].points = kerb_between(model, connecting_roads, end_key(a.road_index, a.at_start),
+                                  end_key(b.road_index, b.at_start), centre, vertices[a.vertices.back()],
+                                  vertices[b.vertices.front()], options);
+  }
+  return triangulate_junction(sorted, gaps, junction.id, mesh);
+}
+
+std::string triangulate_junction(const std::vector<JunctionEnd>& ends, const std::vector<OutlineGap>& gaps,
+                                 int junction_id, MeshBuilder& mesh) {
+  // Outline: each end from its right to its left corner, then the gap to the next end.
+  std::vector<OutlineVertex> outline;
+  for (std::size_t k = 0; k < ends.size(); ++k) {
+    for (const std::uint32_t v : ends[k].vertices) {
+      if (outline.empty() || outline.back().mesh_index != v) outline.push_back({mesh.mesh.vertices[v], v});
+    }
+    if (k < gaps.size()) {
+      for (const Vec3& p : gaps[k].points) outline.push_back({p, kNoVertex});
+    }
+  }
+  while (outline.size() > 1 && outline.front().mesh_index != kNoVertex &&
+         outline.front().mesh_index == outline.back().mesh_index) {
+    outline.pop_back();
+  }
+  const std::size_t n = outline.size();
+  if (n < 3) return "outline has fewer than three vertices";
+  std::unordered_set<std::uint32_t> seen;
+  for (const OutlineVertex& v : outline) {
+    if (v.mesh_index != kNoVertex && !seen.insert(v.mesh_index).second) {
+      return "outline passes twice through vertex " + std::to_string(v.mesh_index);
+    }
+  }
+  const double area = signed_area(outline);
+  if (!(area > 1e-9)) return "outline is not counter-clockwise (signed area " + std::to_string(area) + " m2)";
+
+  Cdt cdt;
+  std::vector<Cdt::Vertex_handle> handles;
+  handles.reserve(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const Cdt::Vertex_handle h = cdt.insert(Cdt::Point(outline[i].p.x(), outline[i].p.y()));
+    if (h->info().index >= 0) return "two outline vertices at the same position";
+    h->info().index = static_cast<int>(i);
+    handles.push_back(h);
+  }
+  for (std::size_t i = 0; i < n; ++i) cdt.insert_constraint(handles[i], handles[(i + 1) % n]);
+  std::size_t crossings = 0;
+  for (const auto v : cdt.finite_vertex_handles()) {
+    if (v->info().index < 0) ++crossings;
+  }
+  if (crossings > 0) {
+    return "outline is not simple: CGAL split its constraints at " + std::to_string(crossings) +
+           " crossing(s)";
+  }
+  mark_nesting(cdt);
+  std::vector<std::array<int, 3>> inside;
+  double inside_area = 0.0;
+  for (const auto f : cdt.finite_face_handles()) {
+    if (f->info().nesting % 2 != 1) continue;
+    std::array<int, 3> t{};
+    for (int i = 0; i < 3; ++i) t[static_cast<std::size_t>(i)] = f->vertex(i)->info().index;
+    const Vec3& a = outline[static_cast<std::size_t>(t[0])].p;
+    const Vec3& b = outline[static_cast<std::size_t>(t[1])].p;
+    const Vec3& c = outline[static_cast<std::size_t>(t[2])].p;
+    inside_area += 0.5 * ((b.x() - a.x()) * (c.y() - a.y()) - (c.x() - a.x()) * (b.y() - a.y()));
+    inside.push_back(t);
+  }
+  // A simple polygon of n vertices without Steiner points has exactly n - 2 triangles
+  // covering its area; anything else means the outline touches itself.
+  if (inside.size() != n - 2 || std::abs(inside_area - area) > 1e-6 * std::max(1.0, area)) {
+    return "outline is not a simple polygon (" + std::to_string(inside.size()) + " triangles for " +
+           std::to_string(n) + " vertices)";
+  }
+  for (OutlineVertex& v : outline) {
+    if (v.mesh_index == kNoVertex) v.mesh_index = mesh.add_vertex(v.p, v.p.head<2>());
+  }
+  for (const auto& t : inside) {
+    mesh.add_triangle(outline[static_cast<std::size_t>(t[0])].mesh_index,
+                      outline[static_cast<std::size_t>(t[1])].mesh_index,
+                      outline[static_cast<std::size_t>(t[2])].mesh_index, -1 - junction_id);
+  }
+  return {};
+}
+
+}  // namespace relief::detail
