@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <numbers>
+#include <optional>
 #include <sstream>
 
 #include "relief/core/errors.h"
@@ -15,6 +17,8 @@ namespace {
 
 constexpr double kPi = std::numbers::pi;
 constexpr double kMinRoadLength = 0.05;  // m left after trimming, else the road is skipped
+constexpr double kTrimStep = 0.5;        // m added to an overlapping road end's trim per pass
+constexpr int kMaxTrimPasses = 400;      // bounds the trims' growth at one junction
 
 double wrap_angle(double a) {
   while (a > kPi) a -= 2.0 * kPi;
@@ -204,7 +208,12 @@ void add_transition_road(RoadModel& model, ModelRoad& a_ref, bool a_at_start, in
   Pose2 from = a.plan.at(sa), to = b.plan.at(sb);
   if (a_at_start) from.heading = wrap_angle(from.heading + kPi);  // leave a away from its body
   if (!b_at_start) to.heading = wrap_angle(to.heading + kPi);     // enter b along its body
-  t.plan = PlanView({hermite_connector(from, to)});
+  // Tangents as long as those of the circular arc through the same turn (2 tan(θ/4) /
+  // sin(θ/2) chords, 1 when straight): shorter ones pinch the bend into a radius smaller than
+  // the lanes are wide, and the lanes fold.
+  const double turn = std::min(std::abs(wrap_angle(to.heading - from.heading)), 0.9 * kPi);
+  const double scale = turn < 1e-6 ? 1.0 : 2.0 * std::tan(0.25 * turn) / std::sin(0.5 * turn);
+  t.plan = PlanView({hermite_connector(from, to, scale)});
   const double len = t.plan.length();
   const auto [z0, g0] = end_height(a, a_at_start, /*along_reference=*/!a_at_start);
   const auto [z1, g1] = end_height(b, b_at_start, /*along_reference=*/b_at_start);
@@ -284,6 +293,81 @@ bool needs_transition(const RoadNetwork& network, const Junction& j) {
          std::abs(a.attributes.lane_width_m - b.attributes.lane_width_m) > 1e-9;
 }
 
+// Distance of the outermost lane borders from the reference line: add_lanes centres the
+// carriageway, so both sides reach half the total width.
+double outer_border_t(const WayAttributes& a) {
+  return 0.5 * a.lane_width_m * (a.lanes_forward + (a.oneway ? 0 : a.lanes_backward));
+}
+
+double cross2(const Vec2& a, const Vec2& b) {
+  return a.x() * b.y() - a.y() * b.x();
+}
+
+double point_segment_distance(const Vec2& q, const Vec2& a, const Vec2& b) {
+  const Vec2 d = b - a;
+  const double len2 = d.squaredNorm();
+  const double t = len2 > 0.0 ? std::clamp((q - a).dot(d) / len2, 0.0, 1.0) : 0.0;
+  return (a + t * d - q).norm();
+}
+
+// Distance between two segments, 0 when they cross or touch.
+double segment_distance(const Vec2& a0, const Vec2& a1, const Vec2& b0, const Vec2& b1) {
+  const double d1 = cross2(a1 - a0, b0 - a0), d2 = cross2(a1 - a0, b1 - a0);
+  const double d3 = cross2(b1 - b0, a0 - b0), d4 = cross2(b1 - b0, a1 - b0);
+  if (((d1 > 0.0) != (d2 > 0.0)) && ((d3 > 0.0) != (d4 > 0.0))) return 0.0;
+  return std::min({point_segment_distance(a0, b0, b1), point_segment_distance(a1, b0, b1),
+                   point_segment_distance(b0, a0, a1), point_segment_distance(b1, a0, a1)});
+}
+
+// A road end at a junction in plan: its end cross-section (outermost right to outermost left
+// lane border) and the outline of its lanes over the first metres from that end.
+struct EndShape {
+  Vec2 left = Vec2::Zero(), right = Vec2::Zero();
+  Polyline2 strip;  ///< closed implicitly
+};
+
+constexpr double kStripLength = 50.0;  // m of lanes next to a junction that other ends must clear
+constexpr double kStripStep = 1.0;     // m between outline samples
+
+EndShape end_shape(const PlanView& plan, double outer_t, bool at_start) {
+  const double length = plan.length();
+  const double reach = std::min(length, kStripLength);
+  const int steps = std::max(1, static_cast<int>(std::ceil(reach / kStripStep)));
+  Polyline2 left, right;
+  for (int k = 0; k <= steps; ++k) {
+    const double d = reach * k / steps;
+    const Pose2 pose = plan.at(at_start ? d : length - d);
+    const Vec2 n(-std::sin(pose.heading), std::cos(pose.heading));
+    left.push_back(pose.position + outer_t * n);
+    right.push_back(pose.position - outer_t * n);
+  }
+  EndShape e;
+  e.left = left.front();
+  e.right = right.front();
+  e.strip = right;
+  e.strip.insert(e.strip.end(), left.rbegin(), left.rend());
+  return e;
+}
+
+// Distance from a segment to a polygon's area (0 when it enters it).
+double segment_polygon_distance(const Vec2& a, const Vec2& b, const Polyline2& polygon) {
+  bool inside = false;
+  for (std::size_t i = 0, j = polygon.size() - 1; i < polygon.size(); j = i++) {
+    const Vec2& p = polygon[i];
+    const Vec2& q = polygon[j];
+    if ((p.y() > a.y()) != (q.y() > a.y()) &&
+        a.x() < p.x() + (a.y() - p.y()) / (q.y() - p.y()) * (q.x() - p.x())) {
+      inside = !inside;
+    }
+  }
+  if (inside) return 0.0;
+  double best = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0, j = polygon.size() - 1; i < polygon.size(); j = i++) {
+    best = std::min(best, segment_distance(a, b, polygon[j], polygon[i]));
+  }
+  return best;
+}
+
 }  // namespace
 
 RoadModelBuild build_road_model(const RoadNetwork& network, const std::vector<RoadProfile>& profiles,
@@ -328,6 +412,85 @@ RoadModelBuild build_road_model(const RoadNetwork& network, const std::vector<Ro
     l1 = -mean;
   }
 
+  // Trims at both ends of every road: the junction radius, then grown where road ends at a
+  // junction overlap.
+  std::vector<std::array<double, 2>> trim(network.roads.size(), {0.0, 0.0});
+  std::vector<std::vector<double>> cumulative_of(network.roads.size());
+  for (const Road& road : network.roads) {
+    cumulative_of[road.id] = cumulative_length(road.points);
+    const double cap = options.max_trim_fraction * cumulative_of[road.id].back();
+    trim[road.id] = {std::min(radius[road.start_junction], cap), std::min(radius[road.end_junction], cap)};
+  }
+  const auto min_radius = [&](const Road& road) {
+    return outer_border_t(road.attributes) + options.min_radius_margin_m;
+  };
+  const auto fit_part = [&](const Road& road, std::vector<double>& kept_s, std::vector<double>& ref_s,
+                            ReferenceLineReport* report) {
+    const std::vector<double>& cumulative = cumulative_of[road.id];
+    const double s0 = trim[road.id][0], s1 = cumulative.back() - trim[road.id][1];
+    const Polyline2 part = cut(road.points, cumulative, s0, s1, kept_s);
+    return fit_reference_line(part, {options.plan_tolerance_m, 1e-3, min_radius(road)}, &ref_s, report);
+  };
+  const auto usable = [&](const Road& road) {
+    return profiles[road.id].has_height &&
+           cumulative_of[road.id].back() - trim[road.id][0] - trim[road.id][1] >= kMinRoadLength;
+  };
+  std::vector<std::pair<int, std::vector<int>>> overlaps;  // junction OSM node, network roads
+  for (const Junction& j : network.junctions) {
+    if (!(radius[j.id] > 0.0)) continue;
+    std::vector<const RoadEnd*> ends;
+    for (const RoadEnd& e : j.ends) {
+      if (usable(network.roads[e.road])) ends.push_back(&e);
+    }
+    if (ends.size() < 2) continue;
+    std::vector<std::optional<EndShape>> shape(ends.size());
+    const auto shape_of = [&](std::size_t k) -> const EndShape& {
+      if (!shape[k]) {
+        const Road& road = network.roads[ends[k]->road];
+        std::vector<double> kept_s, ref_s;
+        shape[k] = end_shape(fit_part(road, kept_s, ref_s, nullptr), outer_border_t(road.attributes),
+                             ends[k]->at_start);
+      }
+      return *shape[k];
+    };
+    std::vector<std::uint8_t> grown(ends.size(), 0);
+    bool clear = false;
+    for (int pass = 0; pass < kMaxTrimPasses && !clear; ++pass) {
+      std::vector<std::uint8_t> grow(ends.size(), 0);
+      for (std::size_t a = 0; a < ends.size(); ++a) {
+        for (std::size_t b = a + 1; b < ends.size(); ++b) {
+          const EndShape& ea = shape_of(a);
+          const EndShape& eb = shape_of(b);
+          const double gap = std::min(segment_polygon_distance(ea.right, ea.left, eb.strip),
+                                      segment_polygon_distance(eb.right, eb.left, ea.strip));
+          if (gap >= options.junction_end_gap_m) continue;
+          grow[a] = grow[b] = 1;
+        }
+      }
+      clear = std::find(grow.begin(), grow.end(), 1) == grow.end();
+      bool any = false;
+      for (std::size_t k = 0; k < ends.size(); ++k) {
+        if (!grow[k]) continue;
+        const Road& road = network.roads[ends[k]->road];
+        const double length = cumulative_of[road.id].back();
+        double& t = trim[road.id][ends[k]->at_start ? 0 : 1];
+        const double next = std::min(t + kTrimStep, options.max_trim_fraction * length);
+        if (next - t < 1e-9) continue;
+        t = next;
+        shape[k].reset();
+        grown[k] = 1;
+        any = true;
+      }
+      if (!any) break;
+    }
+    for (const std::uint8_t g : grown) out.stats.junction_ends_trimmed += g;
+    if (!clear) {
+      std::vector<int> roads;
+      for (const RoadEnd* e : ends) roads.push_back(e->road);
+      overlaps.emplace_back(static_cast<int>(j.id), roads);
+    }
+  }
+
   // Roads: trimmed, fitted reference line, elevation records, lanes.
   for (const Road& road : network.roads) {
     const RoadProfile& p = profiles[road.id];
@@ -335,11 +498,10 @@ RoadModelBuild build_road_model(const RoadNetwork& network, const std::vector<Ro
       ++out.stats.roads_skipped;
       continue;
     }
-    const std::vector<double> cumulative = cumulative_length(road.points);
+    const std::vector<double>& cumulative = cumulative_of[road.id];
     const double length = cumulative.back();
-    const double cap = options.max_trim_fraction * length;
-    const double s0 = std::min(radius[road.start_junction], cap);
-    const double s1 = length - std::min(radius[road.end_junction], cap);
+    const double s0 = trim[road.id][0];
+    const double s1 = length - trim[road.id][1];
     if (s1 - s0 < kMinRoadLength) {
       ++out.stats.roads_skipped;
       diagnostics.report(Severity::warning, "opendrive.road_too_short",
@@ -348,10 +510,31 @@ RoadModelBuild build_road_model(const RoadNetwork& network, const std::vector<Ro
       continue;
     }
     std::vector<double> kept_s, ref_s;
-    const Polyline2 part = cut(road.points, cumulative, s0, s1, kept_s);
+    ReferenceLineReport fit_report;
     ModelRoad m;
-    m.plan = fit_reference_line(part, {options.plan_tolerance_m, 1e-3}, &ref_s);
+    m.plan = fit_part(road, kept_s, ref_s, &fit_report);
     m.id = static_cast<int>(model.roads.size()) + 1;
+    if (fit_report.corners_widened > 0 || fit_report.vertices_merged > 0) {
+      ++out.stats.corners_rounded;
+      out.stats.max_corner_departure_m =
+          std::max(out.stats.max_corner_departure_m, fit_report.max_departure_m);
+      if (fit_report.max_departure_m > options.plan_tolerance_m) {
+        std::ostringstream msg;
+        msg.precision(2);
+        msg << std::fixed << "road " << m.id << ": "
+            << fit_report.corners_widened + fit_report.vertices_merged
+            << " sharp corner(s) rounded to the minimum radius " << min_radius(road)
+            << " m; the reference line departs from the OSM way by up to " << fit_report.max_departure_m
+            << " m";
+        Diagnostic d;
+        d.severity = Severity::info;
+        d.code = "model.corner_rounded";
+        d.message = msg.str();
+        d.road_id = m.id;
+        if (!road.osm_way_ids.empty()) d.osm_way_id = road.osm_way_ids.front();
+        diagnostics.report(std::move(d));
+      }
+    }
     m.name = road.attributes.name;
     m.source_road = road.id;
     m.osm_way_ids = road.osm_way_ids;
@@ -388,6 +571,22 @@ RoadModelBuild build_road_model(const RoadNetwork& network, const std::vector<Ro
     out.model_road_of[road.id] = static_cast<int>(model.roads.size());
     model.roads.push_back(std::move(m));
     ++out.stats.roads;
+  }
+
+  for (const auto& [junction, roads] : overlaps) {
+    std::string ids;
+    for (const int r : roads) {
+      if (out.model_road_of[r] < 0) continue;
+      ids += (ids.empty() ? "" : ", ") + std::to_string(model.roads[out.model_road_of[r]].id);
+    }
+    Diagnostic d;
+    d.code = "model.junction_ends_overlap";
+    d.message = "the ends of roads " + ids + " at the junction of OSM node " +
+                std::to_string(network.junctions[junction].osm_node_id) +
+                " still overlap after trimming them by the largest share allowed";
+    d.osm_node_id = network.junctions[junction].osm_node_id;
+    diagnostics.report(std::move(d));
+    ++out.stats.junction_ends_overlap;
   }
 
   // Junctions.

@@ -125,6 +125,85 @@ TEST(ReferenceLineFit, RightAngleCornerIsRoundedWithinTolerance) {
   EXPECT_NEAR(stations[2], plan.length(), 1e-12);
 }
 
+// Every arc of a fit made with a minimum radius, G1 and with the polyline's end positions.
+void expect_no_arc_below(const Polyline2& polyline, const PlanView& plan, double min_radius_m) {
+  const auto& records = plan.records();
+  for (std::size_t i = 0; i < records.size(); ++i) {
+    if (records[i].kind == PlanGeometry::Kind::arc) {
+      EXPECT_GE(1.0 / std::abs(records[i].curvature), min_radius_m - 1e-9) << i;
+    }
+    if (i == 0) continue;
+    const Pose2 end = evaluate(records[i - 1], records[i - 1].length);
+    EXPECT_LT((end.position - records[i].start).norm(), 1e-9) << i;
+    EXPECT_LT(angle_gap(end.heading, records[i].heading), 1e-9) << i;
+  }
+  EXPECT_LT((plan.at(0.0).position - polyline.front()).norm(), 1e-9);
+  EXPECT_LT((plan.at(plan.length()).position - polyline.back()).norm(), 1e-9);
+}
+
+TEST(ReferenceLineFit, SharpCornerGetsTheMinimumRadius) {
+  // Tolerance alone gives R = 0.05 / (sqrt 2 - 1) = 0.12 m; the minimum radius wins, and the
+  // arc's midpoint lies R (sqrt 2 - 1) from the vertex.
+  const Polyline2 line{{0, 0}, {100, 0}, {100, 100}};
+  ReferenceLineOptions options;
+  options.min_radius_m = 4.0;
+  ReferenceLineReport report;
+  const PlanView plan = fit_reference_line(line, options, nullptr, &report);
+  ASSERT_EQ(plan.records().size(), 3u);
+  EXPECT_NEAR(1.0 / plan.records()[1].curvature, 4.0, 1e-12);
+  EXPECT_EQ(report.corners_widened, 1u);
+  EXPECT_EQ(report.vertices_merged, 0u);
+  EXPECT_NEAR(report.max_departure_m, 4.0 * (std::sqrt(2.0) - 1.0), 1e-3);
+  expect_no_arc_below(line, plan, 4.0);
+}
+
+TEST(ReferenceLineFit, ChamferedRightAngleIsMergedIntoOneWideArc) {
+  // A 90-degree corner drawn as two 45-degree corners 0.71 m apart: arcs of radius 4 m need
+  // 1.66 m of each segment, so the two corners merge where the outer segments meet (20.5, 0).
+  const Polyline2 line{{0, 0}, {20, 0}, {20.5, 0.5}, {20.5, 20}};
+  ReferenceLineOptions options;
+  options.min_radius_m = 4.0;
+  ReferenceLineReport report;
+  std::vector<double> stations;
+  const PlanView plan = fit_reference_line(line, options, &stations, &report);
+  ASSERT_EQ(plan.records().size(), 3u);
+  EXPECT_EQ(plan.records()[1].kind, PlanGeometry::Kind::arc);
+  EXPECT_NEAR(1.0 / plan.records()[1].curvature, 4.0, 1e-9);
+  EXPECT_NEAR(plan.records()[0].length, 16.5, 1e-9);
+  EXPECT_EQ(report.vertices_merged, 1u);
+  EXPECT_GT(report.max_departure_m, options.tolerance_m);
+  expect_no_arc_below(line, plan, 4.0);
+  // Stations stay in order along the line.
+  ASSERT_EQ(stations.size(), 4u);
+  for (std::size_t i = 1; i < stations.size(); ++i) EXPECT_LE(stations[i - 1], stations[i]);
+  EXPECT_NEAR(stations.back(), plan.length(), 1e-12);
+}
+
+TEST(ReferenceLineFit, CornerNextToAnEndIsDroppedRatherThanTightened) {
+  // A right angle 1 m from the start: an arc of radius 4 m does not fit on the first segment.
+  const Polyline2 line{{0, 0}, {1, 0}, {1, 10}};
+  ReferenceLineOptions options;
+  options.min_radius_m = 4.0;
+  ReferenceLineReport report;
+  const PlanView plan = fit_reference_line(line, options, nullptr, &report);
+  ASSERT_EQ(plan.records().size(), 1u);
+  EXPECT_EQ(plan.records()[0].kind, PlanGeometry::Kind::line);
+  EXPECT_EQ(report.vertices_merged, 1u);
+  EXPECT_NEAR(report.max_departure_m, 10.0 / std::sqrt(101.0), 1e-6);  // (1, 0) from the chord
+  expect_no_arc_below(line, plan, 4.0);
+}
+
+TEST(ReferenceLineFit, MinimumRadiusKeepsAZigZagValid) {
+  const Polyline2 line{{0, 0}, {5, 0}, {5.3, 2}, {9, 2.5}, {9.2, -1}, {15, -1}, {15, 6}, {22, 6}};
+  ReferenceLineOptions options;
+  options.min_radius_m = 3.5;
+  ReferenceLineReport report;
+  const PlanView plan = fit_reference_line(line, options, nullptr, &report);
+  expect_no_arc_below(line, plan, 3.5);
+  EXPECT_GT(report.vertices_merged, 0u);
+  EXPECT_TRUE(std::isfinite(report.max_departure_m));
+}
+
 TEST(ReferenceLineFit, RightTurnHasNegativeCurvature) {
   const Polyline2 line{{0, 0}, {10, 0}, {20, -10}};
   const PlanView plan = fit_reference_line(line, {});
@@ -272,6 +351,7 @@ TEST(ReferenceLineFit, RejectsDegenerateInput) {
   EXPECT_THROW((void)fit_reference_line({{0, 0}, {std::nan(""), 1}}, {}), InvalidInput);
   EXPECT_THROW((void)fit_reference_line({{0, 0}, {1, 1}}, {0.0, 1e-3}), InvalidInput);
   EXPECT_THROW((void)fit_reference_line({{0, 0}, {1, 1}}, {0.05, -1.0}), InvalidInput);
+  EXPECT_THROW((void)fit_reference_line({{0, 0}, {1, 1}}, {0.05, 1e-3, -1.0}), InvalidInput);
 }
 
 TEST(HermiteConnector, ReproducesBothPoses) {

@@ -2,7 +2,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <map>
+#include <numbers>
 
 #include "relief/roads/road_model_checks.h"
 #include "relief/roads/road_surface.h"
@@ -58,6 +61,53 @@ TEST(RoadModelBuilder, TJunctionOnASlope) {
     EXPECT_NEAR(end.z(), plane(end.head<2>()), 1e-6) << r.name;
   }
   EXPECT_LT(b.stats.max_elevation_deviation_m, 1e-6);
+}
+
+double point_segment_distance(const Vec2& q, const Vec2& a, const Vec2& b) {
+  const Vec2 d = b - a;
+  const double t = std::clamp((q - a).dot(d) / d.squaredNorm(), 0.0, 1.0);
+  return (a + t * d - q).norm();
+}
+
+// End cross-section of a road (outermost right to outermost left lane border) at one end.
+std::pair<Vec2, Vec2> end_section(const ModelRoad& r, bool at_start) {
+  const double s = at_start ? 0.0 : r.length();
+  const LaneSection& sec = r.sections.front();
+  const int right = sec.right.empty() ? 0 : sec.right.back().id;
+  const int left = sec.left.empty() ? 0 : sec.left.back().id;
+  return {surface_point(r, s, lane_border_t(r, s, right)).head<2>(),
+          surface_point(r, s, lane_border_t(r, s, left)).head<2>()};
+}
+
+TEST(RoadModelBuilder, AForkAtTenDegreesGetsDisjointRoadEnds) {
+  // A street splits into two that leave the node 10 degrees apart: 6 m wide, they overlap
+  // until 37 m out (2 d sin 5° = 6.5 m with the 0.5 m gap).
+  const double a = 5.0 * std::numbers::pi / 180.0;
+  const Vec2 up(100.0 * std::cos(a), 100.0 * std::sin(a)), down(100.0 * std::cos(a), -100.0 * std::sin(a));
+  const RoadNetwork net = test::make_network({{{-100, 0}, {0, 0}}, {{0, 0}, up}, {{0, 0}, down}},
+                                             {street(1, 1), street(1, 1), street(1, 1)});
+  Diagnostics d;
+  const RoadModelBuild b = build_road_model(net, drape(net), {}, d);
+  EXPECT_EQ(b.stats.junction_ends_overlap, 0u);
+  EXPECT_EQ(d.count("model.junction_ends_overlap"), 0u);
+  EXPECT_EQ(b.stats.junction_ends_trimmed, 2u);
+  const auto [r1, l1] = end_section(b.model.roads[b.model_road_of[1]], true);
+  const auto [r2, l2] = end_section(b.model.roads[b.model_road_of[2]], true);
+  // Parallel-ish and disjoint: the nearest corners are the closest points.
+  const double gap = std::min({point_segment_distance(r1, r2, l2), point_segment_distance(l1, r2, l2),
+                               point_segment_distance(r2, r1, l1), point_segment_distance(l2, r1, l1)});
+  EXPECT_GE(gap, 0.5);
+  // Each end lies clear of the other road's lanes: its corners are farther from the other
+  // reference line than that road's half-width.
+  const ModelRoad& upper = b.model.roads[b.model_road_of[1]];
+  const Vec2 n(-std::sin(-a), std::cos(-a));  // left normal of the lower road
+  EXPECT_GE(std::min(r1.dot(n), l1.dot(n)), 3.0);
+  EXPECT_GT(upper.length(), 60.0 - 1e-9);  // at most 40 % trimmed
+  // The connecting roads still join the new ends exactly.
+  const LinkContinuity c = check_link_continuity(b.model);
+  EXPECT_GT(c.borders_checked, 0u);
+  EXPECT_LT(c.max_horizontal_m, 1e-6);
+  EXPECT_LT(c.max_vertical_m, 1e-6);
 }
 
 TEST(RoadModelBuilder, OneWaysHaveRightLanesOnlyAndAreCentred) {

@@ -79,22 +79,43 @@ class PlanView {
 struct ReferenceLineOptions {
   double tolerance_m = 0.05;   ///< max distance of the reference line from the polyline
   double min_length_m = 1e-3;  ///< records shorter than this are merged away
+  /// Smallest arc radius (m), 0 for none. A road's lane borders at |t| fold back wherever the
+  /// radius is below |t|, so a road takes its outermost border |t| plus a margin. Corners that
+  /// cannot be rounded that wide within tolerance_m depart from the polyline (see
+  /// ReferenceLineReport).
+  double min_radius_m = 0.0;
+};
+
+/// What ReferenceLineOptions::min_radius_m cost.
+struct ReferenceLineReport {
+  std::size_t corners_widened = 0;  ///< corners whose radius was raised to min_radius_m
+  std::size_t vertices_merged = 0;  ///< polyline vertices dropped or merged to make room for such arcs
+  /// Largest distance of a polyline vertex from the reference line when corners were widened
+  /// or merged (0 otherwise: the fit then stays within tolerance_m).
+  double max_departure_m = 0.0;
 };
 
 /// G1 reference line through a polyline: straight segments as `line` records joined by `arc`
 /// records that round each corner within the tolerance (never arc with curvature 0, no
 /// zero-length records). `station_map` receives, for each polyline vertex, the reference-line
 /// s nearest to it, so that quantities given along the polyline (elevation) can be re-mapped
-/// (the arc's midpoint for a rounded vertex; the ends map to 0 and length()).
+/// (the arc's midpoint for a rounded vertex; the ends map to 0 and length(); vertices merged
+/// away are interpolated by polyline length between their neighbours).
 /// Vertices closer than 1 mm are merged first. Each corner of turning angle θ gets the radius
-/// min(tolerance / (1/cos(θ/2) - 1), min(half adjacent segment) / tan(|θ|/2)); lines between
-/// two arcs that fill their segment vanish; a line that would be shorter than min_length_m
-/// shrinks its neighbouring arcs to reach it (only a line on a polyline segment that is itself
-/// shorter than min_length_m can stay shorter, so that the fit never leaves the polyline).
+/// max(min_radius, min(tolerance / (1/cos(θ/2) - 1), min(half adjacent segment) / tan(|θ|/2)));
+/// where two such arcs would overlap on a segment, their corners are merged into one (the
+/// intersection of the outer segments' lines for two turns the same way, else the midpoint),
+/// and a corner whose arc would overrun the polyline's first or last segment is dropped, so
+/// that no arc is tighter than min_radius and both ends keep their position. Lines between two
+/// arcs that fill their segment vanish; a line that would be shorter than min_length_m shrinks
+/// its neighbouring arcs to reach it (or, when that would go below min_radius, grows them until
+/// it vanishes; only a line on a polyline segment that is itself shorter than min_length_m can
+/// stay shorter, so that the fit never leaves the polyline).
 /// Throws InvalidInput for fewer than two distinct vertices, non-finite vertices, a tolerance
-/// that is not positive, or a negative min_length_m.
+/// that is not positive, or a negative or non-finite min_length_m or min_radius_m.
 [[nodiscard]] PlanView fit_reference_line(const Polyline2& polyline, const ReferenceLineOptions& options,
-                                          std::vector<double>* station_map = nullptr);
+                                          std::vector<double>* station_map = nullptr,
+                                          ReferenceLineReport* report = nullptr);
 
 /// A paramPoly3 (normalized) leaving `from` with its heading and arriving at `to` with its
 /// heading: the cubic Hermite curve with tangent lengths `tangent_scale` x the chord. Its record

@@ -12,7 +12,15 @@
 //   continues the other (straight within 3 degrees, same lanes, same width); otherwise both are
 //   trimmed and joined by a short transition road that bends and widens from one to the other
 //   (lanes present on one side only taper to width 0).
-// - Reference lines: OSM centrelines rounded at their vertices within plan_tolerance_m; lanes:
+// - Where roads leave a junction at a small angle (forks), their ends are trimmed further, in
+//   steps, until at each junction the end cross-sections (outermost left to outermost right
+//   lane border) of any two roads lie at least junction_end_gap_m apart and clear of each
+//   other's lanes (within max_trim_fraction; "model.junction_ends_overlap" where that is not
+//   possible).
+// - Reference lines: OSM centrelines rounded at their vertices within plan_tolerance_m, but with
+//   arcs no tighter than the road's outermost lane border plus min_radius_margin_m (lane
+//   borders fold back inside a tighter arc): a sharp corner then departs from the polyline by
+//   more than the tolerance ("model.corner_rounded"); lanes:
 //   right lanes drive along the reference line; laneOffset centres the carriageway on the OSM
 //   centreline (one-ways have right lanes only).
 // - Elevation: C1 cubic pieces through the fitted profile within elevation_tolerance_m.
@@ -29,6 +37,8 @@ struct RoadModelOptions {
   double elevation_tolerance_m = 0.01;  ///< elevation records vs fitted profile
   double junction_margin_m = 2.0;       ///< junction radius beyond the widest half-width
   double max_trim_fraction = 0.4;       ///< a road loses at most this share of its length per end
+  double min_radius_margin_m = 0.5;     ///< smallest arc radius beyond the outermost lane border
+  double junction_end_gap_m = 0.5;      ///< least distance between road ends at a junction
   bool u_turns = false;                 ///< connecting roads back into the arriving road
 };
 
@@ -43,6 +53,12 @@ struct RoadModelStats {
   /// Largest |elevation record - fitted profile| over the profile's stations (mapped onto the
   /// reference line) of every road.
   double max_elevation_deviation_m = 0.0;
+  std::size_t corners_rounded = 0;  ///< roads with a corner widened to their minimum radius
+  /// Largest distance of an OSM vertex from its road's reference line where corners were
+  /// widened (0 if none was).
+  double max_corner_departure_m = 0.0;
+  std::size_t junction_ends_trimmed = 0;  ///< road ends trimmed further to clear the other ends
+  std::size_t junction_ends_overlap = 0;  ///< junctions whose road ends still overlap
 };
 
 struct RoadModelBuild {
