@@ -194,6 +194,33 @@ std::string report_json(const RunReport& r) {
   } else {
     j["opendrive"] = nullptr;
   }
+  if (r.sumo) {
+    const SumoSummary& o = *r.sumo;
+    j["sumo"] = {{"file", o.file},
+                 {"nodes", o.nodes},
+                 {"edges", o.edges},
+                 {"connections", o.connections},
+                 {"junctions", o.junctions},
+                 {"traffic_lights", o.traffic_lights},
+                 {"lanes", o.lanes},
+                 {"internal_lanes", o.internal_lanes},
+                 {"signals_mid_road", o.signals_mid_road},
+                 {"restricted_edges", o.restricted_edges},
+                 {"max_grade_percent", o.max_grade_percent},
+                 {"points_checked", o.points_checked},
+                 {"z_max_m", round_to(o.z_max_m, 1e-4)},
+                 {"z_p99_m", round_to(o.z_p99_m, 1e-4)},
+                 {"xy_max_m", round_to(o.xy_max_m, 1e-4)},
+                 {"max_handover_step_m", round_to(o.max_handover_step_m, 1e-4)},
+                 {"max_lane_grade_percent", round_to(o.max_lane_grade_percent, 1e-2)},
+                 {"max_internal_lane_grade_percent", round_to(o.max_internal_lane_grade_percent, 1e-2)},
+                 {"max_profile_grade_percent", round_to(o.max_profile_grade_percent, 1e-2)},
+                 {"netconvert_warnings", o.netconvert_warnings},
+                 {"routes", o.routes},
+                 {"step_length_s", o.step_length_s}};
+  } else {
+    j["sumo"] = nullptr;
+  }
   Json methods = Json::object();
   for (const MethodReport& m : r.methods) methods[m.method] = method_json(m);
   j["methods"] = methods;

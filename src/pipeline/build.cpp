@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "pipeline/stages.h"
+#include "pipeline/sumo_stage.h"
 #include "relief/core/atomic_file.h"
 #include "relief/core/errors.h"
 #include "relief/export/geojson_writer.h"
@@ -77,6 +78,7 @@ std::optional<Output> parse_output(std::string_view text) {
   if (text == "report") return Output::report;
   if (text == "html") return Output::html;
   if (text == "xodr") return Output::xodr;
+  if (text == "sumo") return Output::sumo;
   return std::nullopt;
 }
 
@@ -90,6 +92,8 @@ std::string_view to_string(Output output) {
       return "html";
     case Output::xodr:
       return "xodr";
+    case Output::sumo:
+      return "sumo";
   }
   return "unknown";
 }
@@ -184,7 +188,8 @@ BuildResult build(const BuildOptions& options, Diagnostics& diagnostics, const P
   timer.run("validate", [&] {
     const HeightValidator validator(raw, dem, reference ? &*reference : nullptr);
     // The fit found the crossings of different layers on the same stations already.
-    const std::vector<GradeSeparation> separations = fit ? fit->separations : find_grade_separations(network, raw);
+    const std::vector<GradeSeparation> separations =
+        fit ? fit->separations : find_grade_separations(network, raw);
     if (wanted(ProfileMethod::raw)) {
       report.methods.push_back(evaluate("raw", network, raw, raw, validator, separations, options, 0.0));
     }
@@ -221,12 +226,14 @@ BuildResult build(const BuildOptions& options, Diagnostics& diagnostics, const P
     report.outputs.push_back(report.name + ".geojson");
     result.written.push_back(path_of(".geojson"));
   }
+  std::optional<RoadModelBuild> built;
+  if (options.outputs.count(Output::xodr) || options.outputs.count(Output::sumo)) {
+    built = timer.run("build road model",
+                      [&] { return build_road_model(network, profiles, options.road_model, diagnostics); });
+    built->model.name = report.name;
+  }
   if (options.outputs.count(Output::xodr)) {
-    RoadModelBuild built = timer.run("build road model", [&] {
-      return build_road_model(network, profiles, options.road_model, diagnostics);
-    });
-    built.model.name = report.name;
-    const RoadModel& model = built.model;
+    const RoadModel& model = built->model;
     const std::string xodr = timer.run("write OpenDRIVE", [&] {
       OpenDriveOptions odr;
       odr.rev_minor = options.opendrive_rev_minor;
@@ -245,25 +252,29 @@ BuildResult build(const BuildOptions& options, Diagnostics& diagnostics, const P
       OpenDriveSummary o;
       o.file = report.name + ".xodr";
       o.version = "1." + std::to_string(options.opendrive_rev_minor);
-      o.roads = built.stats.roads;
-      o.connecting_roads = built.stats.connecting_roads;
-      o.junctions = built.stats.junctions;
-      o.junctions_without_movements = built.stats.junctions_without_movements;
-      o.direct_links = built.stats.direct_links;
-      o.transition_roads = built.stats.transition_roads;
-      o.roads_skipped = built.stats.roads_skipped;
+      o.roads = built->stats.roads;
+      o.connecting_roads = built->stats.connecting_roads;
+      o.junctions = built->stats.junctions;
+      o.junctions_without_movements = built->stats.junctions_without_movements;
+      o.direct_links = built->stats.direct_links;
+      o.transition_roads = built->stats.transition_roads;
+      o.roads_skipped = built->stats.roads_skipped;
       o.max_link_gap_m = links.max_horizontal_m;
       o.max_link_step_m = links.max_vertical_m;
       o.link_borders_checked = links.borders_checked;
       o.round_trip_max_xy_m = dev.max_xy_m;
       o.round_trip_max_z_m = dev.max_z_m;
       o.round_trip_points = dev.points;
-      o.elevation_max_deviation_m = built.stats.max_elevation_deviation_m;
+      o.elevation_max_deviation_m = built->stats.max_elevation_deviation_m;
       report.opendrive = o;
       return 0;
     });
     report.outputs.push_back(report.name + ".xodr");
     result.written.push_back(path_of(".xodr"));
+  }
+  if (options.outputs.count(Output::sumo)) {
+    SumoStageInput in{options, loaded, built->model, report.name, diagnostics};
+    report.sumo = write_sumo_outputs(in, files, timer, result.written, report.outputs);
   }
   if (options.outputs.count(Output::html)) {
     report.outputs.push_back("report.html");

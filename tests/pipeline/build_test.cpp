@@ -66,8 +66,15 @@ TEST(Build, SyntheticPlaneHasExactGrades) {
   EXPECT_LT(r.junctions.max_gap_m, 1e-9);
   EXPECT_EQ(r.network.bridges, 1u);
   EXPECT_EQ(r.network.traffic_signals, 1u);
-  ASSERT_EQ(result.written.size(), 4u);  // OpenDRIVE, GeoJSON, report.html, report.json
+  // OpenDRIVE, GeoJSON, report.html, report.json; SUMO net + its nod/edg/con + lane mapping.
+  ASSERT_EQ(result.written.size(), 9u);
   for (const auto& p : result.written) EXPECT_TRUE(std::filesystem::exists(p)) << p;
+  // SUMO: the signalled crossing gets a light; lanes lie on the plane the OpenDRIVE describes.
+  ASSERT_TRUE(r.sumo);
+  EXPECT_EQ(r.sumo->traffic_lights, 1u);
+  EXPECT_LT(r.sumo->z_max_m, 0.01);
+  EXPECT_LT(r.sumo->max_handover_step_m, 0.01);
+  EXPECT_NEAR(r.sumo->max_lane_grade_percent, 10.0, 0.2);
 }
 
 TEST(Build, PotreroWithReferenceDem) {

@@ -32,6 +32,11 @@ struct BuildArgs {
   double max_curvature = 0.05;
   bool no_compare = false;
   int opendrive_minor = 7;
+  std::vector<std::string> vclass_max_grade;
+  int routes = 0;
+  double route_end_s = 0.0;
+  unsigned seed = 42;
+  double step_length_s = 0.05;
 };
 
 void print_summary(const BuildResult& result) {
@@ -84,6 +89,22 @@ void print_summary(const BuildResult& result) {
         << " m horizontal, " << fixed(o.max_link_step_m, 4) << " m vertical; read back within "
         << fixed(std::max(o.round_trip_max_xy_m, o.round_trip_max_z_m), 6) << " m\n";
   }
+  if (r.sumo) {
+    const SumoSummary& o = *r.sumo;
+    out << "  sumo       " << o.file << ": " << o.edges << " edges, " << o.junctions << " junctions, "
+        << o.traffic_lights << " traffic lights, " << o.internal_lanes
+        << " internal lanes; lanes vs OpenDRIVE "
+        << "surface: z p99 " << fixed(o.z_p99_m, 3) << " m, max " << fixed(o.z_max_m, 3)
+        << " m; lane/internal step max " << fixed(o.max_handover_step_m, 3) << " m\n";
+    out << "  sumo       kept off by grade:";
+    for (const auto& [vclass, edges] : o.restricted_edges) {
+      out << " " << vclass << " " << edges << " edges (> " << fixed(o.max_grade_percent.at(vclass), 0)
+          << " %)";
+    }
+    if (o.restricted_edges.empty()) out << " none";
+    if (o.routes) out << "; " << o.routes << " routes, step " << fixed(o.step_length_s, 2) << " s";
+    out << "\n";
+  }
   out << "  gradient   max " << fixed(r.gradient.max_percent, 1) << " %, p99 "
       << fixed(r.gradient.p99_percent, 1) << " %, compliance with class limits "
       << fixed(r.gradient.compliance_percent, 1) << " %\n"
@@ -118,7 +139,8 @@ Runner add_build_command(CLI::App& app) {
                   "override grade limits, e.g. highway=8,arterial=12,local=15,residential=18 (percent)");
   cmd->add_option(
          "--outputs", args->outputs,
-         "comma-separated outputs to write: xodr, geojson, report (report.json), html (report.html), or all")
+         "comma-separated outputs to write: xodr, sumo (NAME.net.xml and its plain XML, via netconvert), "
+         "geojson, report (report.json), html (report.html), or all")
       ->capture_default_str();
   cmd->add_flag("-q,--quiet", args->quiet, "print only errors and the summary");
   cmd->add_option("--profiles", args->profiles,
@@ -150,6 +172,19 @@ Runner add_build_command(CLI::App& app) {
   cmd->add_option("--opendrive-version", args->opendrive_minor, "OpenDRIVE 1.N to write: 4, 7 (default) or 8")
       ->capture_default_str()
       ->check(CLI::IsMember({4, 7, 8}));
+  cmd->add_option("--vclass-max-grade", args->vclass_max_grade,
+                  "SUMO: keep a vehicle class off lanes steeper than a grade, CLASS=PERCENT (repeatable; "
+                  "defaults truck=15 trailer=10 bus=20 coach=15; CLASS=none drops a default)");
+  cmd->add_option("--routes", args->routes,
+                  "SUMO: write NAME.rou.xml with this many random trips (randomTrips.py + duarouter) and "
+                  "NAME.sumocfg")
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--route-end", args->route_end_s, "SUMO: last departure, s (default: one per second)")
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--seed", args->seed, "SUMO: random seed of the trips")->capture_default_str();
+  cmd->add_option("--step-length", args->step_length_s, "SUMO: simulation step in NAME.sumocfg, s")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
   cmd->add_flag("--no-compare", args->no_compare,
                 "run only the chosen profile method (no comparison in the report)");
 
@@ -189,6 +224,30 @@ Runner add_build_command(CLI::App& app) {
       options.fit.max_curvature_per_m = args->max_curvature;
       options.compare_methods = !args->no_compare;
       options.opendrive_rev_minor = args->opendrive_minor;
+      for (const std::string& item : args->vclass_max_grade) {
+        const std::size_t eq = item.find('=');
+        const std::string vclass = item.substr(0, eq);
+        if (eq == std::string::npos || vclass.empty()) {
+          throw CLI::ValidationError("--vclass-max-grade", "'" + item + "' is not CLASS=PERCENT");
+        }
+        const std::string value = item.substr(eq + 1);
+        if (value == "none") {
+          options.sumo.max_grade_percent.erase(vclass);
+          continue;
+        }
+        try {
+          std::size_t used = 0;
+          const double percent = std::stod(value, &used);
+          if (used != value.size() || !(percent > 0.0)) throw std::invalid_argument(value);
+          options.sumo.max_grade_percent[vclass] = percent;
+        } catch (const std::exception&) {
+          throw CLI::ValidationError("--vclass-max-grade", "'" + item + "': the grade must be a percent > 0");
+        }
+      }
+      options.demand.trips = args->routes;
+      options.demand.end_s = args->route_end_s;
+      options.demand.seed = args->seed;
+      options.demand.step_length_s = args->step_length_s;
       if (!args->grade_limits.empty()) options.grade_limits.apply_overrides(args->grade_limits);
       if (args->outputs != "all") {
         options.outputs.clear();
@@ -198,7 +257,7 @@ Runner add_build_command(CLI::App& app) {
           const auto output = parse_output(item);
           if (!output)
             throw CLI::ValidationError("--outputs",
-                                       "'" + item + "' is not one of xodr, geojson, report, html, all");
+                                       "'" + item + "' is not one of xodr, sumo, geojson, report, html, all");
           options.outputs.insert(*output);
         }
       }

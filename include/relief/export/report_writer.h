@@ -2,6 +2,7 @@
 // report.json: what was built, from what, and how good it is (the seed paper's validation
 // figures), with the frame needed to map every output back to lon/lat.
 
+#include <map>
 #include <optional>
 #include <string>
 #include <utility>
@@ -69,6 +70,27 @@ struct OpenDriveSummary {
   double elevation_max_deviation_m = 0.0;  ///< elevation records vs the fitted profile
 };
 
+/// The SUMO network written, and its checks against the OpenDRIVE surface.
+struct SumoSummary {
+  std::string file;                                   ///< "NAME.net.xml"
+  std::size_t nodes = 0, edges = 0, connections = 0;  ///< plain network given to netconvert
+  std::size_t junctions = 0, traffic_lights = 0;      ///< in the .net.xml
+  std::size_t lanes = 0, internal_lanes = 0;
+  std::size_t signals_mid_road = 0;  ///< OSM signals too far from any junction to control one
+  std::map<std::string, std::size_t> restricted_edges;  ///< vehicle class -> edges kept off by grade
+  std::map<std::string, double> max_grade_percent;      ///< the limits applied
+  std::size_t points_checked = 0;
+  double z_max_m = 0.0, z_p99_m = 0.0;           ///< lane points vs the OpenDRIVE surface
+  double xy_max_m = 0.0;                         ///< lane centre points vs the OpenDRIVE lane centres
+  double max_handover_step_m = 0.0;              ///< lane <-> internal lane height step
+  double max_lane_grade_percent = 0.0;           ///< normal lanes
+  double max_internal_lane_grade_percent = 0.0;  ///< junction-internal lanes (connecting roads)
+  double max_profile_grade_percent = 0.0;        ///< relief's profiles over the same roads
+  std::size_t netconvert_warnings = 0;
+  std::size_t routes = 0;  ///< vehicles in NAME.rou.xml (0: no demand asked for)
+  double step_length_s = 0.0;
+};
+
 struct RunReport {
   std::string name;
   std::string created_utc;  ///< ISO 8601
@@ -93,6 +115,7 @@ struct RunReport {
   std::optional<PaperSummary> paper;
   GradeLimits grade_limits = GradeLimits::paper();
   std::optional<OpenDriveSummary> opendrive;
+  std::optional<SumoSummary> sumo;
   std::vector<std::pair<std::string, double>> timings_s;  ///< stage -> seconds, in order
   std::vector<std::string> outputs;                       ///< file names written
   const Diagnostics* diagnostics = nullptr;
@@ -107,9 +130,13 @@ struct RunReport {
 /// error_3d_max_m}, vs_reference{...} | null}, gradient{compliance_percent, max_percent,
 /// p99_percent, steepest_road, by_class{class: {length_km, limit_percent, compliance_percent,
 /// max_percent, p99_percent}}}, junctions{max_gap_m, worst_junction, over_bound, bound_m,
-/// checked}, profiles{method, fit{...}, paper{...}}, methods{raw|paper|relief: {vs_dem,
-/// vs_dem_ground, vs_dem_structures, vs_reference, gradient, junctions, cut_fill, clearance}},
-/// diagnostics{total, counts{code: n}, messages[]}, timings_s{stage: s}, outputs[].
+/// checked}, sumo{file, nodes, edges, connections, junctions, traffic_lights, lanes,
+/// internal_lanes, signals_mid_road, restricted_edges{class: n}, max_grade_percent{class: %},
+/// points_checked, z_max_m, z_p99_m, xy_max_m, max_handover_step_m, max_lane_grade_percent,
+/// max_internal_lane_grade_percent, max_profile_grade_percent, netconvert_warnings, routes, step_length_s} |
+/// null, profiles{method, fit{...}, paper{...}}, methods{raw|paper|relief: {vs_dem, vs_dem_ground,
+/// vs_dem_structures, vs_reference, gradient, junctions, cut_fill, clearance}}, diagnostics{total,
+/// counts{code: n}, messages[]}, timings_s{stage: s}, outputs[].
 [[nodiscard]] std::string report_json(const RunReport& report);
 
 /// relief's version string ("0.1.0").

@@ -11,6 +11,8 @@
 
 #include "relief/core/diagnostics.h"
 #include "relief/export/report_writer.h"
+#include "relief/export/sumo_network.h"
+#include "relief/export/sumo_tools.h"
 #include "relief/roads/elevation_sampling.h"
 #include "relief/roads/osm_reader.h"
 #include "relief/roads/paper_smoothing.h"
@@ -31,7 +33,7 @@ enum class ProfileMethod {
 [[nodiscard]] std::string_view to_string(ProfileMethod method);
 
 /// Outputs `build` can write into the output directory.
-enum class Output { geojson, report, html, xodr };
+enum class Output { geojson, report, html, xodr, sumo };
 [[nodiscard]] std::optional<Output> parse_output(std::string_view text);
 [[nodiscard]] std::string_view to_string(Output output);
 
@@ -52,9 +54,13 @@ struct BuildOptions {
   int paper_max_iterations = 1000;
   /// Also run the other methods and put the comparison in the report.
   bool compare_methods = true;
-  std::set<Output> outputs = {Output::geojson, Output::report, Output::html, Output::xodr};
+  std::set<Output> outputs = {Output::geojson, Output::report, Output::html, Output::xodr, Output::sumo};
   RoadModelOptions road_model;
   int opendrive_rev_minor = 7;  ///< OpenDRIVE 1.4, 1.7 or 1.8
+  SumoOptions sumo;             ///< its signalled_junctions are filled from the OSM signals
+  /// Random trips for a quick SUMO run (NAME.rou.xml + NAME.sumocfg); trips = 0: none.
+  DemandOptions demand;
+  double signal_snap_m = 30.0;  ///< an OSM signal this close to an intersection controls it
 };
 
 struct BuildResult {

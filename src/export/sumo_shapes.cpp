@@ -1,0 +1,80 @@
+#include "export/sumo_shapes.h"
+
+#include <algorithm>
+
+#include <cmath>
+
+#include "relief/roads/road_surface.h"
+
+namespace relief {
+namespace {
+
+double distance_to_segment(const Vec3& p, const Vec3& a, const Vec3& b) {
+  const Vec3 ab = b - a;
+  const double len2 = ab.squaredNorm();
+  const double u = len2 > 0.0 ? std::clamp((p - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
+  return (a + u * ab - p).norm();
+}
+
+}  // namespace
+
+Polyline3 simplify_3d(const Polyline3& line, double tolerance_m, const std::vector<double>& headings,
+                      double max_turn_rad) {
+  if (line.size() <= 2) return line;
+  std::vector<std::uint8_t> keep(line.size(), 0);
+  keep.front() = keep.back() = 1;
+  // Iterative Douglas-Peucker with an explicit stack of (first, last) ranges.
+  std::vector<std::pair<std::size_t, std::size_t>> stack{{0, line.size() - 1}};
+  while (!stack.empty()) {
+    const auto [i, j] = stack.back();
+    stack.pop_back();
+    double worst = -1.0;
+    std::size_t at = i;
+    for (std::size_t k = i + 1; k < j; ++k) {
+      const double d = distance_to_segment(line[k], line[i], line[j]);
+      if (d > worst) {
+        worst = d;
+        at = k;
+      }
+    }
+    const bool turns = !headings.empty() && j > i + 1 &&
+                       std::abs(std::remainder(headings[j] - headings[i], 2.0 * M_PI)) > max_turn_rad;
+    if (turns && worst <= tolerance_m) at = (i + j) / 2;
+    if (worst > tolerance_m || turns) {
+      keep[at] = 1;
+      stack.emplace_back(i, at);
+      stack.emplace_back(at, j);
+    }
+  }
+  Polyline3 out;
+  for (std::size_t k = 0; k < line.size(); ++k) {
+    if (keep[k]) out.push_back(line[k]);
+  }
+  return out;
+}
+
+Polyline3 sample_road_curve(const ModelRoad& road, const std::function<double(double)>& t_of,
+                            double tolerance_m, double s_begin, double s_end) {
+  if (s_end < 0.0) s_end = road.length();
+  const double length = s_end - s_begin;
+  const int n = std::max(1, static_cast<int>(std::ceil(length)));
+  Polyline3 line;
+  std::vector<double> headings;
+  line.reserve(static_cast<std::size_t>(n) + 1);
+  for (int i = 0; i <= n; ++i) {
+    const double s = s_begin + length * i / n;
+    const Vec3 p = surface_point(road, s, t_of(s));
+    const double h = heading_at(road, s);
+    // Where the road bends tighter than the offset t, the offset curve loops back (a cusp):
+    // keep only points that advance along the reference line's heading.
+    if (!line.empty() && i < n) {
+      if ((p - line.back()).head<2>().dot(Vec2(std::cos(h), std::sin(h))) <= 1e-3) continue;
+    }
+    line.push_back(p);
+    headings.push_back(h);
+  }
+  constexpr double kMaxTurnRad = 2.0 * M_PI / 180.0;
+  return simplify_3d(line, tolerance_m, headings, kMaxTurnRad);
+}
+
+}  // namespace relief

@@ -1,0 +1,169 @@
+#include "relief/export/sumo_tools.h"
+
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+
+#include "relief/core/errors.h"
+#include "relief/core/number_format.h"
+#include "relief/core/subprocess.h"
+
+namespace relief {
+namespace {
+
+std::filesystem::path tool(const std::string& name) {
+  std::vector<std::filesystem::path> dirs;
+  if (const auto home = sumo_home()) dirs = {*home / "bin", *home / "tools"};
+  const auto path = find_executable(name, dirs);
+  if (!path) {
+    throw IoError("SUMO's " + name +
+                  " was not found (looked in $SUMO_HOME/bin, $SUMO_HOME/tools and on PATH); "
+                  "install Debian's sumo and sumo-tools or set SUMO_HOME");
+  }
+  return *path;
+}
+
+// SUMO's tools need SUMO_HOME for their schemas and type maps.
+Environment sumo_environment() {
+  if (const auto home = sumo_home()) return {{"SUMO_HOME", home->string()}};
+  return {};
+}
+
+std::string read_text(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw IoError("cannot read '" + path.string() + "'");
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+template <typename F>
+void write_text(const std::filesystem::path& path, F&& write) {
+  std::ofstream out(path, std::ios::binary);
+  write(out);
+  if (!out) throw IoError("cannot write '" + path.string() + "'");
+}
+
+std::size_t count_lines_starting(const std::string& text, std::string_view prefix) {
+  std::size_t n = 0;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);) {
+    if (line.rfind(prefix, 0) == 0) ++n;
+  }
+  return n;
+}
+
+// Last lines of a tool's output, for an error message.
+std::string tail(const std::string& text, std::size_t max_chars = 1500) {
+  return text.size() <= max_chars ? text : "..." + text.substr(text.size() - max_chars);
+}
+
+}  // namespace
+
+std::optional<std::filesystem::path> sumo_home() {
+  if (const char* env = std::getenv("SUMO_HOME"); env && *env) return std::filesystem::path(env);
+  std::error_code ec;
+  if (std::filesystem::is_directory("/usr/share/sumo", ec)) return std::filesystem::path("/usr/share/sumo");
+  return std::nullopt;
+}
+
+NetconvertRun run_netconvert(const SumoPlainNetwork& net, const std::filesystem::path& work_dir,
+                             const std::string& name) {
+  const std::filesystem::path nod = work_dir / (name + ".nod.xml"), edg = work_dir / (name + ".edg.xml"),
+                              con = work_dir / (name + ".con.xml"), out = work_dir / (name + ".net.xml");
+  write_text(nod, [&](std::ostream& o) { write_sumo_nodes(o, net); });
+  write_text(edg, [&](std::ostream& o) { write_sumo_edges(o, net); });
+  write_text(con, [&](std::ostream& o) { write_sumo_connections(o, net); });
+  std::vector<std::string> argv = {
+      tool("netconvert").string(), "--node-files", nod.string(), "--edge-files", edg.string(),
+      "--connection-files", con.string(), "--output-file", out.string(),
+      // Heights are relief's: no grade "fix", no offset normalisation.
+      "--geometry.max-grade.fix", "false", "--offset.disable-normalization", "true",
+      // Movements are relief's connections; no U-turns added.
+      "--no-turnarounds", "true", "--precision", "3", "--output.street-names", "true", "--tls.default-type",
+      "static"};
+  // relief writes each lane's permissions itself; the edge types are names only.
+  argv.insert(argv.end(), {"--ignore-errors.edge-type", "true"});
+  const ProcessResult r = run_process(argv, sumo_environment());
+  if (r.exit_code != 0) {
+    throw IoError("netconvert failed on '" + nod.string() + "' (exit " + std::to_string(r.exit_code) +
+                  "): " + tail(r.output));
+  }
+  NetconvertRun run;
+  run.net_xml = read_text(out);
+  run.log = r.output;
+  run.warnings = count_lines_starting(r.output, "Warning");
+  return run;
+}
+
+DemandRun make_demand(const std::filesystem::path& work_dir, const std::string& name,
+                      const DemandOptions& options) {
+  if (options.trips <= 0) throw InvalidInput("demand: the number of trips must be > 0");
+  const std::filesystem::path net = work_dir / (name + ".net.xml");
+  const std::filesystem::path trips = work_dir / (name + ".trips.xml");
+  const std::filesystem::path routes = work_dir / (name + ".rou.xml");
+  const double end = options.end_s > options.begin_s ? options.end_s : options.begin_s + options.trips;
+  const double period = (end - options.begin_s) / options.trips;
+  std::string period_text, begin_text, end_text;
+  append_fixed(period_text, period, 4);
+  append_fixed(begin_text, options.begin_s, 2);
+  append_fixed(end_text, end, 2);
+
+  DemandRun run;
+  const ProcessResult trips_run = run_process({"python3",
+                                               tool("randomTrips.py").string(),
+                                               "--net-file",
+                                               net.string(),
+                                               "--output-trip-file",
+                                               trips.string(),
+                                               "--begin",
+                                               begin_text,
+                                               "--end",
+                                               end_text,
+                                               "--period",
+                                               period_text,
+                                               "--seed",
+                                               std::to_string(options.seed),
+                                               "--fringe-factor",
+                                               "5",
+                                               "--min-distance",
+                                               "300",
+                                               "--trip-attributes",
+                                               "departLane=\"best\" departSpeed=\"max\"",
+                                               "--validate"},
+                                              sumo_environment(), work_dir);
+  run.log += trips_run.output;
+  if (trips_run.exit_code != 0) {
+    throw IoError("randomTrips.py failed on '" + net.string() + "': " + tail(trips_run.output));
+  }
+  const ProcessResult route_run =
+      run_process({tool("duarouter").string(), "--net-file", net.string(), "--route-files", trips.string(),
+                   "--output-file", routes.string(), "--ignore-errors", "true", "--no-step-log", "true",
+                   "--seed", std::to_string(options.seed)},
+                  sumo_environment(), work_dir);
+  run.log += route_run.output;
+  if (route_run.exit_code != 0)
+    throw IoError("duarouter failed on '" + trips.string() + "': " + tail(route_run.output));
+  run.routes_xml = read_text(routes);
+  std::size_t pos = 0;
+  while ((pos = run.routes_xml.find("<vehicle ", pos)) != std::string::npos) {
+    ++run.routes;
+    ++pos;
+  }
+
+  std::string step;
+  append_fixed(step, options.step_length_s, 3);
+  run.sumocfg =
+      "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<!-- generated by relief -->\n"
+      "<configuration xmlns:xsi=\"http://www.w3.org/2001/XMLSchema-instance\" "
+      "xsi:noNamespaceSchemaLocation=\"http://sumo.dlr.de/xsd/sumoConfiguration.xsd\">\n"
+      "    <input>\n        <net-file value=\"" +
+      name + ".net.xml\"/>\n        <route-files value=\"" + name +
+      ".rou.xml\"/>\n    </input>\n    <time>\n        <begin value=\"" + begin_text +
+      "\"/>\n        <step-length value=\"" + step +
+      "\"/>\n    </time>\n    <processing>\n        <time-to-teleport value=\"300\"/>\n"
+      "    </processing>\n</configuration>\n";
+  return run;
+}
+
+}  // namespace relief

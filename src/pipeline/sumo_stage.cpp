@@ -1,0 +1,156 @@
+#include "pipeline/sumo_stage.h"
+
+#include <unistd.h>
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+#include "relief/core/errors.h"
+#include "relief/export/sumo_checks.h"
+#include "relief/geometry/polyline.h"
+
+namespace relief {
+namespace {
+
+// A scratch directory beside the outputs, removed when the stage ends.
+class ScratchDir {
+ public:
+  explicit ScratchDir(const std::filesystem::path& parent)
+      : path_(parent / (".relief-sumo-" + std::to_string(::getpid()))) {
+    std::error_code ec;
+    std::filesystem::create_directories(path_, ec);
+    if (ec) throw IoError("cannot create '" + path_.string() + "': " + ec.message());
+  }
+  ~ScratchDir() {
+    std::error_code ec;
+    std::filesystem::remove_all(path_, ec);
+  }
+  ScratchDir(const ScratchDir&) = delete;
+  ScratchDir& operator=(const ScratchDir&) = delete;
+  [[nodiscard]] const std::filesystem::path& path() const { return path_; }
+
+ private:
+  std::filesystem::path path_;
+};
+
+}  // namespace
+
+std::set<int> signalled_junctions(const LoadedNetwork& loaded, const RoadModel& model, double snap_m,
+                                  std::size_t& mid_road) {
+  const RoadNetwork& network = loaded.network;
+  std::vector<int> odr_junction(network.junctions.size(), -1);
+  for (const JunctionModel& j : model.junctions) {
+    if (j.source_junction >= 0 && static_cast<std::size_t>(j.source_junction) < odr_junction.size()) {
+      odr_junction[static_cast<std::size_t>(j.source_junction)] = j.id;
+    }
+  }
+  std::set<int> out;
+  for (std::size_t i = 0; i < network.junctions.size(); ++i) {
+    if (network.junctions[i].traffic_signal && odr_junction[i] >= 0) out.insert(odr_junction[i]);
+  }
+  mid_road = 0;
+  for (const Road& road : network.roads) {
+    if (road.points.size() < 3) continue;
+    const std::vector<double> along = cumulative_length(road.points);
+    for (std::size_t k = 1; k + 1 < road.points.size(); ++k) {
+      if (!loaded.osm.traffic_signals.contains(road.osm_node_ids[k])) continue;
+      const double to_start = along[k], to_end = along.back() - along[k];
+      const int junction = to_start <= to_end ? road.start_junction : road.end_junction;
+      const int odr = junction >= 0 ? odr_junction[static_cast<std::size_t>(junction)] : -1;
+      if (std::min(to_start, to_end) <= snap_m && odr >= 0) {
+        out.insert(odr);
+      } else {
+        ++mid_road;
+      }
+    }
+  }
+  return out;
+}
+
+SumoSummary write_sumo_outputs(const SumoStageInput& in, OutputSet& files, StageTimer& timer,
+                               std::vector<std::filesystem::path>& written, std::vector<std::string>& names) {
+  const BuildOptions& options = in.options;
+  const RoadNetwork& network = in.loaded.network;
+  SumoSummary summary;
+  summary.file = in.name + ".net.xml";
+  summary.max_grade_percent = options.sumo.max_grade_percent;
+
+  const SumoPlainNetwork plain = timer.run("build SUMO network", [&] {
+    std::vector<SumoRoadInfo> info(in.model.roads.size());
+    for (std::size_t r = 0; r < in.model.roads.size(); ++r) {
+      const int source = in.model.roads[r].source_road;
+      if (source >= 0) info[r].highway = network.roads[static_cast<std::size_t>(source)].attributes.highway;
+    }
+    SumoOptions so = options.sumo;
+    so.signalled_junctions =
+        signalled_junctions(in.loaded, in.model, options.signal_snap_m, summary.signals_mid_road);
+    if (summary.signals_mid_road > 0) {
+      in.diagnostics.report(
+          Severity::info, "sumo.signal_mid_road",
+          std::to_string(summary.signals_mid_road) + " traffic signals are more than " +
+              std::to_string(options.signal_snap_m) +
+              " m from any intersection (pedestrian crossings); SUMO gets no light for them");
+    }
+    return build_sumo_network(in.model, info, so, in.diagnostics);
+  });
+  summary.nodes = plain.stats.nodes;
+  summary.edges = plain.stats.edges;
+  summary.connections = plain.stats.connections;
+  summary.restricted_edges = plain.stats.restricted_edges;
+  summary.max_profile_grade_percent = plain.stats.max_edge_grade_percent;
+
+  const ScratchDir scratch(options.out_dir);
+  const NetconvertRun nc =
+      timer.run("netconvert", [&] { return run_netconvert(plain, scratch.path(), in.name); });
+  summary.netconvert_warnings = nc.warnings;
+
+  const auto add = [&](const std::string& file, const std::string& text) {
+    files.add(options.out_dir / file, [&](std::ostream& out) { out << text; });
+    written.push_back(options.out_dir / file);
+    names.push_back(file);
+  };
+  const auto add_with = [&](const std::string& file, auto&& write) {
+    std::ostringstream text;
+    write(text, plain);
+    add(file, text.str());
+  };
+  add(in.name + ".net.xml", nc.net_xml);
+  add_with(in.name + ".nod.xml", write_sumo_nodes);
+  add_with(in.name + ".edg.xml", write_sumo_edges);
+  add_with(in.name + ".con.xml", write_sumo_connections);
+  add_with(in.name + ".sumo_mapping.json", write_sumo_mapping);
+
+  timer.run("check SUMO network", [&] {
+    const SumoNetCheck check = check_sumo_net(nc.net_xml, in.model, in.name + ".net.xml");
+    summary.junctions = check.junctions;
+    summary.traffic_lights = check.traffic_lights;
+    summary.lanes = check.lanes;
+    summary.internal_lanes = check.internal_lanes;
+    summary.points_checked = check.points;
+    summary.z_max_m = check.z_max_m;
+    summary.z_p99_m = check.z_p99_m;
+    summary.xy_max_m = check.xy_max_m;
+    summary.max_handover_step_m = check.max_handover_step_m;
+    summary.max_lane_grade_percent = check.max_lane_grade_percent;
+    summary.max_internal_lane_grade_percent = check.max_internal_lane_grade_percent;
+    if (check.points_unmapped > 0) {
+      in.diagnostics.report(
+          Severity::warning, "sumo.unmapped_lane_points",
+          std::to_string(check.points_unmapped) + " SUMO lane points have no OpenDRIVE road");
+    }
+    return 0;
+  });
+
+  if (options.demand.trips > 0) {
+    const DemandRun demand =
+        timer.run("SUMO demand", [&] { return make_demand(scratch.path(), in.name, options.demand); });
+    add(in.name + ".rou.xml", demand.routes_xml);
+    add(in.name + ".sumocfg", demand.sumocfg);
+    summary.routes = demand.routes;
+    summary.step_length_s = options.demand.step_length_s;
+  }
+  return summary;
+}
+
+}  // namespace relief
