@@ -4,8 +4,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <numbers>
+#include <optional>
 #include <sstream>
+#include <tuple>
 #include <unordered_map>
+#include <unordered_set>
 
 #include "relief/core/errors.h"
 #include "relief/roads/road_surface.h"
@@ -78,55 +83,154 @@ class RoadProjector {
   std::vector<Vec2> points_;
 };
 
-}  // namespace
+// OpenDRIVE road and lane of a SUMO lane.
+struct LaneRoad {
+  int road = -1;
+  std::optional<int> lane;
+  bool odr_shape = true;  ///< false: netconvert drew the lane itself (not on the OpenDRIVE lane centre)
+};
 
-SumoNetCheck check_sumo_net(std::string_view net_xml, const RoadModel& model, const std::string& file) {
-  pugi::xml_document doc;
+// Where a point of a SUMO lane lies on its OpenDRIVE road.
+struct LanePoint {
+  const ModelRoad* road = nullptr;
+  double s = 0.0, t = 0.0;
+  LaneRoad lane;
+};
+
+// The internal lane of a connection without params: the model's connecting road that joins the
+// connection's lanes (from_road/from_lane -> to_road/to_lane); a direct road-to-road link (or
+// the two halves of a split road) stays on the road it leaves.
+std::optional<LaneRoad> connecting_lane(const RoadModel& model, const LaneRoad& from, const LaneRoad& to) {
+  if (!from.lane || !to.lane) return std::nullopt;
+  for (const JunctionModel& junction : model.junctions) {
+    for (const JunctionConnection& c : junction.connections) {
+      if (c.incoming_road != from.road) continue;
+      const int ci = model.road_index(c.connecting_road);
+      if (ci < 0) continue;
+      const ModelRoad& conn = model.roads[static_cast<std::size_t>(ci)];
+      const bool along_s = c.contact == RoadLink::Contact::start;
+      const std::optional<RoadLink>& exit = along_s ? conn.successor : conn.predecessor;
+      if (!exit || exit->element != RoadLink::Element::road || exit->id != to.road) continue;
+      for (const auto& [in_lane, conn_lane] : c.lane_links) {
+        if (in_lane != *from.lane || conn.sections.empty()) continue;
+        const LaneSection& sec = conn.sections.front();
+        for (const LaneModel& l : conn_lane < 0 ? sec.right : sec.left) {
+          if (l.id != conn_lane) continue;
+          if ((along_s ? l.successor : l.predecessor) == *to.lane) return LaneRoad{conn.id, conn_lane, true};
+        }
+      }
+    }
+  }
+  const int fi = model.road_index(from.road);
+  if (fi < 0) return std::nullopt;
+  const ModelRoad& road = model.roads[static_cast<std::size_t>(fi)];
+  const auto links_to = [&](const std::optional<RoadLink>& link) {
+    return link && link->element == RoadLink::Element::road && link->id == to.road;
+  };
+  if (from.road == to.road || links_to(road.predecessor) || links_to(road.successor)) return from;
+  return std::nullopt;
+}
+
+// Every lane of a .net.xml mapped to its OpenDRIVE road and lane, and points of a lane
+// projected onto that road (one projector per road, made on first use).
+class LaneLocator {
+ public:
+  LaneLocator(const pugi::xml_node& net, const RoadModel& model) : model_(model) {
+    for (const pugi::xml_node& edge : net.children("edge")) {
+      if (std::string_view(edge.attribute("function").as_string()) == "internal") continue;
+      const auto road = param_int(edge, "odr.road");
+      if (!road) continue;
+      for (const pugi::xml_node& lane : edge.children("lane")) {
+        lanes_[lane.attribute("id").as_string()] = {*road, param_int(lane, "odr.lane"), true};
+      }
+    }
+    // Internal lanes take the OpenDRIVE road of the connection that runs through them.
+    for (const pugi::xml_node& c : net.children("connection")) {
+      const std::string via = c.attribute("via").as_string();
+      const std::string from = c.attribute("from").as_string();
+      if (via.empty() || from.empty() || from[0] == ':') continue;
+      const bool odr_shape = !c.attribute("shape").empty();
+      const auto road = param_int(c, "odr.road");
+      const auto lane = param_int(c, "odr.lane");
+      if (road && lane) {
+        lanes_[via] = {*road, *lane, odr_shape};
+        continue;
+      }
+      const auto a = lanes_.find(from + "_" + c.attribute("fromLane").as_string());
+      const auto b =
+          lanes_.find(std::string(c.attribute("to").as_string()) + "_" + c.attribute("toLane").as_string());
+      if (a == lanes_.end() || b == lanes_.end()) continue;
+      if (const auto mapped = connecting_lane(model, a->second, b->second)) {
+        lanes_[via] = *mapped;
+        if (mapped->road == a->second.road) {
+          lanes_[via].lane.reset();  // a link between road ends: short, beside no lane centre
+        } else {
+          lanes_[via].odr_shape = odr_shape;
+        }
+      }
+    }
+    // A connection's internal lane may be split (":J_0_0" -> ":J_1_0"): follow the chain.
+    for (bool changed = true; changed;) {
+      changed = false;
+      for (const pugi::xml_node& c : net.children("connection")) {
+        const std::string from = c.attribute("from").as_string();
+        const std::string via = c.attribute("via").as_string();
+        if (from.empty() || from[0] != ':' || via.empty() || lanes_.count(via)) continue;
+        const auto it = lanes_.find(from + "_" + c.attribute("fromLane").as_string());
+        if (it == lanes_.end()) continue;
+        lanes_[via] = it->second;
+        changed = true;
+      }
+    }
+  }
+
+  /// The OpenDRIVE road, lane and (s, t) of point p of SUMO lane `lane_id`; nullopt when the
+  /// lane has no road in the model.
+  [[nodiscard]] std::optional<LanePoint> locate(const std::string& lane_id, const Vec2& p) {
+    const auto it = lanes_.find(lane_id);
+    if (it == lanes_.end()) return std::nullopt;
+    const int index = model_.road_index(it->second.road);
+    if (index < 0) return std::nullopt;
+    const ModelRoad& road = model_.roads[static_cast<std::size_t>(index)];
+    auto proj = projectors_.find(road.id);
+    if (proj == projectors_.end()) proj = projectors_.emplace(road.id, RoadProjector(road)).first;
+    const auto [s, t] = proj->second.project(p);
+    return LanePoint{&road, s, t, it->second};
+  }
+
+ private:
+  const RoadModel& model_;
+  std::unordered_map<std::string, LaneRoad> lanes_;
+  std::unordered_map<int, RoadProjector> projectors_;
+};
+
+pugi::xml_node load_net(pugi::xml_document& doc, std::string_view net_xml, const std::string& file) {
   const pugi::xml_parse_result parsed = doc.load_buffer(net_xml.data(), net_xml.size());
   if (!parsed) throw InvalidInput("'" + file + "' is not XML: " + parsed.description());
   const pugi::xml_node net = doc.child("net");
   if (!net) throw InvalidInput("'" + file + "' is not a SUMO network (no <net> element)");
+  return net;
+}
+
+// Largest value and 99th percentile (the value at rank floor(0.99 (n - 1))); sorts `values`.
+std::pair<double, double> max_and_p99(std::vector<double>& values) {
+  if (values.empty()) return {0.0, 0.0};
+  std::sort(values.begin(), values.end());
+  return {values.back(), values[static_cast<std::size_t>(0.99 * static_cast<double>(values.size() - 1))]};
+}
+
+}  // namespace
+
+SumoNetCheck check_sumo_net(std::string_view net_xml, const RoadModel& model, const std::string& file) {
+  pugi::xml_document doc;
+  const pugi::xml_node net = load_net(doc, net_xml, file);
 
   SumoNetCheck check;
-  std::unordered_map<int, RoadProjector> projectors;
-  const auto projector = [&](int road_id) -> const RoadProjector* {
-    const int index = model.road_index(road_id);
-    if (index < 0) return nullptr;
-    auto it = projectors.find(road_id);
-    if (it == projectors.end()) {
-      it = projectors.emplace(road_id, RoadProjector(model.roads[static_cast<std::size_t>(index)])).first;
-    }
-    return &it->second;
-  };
-
-  // Internal lanes take the OpenDRIVE road of the connection that runs through them.
-  std::unordered_map<std::string, std::pair<int, int>> internal_road;  // lane id -> (road, lane)
-  for (const pugi::xml_node& c : net.children("connection")) {
-    const std::string via = c.attribute("via").as_string();
-    if (via.empty()) continue;
-    const auto road = param_int(c, "odr.road");
-    const auto lane = param_int(c, "odr.lane");
-    if (road && lane) internal_road[via] = {*road, *lane};
-  }
-  // A connection's internal lane may be split (":J_0_0" -> ":J_1_0"): follow the chain.
-  for (bool changed = true; changed;) {
-    changed = false;
-    for (const pugi::xml_node& c : net.children("connection")) {
-      const std::string from = c.attribute("from").as_string();
-      const std::string via = c.attribute("via").as_string();
-      if (from.empty() || from[0] != ':' || via.empty() || internal_road.count(via)) continue;
-      const auto it = internal_road.find(from + "_" + c.attribute("fromLane").as_string());
-      if (it == internal_road.end()) continue;
-      internal_road[via] = it->second;
-      changed = true;
-    }
-  }
-
+  LaneLocator locator(net, model);
   std::vector<double> errors;
   std::unordered_map<std::string, Polyline3> lane_shapes;
   for (const pugi::xml_node& edge : net.children("edge")) {
     const bool internal = std::string_view(edge.attribute("function").as_string()) == "internal";
-    const auto edge_road = param_int(edge, "odr.road");
     if (!internal) ++check.edges;
     for (const pugi::xml_node& lane : edge.children("lane")) {
       const std::string id = lane.attribute("id").as_string();
@@ -141,41 +245,27 @@ SumoNetCheck check_sumo_net(std::string_view net_xml, const RoadModel& model, co
           worst = std::max(worst, 100.0 * std::abs(shape[i].z() - shape[i - 1].z()) / run);
         }
       }
-      std::optional<int> road;
-      std::optional<int> odr_lane;
-      if (internal) {
-        if (const auto it = internal_road.find(id); it != internal_road.end()) {
-          road = it->second.first;
-          odr_lane = it->second.second;
-        }
-      } else {
-        road = edge_road;
-        odr_lane = param_int(lane, "odr.lane");
-      }
-      const RoadProjector* proj = road ? projector(*road) : nullptr;
-      if (!proj) {
-        check.points_unmapped += shape.size();
-        continue;
-      }
-      const ModelRoad& model_road = model.roads[static_cast<std::size_t>(model.road_index(*road))];
       for (const Vec3& p : shape) {
-        const auto [s, t] = proj->project(Vec2(p.x(), p.y()));
-        const Vec3 q = surface_point(model_road, s, t);
-        errors.push_back(std::abs(p.z() - q.z()));
-        if (odr_lane) {
-          // Lane centre points lie on the OpenDRIVE lane centre (away from the lane's ends,
-          // where netconvert may cut the shape).
-          check.xy_max_m = std::max(check.xy_max_m, std::abs(t - lane_centre_t(model_road, s, *odr_lane)));
+        const auto at = locator.locate(id, Vec2(p.x(), p.y()));
+        if (!at) {
+          ++check.points_unmapped;
+          continue;
+        }
+        if (!at->lane.odr_shape) {
+          ++check.points_netconvert_shape;
+          continue;
+        }
+        errors.push_back(std::abs(p.z() - surface_point(*at->road, at->s, at->t).z()));
+        if (at->lane.lane) {
+          // Lane centre points lie on the OpenDRIVE lane centre.
+          check.xy_max_m =
+              std::max(check.xy_max_m, std::abs(at->t - lane_centre_t(*at->road, at->s, *at->lane.lane)));
         }
       }
     }
   }
   check.points = errors.size();
-  if (!errors.empty()) {
-    std::sort(errors.begin(), errors.end());
-    check.z_max_m = errors.back();
-    check.z_p99_m = errors[static_cast<std::size_t>(0.99 * static_cast<double>(errors.size() - 1))];
-  }
+  std::tie(check.z_max_m, check.z_p99_m) = max_and_p99(errors);
 
   // Height steps where a lane hands over to its internal lane and the internal lane to the next.
   for (const pugi::xml_node& c : net.children("connection")) {
@@ -193,6 +283,71 @@ SumoNetCheck check_sumo_net(std::string_view net_xml, const RoadModel& model, co
     if (std::string_view(j.attribute("type").as_string()) != "internal") ++check.junctions;
   }
   for ([[maybe_unused]] const pugi::xml_node& t : net.children("tlLogic")) ++check.traffic_lights;
+  return check;
+}
+
+FcdCheck check_sumo_fcd(std::string_view fcd_xml, std::string_view net_xml, const RoadModel& model,
+                        const std::string& file) {
+  pugi::xml_document net_doc;
+  const pugi::xml_node net = load_net(net_doc, net_xml, "network of " + file);
+  pugi::xml_document doc;
+  const pugi::xml_parse_result parsed = doc.load_buffer(fcd_xml.data(), fcd_xml.size());
+  if (!parsed) throw InvalidInput("'" + file + "' is not XML: " + parsed.description());
+  const pugi::xml_node fcd = doc.child("fcd-export");
+  if (!fcd) throw InvalidInput("'" + file + "' is not SUMO FCD output (no <fcd-export> element)");
+
+  FcdCheck check;
+  LaneLocator locator(net, model);
+  std::unordered_set<std::string> vehicles;
+  std::vector<double> z_errors, slope_errors;
+  constexpr double kDegrees = 180.0 / std::numbers::pi;
+  constexpr double kHalfStep = 0.05;  // m, central difference of the surface grade
+  for (const pugi::xml_node& step : fcd.children("timestep")) {
+    ++check.timesteps;
+    for (const pugi::xml_node& v : step.children("vehicle")) {
+      vehicles.insert(v.attribute("id").as_string());
+      const pugi::xml_attribute x = v.attribute("x"), y = v.attribute("y");
+      const auto at =
+          x && y ? locator.locate(v.attribute("lane").as_string(), Vec2(x.as_double(), y.as_double()))
+                 : std::nullopt;
+      if (!at) {
+        ++check.samples_unmapped;
+        continue;
+      }
+      if (!at->lane.odr_shape) {
+        ++check.samples_netconvert_shape;
+        continue;
+      }
+      const ModelRoad& road = *at->road;
+      if (const pugi::xml_attribute z = v.attribute("z")) {
+        z_errors.push_back(std::abs(z.as_double() - surface_point(road, at->s, at->t).z()));
+      }
+      if (const pugi::xml_attribute slope = v.attribute("slope")) {
+        // Grade along the line at the sample's t: dz/ds of the profile scaled by the offset
+        // line's length (and the superelevation's share, if any).
+        const double s0 = std::max(0.0, at->s - kHalfStep), s1 = std::min(road.length(), at->s + kHalfStep);
+        const Vec3 a = surface_point(road, s0, at->t), b = surface_point(road, s1, at->t);
+        const double run = (b - a).head<2>().norm();
+        if (run <= 0.0) continue;
+        // Right lanes drive along s; without a lane id, the vehicle's heading tells
+        // (SUMO's angle: degrees clockwise from north).
+        double along = 1.0;
+        if (at->lane.lane) {
+          along = *at->lane.lane < 0 ? 1.0 : -1.0;
+        } else {
+          const double heading = (90.0 - v.attribute("angle").as_double()) / kDegrees;
+          along = (b - a).head<2>().dot(Vec2(std::cos(heading), std::sin(heading))) >= 0.0 ? 1.0 : -1.0;
+        }
+        const double expected_deg = along * std::atan((b.z() - a.z()) / run) * kDegrees;
+        slope_errors.push_back(std::abs(slope.as_double() - expected_deg));
+      }
+    }
+  }
+  check.vehicles = vehicles.size();
+  check.samples = z_errors.size();
+  check.slope_samples = slope_errors.size();
+  std::tie(check.z_max_m, check.z_p99_m) = max_and_p99(z_errors);
+  std::tie(check.slope_max_deg, check.slope_p99_deg) = max_and_p99(slope_errors);
   return check;
 }
 

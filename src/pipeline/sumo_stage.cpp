@@ -98,6 +98,7 @@ SumoSummary write_sumo_outputs(const SumoStageInput& in, OutputSet& files, Stage
   summary.edges = plain.stats.edges;
   summary.connections = plain.stats.connections;
   summary.restricted_edges = plain.stats.restricted_edges;
+  summary.internal_lanes_by_netconvert = plain.stats.internal_lanes_by_netconvert;
   summary.max_profile_grade_percent = plain.stats.max_edge_grade_percent;
 
   const ScratchDir scratch(options.out_dir);

@@ -144,6 +144,36 @@ check "vrt dem" run 0 "$out" build --osm "$fix/hill.osm" --dem "$RELIEF_TMP/mosa
 out="$RELIEF_TMP/vsizip"
 check "zipped dem" run 0 "$out" build --osm "$fix/hill.osm" --dem "/vsizip/$RELIEF_TMP/dem.zip/hill_dem.asc" --out "$out" --quiet --outputs report
 
+# SUMO: random trips on the fixture give NAME.rou.xml and NAME.sumocfg (20 Hz) that sumo runs.
+export SUMO_HOME="${SUMO_HOME:-/usr/share/sumo}"
+out="$RELIEF_TMP/routes"
+check "sumo routes" run 0 "$out" build --osm "$fix/hill.osm" --dem "$fix/hill_dem.asc" --out "$out" --quiet \
+  --outputs xodr,sumo --routes 20
+check "sumo net written" test -s "$out/hill.net.xml"
+check "sumo routes written" grep -q "<vehicle " "$out/hill.rou.xml"
+check "sumocfg step length" python3 - "$out/hill.sumocfg" <<'PY'
+import sys, xml.etree.ElementTree as ET
+c = ET.parse(sys.argv[1]).getroot()
+assert abs(float(c.find("time/step-length").get("value")) - 0.05) < 1e-9
+assert c.find("input/net-file").get("value") == "hill.net.xml"
+assert c.find("input/route-files").get("value") == "hill.rou.xml"
+PY
+check "sumo runs the config" bash -c "cd '$out' && sumo -c hill.sumocfg --end 30 --no-step-log true >'$RELIEF_TMP/sumo.log' 2>&1 \
+  || { cat '$RELIEF_TMP/sumo.log'; exit 1; }"
+check "bad --vclass-max-grade" run 2 "" build --osm "$fix/hill.osm" --dem "$fix/hill_dem.asc" --out "$RELIEF_TMP/x" \
+  --vclass-max-grade truck=abc
+
+# No netconvert (not on PATH, SUMO_HOME empty): exit 3, names the tool, no outputs and no
+# scratch directory left behind.
+mkdir -p "$RELIEF_TMP/nosumo/bin" "$RELIEF_TMP/nosumo/home"
+ln -sf "$(command -v cat)" "$RELIEF_TMP/nosumo/bin/cat"
+run_without_sumo() { PATH="$RELIEF_TMP/nosumo/bin" SUMO_HOME="$RELIEF_TMP/nosumo/home" run "$@"; }
+out="$RELIEF_TMP/nosumo/out"
+check "no netconvert" run_without_sumo 3 "$out" build --osm "$fix/hill.osm" --dem "$fix/hill_dem.asc" --out "$out" \
+  --outputs xodr,sumo,report
+check "no netconvert message" stderr_has "netconvert"
+check "no netconvert no outputs" no_outputs "$out"
+
 # info: describes without writing.
 check "info" run 0 "" info --osm "$fix/hill.osm" --dem "$fix/hill_dem.asc"
 check "info coverage" grep -q "100.00 % with height" "$RELIEF_TMP/stdout"

@@ -1,7 +1,13 @@
 #pragma once
 // Checks of a written .net.xml against the RoadModel it came from: every lane shape point
 // (internal junction lanes included) against the OpenDRIVE surface at the same (x, y), height
-// steps where a lane hands over to its internal lane, and grades.
+// steps where a lane hands over to its internal lane, and grades. And checks of a simulation's
+// FCD output (vehicle positions, heights, slopes) against the same surface.
+//
+// Lanes map to OpenDRIVE roads through the net's params: a normal edge's odr.road and its
+// lanes' odr.lane; an internal lane through its connection's odr.road / odr.lane, or, when
+// netconvert did not keep those (SUMO 1.15 drops connection params), through the model's
+// junction connections between the lanes it joins.
 
 #include <cstddef>
 #include <string>
@@ -19,7 +25,10 @@ struct SumoNetCheck {
   std::size_t traffic_lights = 0;   ///< tlLogic elements
   std::size_t points = 0;           ///< lane shape points compared with the surface
   std::size_t points_unmapped = 0;  ///< lane points whose OpenDRIVE road is unknown
-  double z_max_m = 0.0;             ///< largest |z_sumo - z_odr(x, y)|
+  /// Points of internal lanes that netconvert drew itself (connections given without a shape,
+  /// where the OpenDRIVE lane centre folds): not on an OpenDRIVE lane, left out of the figures.
+  std::size_t points_netconvert_shape = 0;
+  double z_max_m = 0.0;  ///< largest |z_sumo - z_odr(x, y)|
   double z_p99_m = 0.0;
   double xy_max_m = 0.0;  ///< largest horizontal distance of a lane centre point to its OpenDRIVE lane centre
   double max_handover_step_m =
@@ -35,5 +44,31 @@ struct SumoNetCheck {
 /// text is not a SUMO network (the message names `file`).
 [[nodiscard]] SumoNetCheck check_sumo_net(std::string_view net_xml, const RoadModel& model,
                                           const std::string& file);
+
+/// What a simulation's FCD output says about heights and slopes along the vehicles' paths.
+struct FcdCheck {
+  std::size_t timesteps = 0;         ///< <timestep> elements
+  std::size_t vehicles = 0;          ///< distinct vehicle ids
+  std::size_t samples = 0;           ///< vehicle samples with z compared with the surface (n)
+  std::size_t samples_unmapped = 0;  ///< samples whose lane has no OpenDRIVE road
+  /// Samples on internal lanes that netconvert drew itself (see SumoNetCheck): left out.
+  std::size_t samples_netconvert_shape = 0;
+  double z_max_m = 0.0;  ///< largest |z_fcd - z_odr(x, y)|
+  double z_p99_m = 0.0;
+  std::size_t slope_samples = 0;  ///< samples with a slope compared
+  /// Largest |slope_fcd - atan(dz/dl)| in degrees, dz/dl the surface's grade along the lane's
+  /// offset line at the sample (dz/ds of the profile on a straight road), signed by the
+  /// direction of travel (right lanes drive along s).
+  double slope_max_deg = 0.0;
+  double slope_p99_deg = 0.0;
+};
+
+/// Parses `fcd_xml` (sumo --fcd-output with x, y, z, slope and lane among its attributes; x, y
+/// in the network's coordinates) and compares every vehicle sample with the surface of the
+/// OpenDRIVE road its lane belongs to in `net_xml` (the .net.xml written from `model`). Samples
+/// without z or slope leave those figures out. Throws InvalidInput when either text is not what
+/// it should be (the message names `file`, the FCD file, or the network).
+[[nodiscard]] FcdCheck check_sumo_fcd(std::string_view fcd_xml, std::string_view net_xml,
+                                      const RoadModel& model, const std::string& file);
 
 }  // namespace relief

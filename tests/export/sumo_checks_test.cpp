@@ -1,0 +1,192 @@
+#include "relief/export/sumo_checks.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <string>
+
+#include "relief/core/errors.h"
+
+namespace relief {
+namespace {
+
+// atan(0.1) in degrees: SUMO's slope on a 10 % ramp.
+const double kRampDeg = std::atan(0.1) * 180.0 / std::numbers::pi;
+
+LaneModel lane(int id, double width_m) {
+  LaneModel l;
+  l.id = id;
+  l.width = CubicProfile({CubicPiece{0.0, {width_m, 0.0, 0.0, 0.0}}});
+  return l;
+}
+
+// A straight road east along y = 0 from x = x0, rising 10 % from z0.
+ModelRoad ramp_road(int id, double x0, double length, double z0) {
+  ModelRoad road;
+  road.id = id;
+  PlanGeometry line;
+  line.start = Vec2(x0, 0.0);
+  line.length = length;
+  road.plan = PlanView({line});
+  road.elevation = CubicProfile({CubicPiece{0.0, {z0, 0.1, 0.0, 0.0}}});
+  road.lane_offset = CubicProfile::constant(0.0);
+  return road;
+}
+
+// One 10 % ramp east along y = 0, z = 0.1 x: road 1 (x 0..100, a 3 m lane each way), the
+// connecting road 2 of junction 100 (x 100..110, right lane only) and road 3 (x 110..210).
+RoadModel ramp_model() {
+  ModelRoad r1 = ramp_road(1, 0.0, 100.0, 0.0);
+  LaneSection s1;
+  s1.left = {lane(1, 3.0)};
+  s1.right = {lane(-1, 3.0)};
+  r1.sections = {s1};
+  r1.successor = RoadLink{RoadLink::Element::junction, 100, RoadLink::Contact::start};
+
+  ModelRoad r2 = ramp_road(2, 100.0, 10.0, 10.0);
+  r2.junction = 100;
+  LaneSection s2;
+  s2.right = {lane(-1, 3.0)};
+  s2.right[0].predecessor = -1;
+  s2.right[0].successor = -1;
+  r2.sections = {s2};
+  r2.predecessor = RoadLink{RoadLink::Element::road, 1, RoadLink::Contact::end};
+  r2.successor = RoadLink{RoadLink::Element::road, 3, RoadLink::Contact::start};
+
+  ModelRoad r3 = ramp_road(3, 110.0, 100.0, 11.0);
+  LaneSection s3;
+  s3.right = {lane(-1, 3.0)};
+  r3.sections = {s3};
+  r3.predecessor = RoadLink{RoadLink::Element::junction, 100, RoadLink::Contact::start};
+
+  RoadModel model;
+  model.roads = {r1, r2, r3};
+  JunctionModel junction;
+  junction.id = 100;
+  JunctionConnection c;
+  c.incoming_road = 1;
+  c.connecting_road = 2;
+  c.lane_links = {{-1, -1}};
+  junction.connections = {c};
+  model.junctions = {junction};
+  return model;
+}
+
+// The network netconvert would write for ramp_model(): lane centres at y = -1.5 (along s) and
+// y = +1.5 (against s) on the plane z = 0.1 x. The connection carries no params (as from
+// netconvert 1.15), so its internal lane is found through the model's junction; its shape is
+// relief's (the OpenDRIVE lane centre).
+const char* const kNet = R"(<net version="1.9">
+  <edge id=":J_0" function="internal">
+    <lane id=":J_0_0" index="0" speed="10" length="10.05" shape="100,-1.5,10 110,-1.5,11"/>
+  </edge>
+  <edge id="-1" from="J" to="A">
+    <lane id="-1_0" index="0" speed="10" length="100.5" shape="100,1.5,10 0,1.5,0">
+      <param key="odr.lane" value="1"/>
+    </lane>
+    <param key="odr.road" value="1"/>
+  </edge>
+  <edge id="1" from="A" to="J">
+    <lane id="1_0" index="0" speed="10" length="100.5" shape="0,-1.5,0 100,-1.5,10">
+      <param key="odr.lane" value="-1"/>
+    </lane>
+    <param key="odr.road" value="1"/>
+  </edge>
+  <edge id="3" from="J" to="B">
+    <lane id="3_0" index="0" disallow="truck" speed="10" length="100.5" shape="110,-1.5,11 210,-1.5,21">
+      <param key="odr.lane" value="-1"/>
+    </lane>
+    <param key="odr.road" value="3"/>
+  </edge>
+  <junction id="A" type="dead_end" x="0" y="0"/>
+  <junction id="J" type="priority" x="105" y="0"/>
+  <junction id="B" type="dead_end" x="210" y="0"/>
+  <connection from="1" to="3" fromLane="0" toLane="0" shape="100,-1.5,10 110,-1.5,11" via=":J_0_0" dir="s" state="M"/>
+  <connection from=":J_0" to="3" fromLane="0" toLane="0" dir="s" state="M"/>
+</net>
+)";
+
+std::string fcd_sample(const std::string& id, double x, double y, double z, double slope,
+                       const std::string& lane) {
+  return "    <vehicle id=\"" + id + "\" x=\"" + std::to_string(x) + "\" y=\"" + std::to_string(y) +
+         "\" z=\"" + std::to_string(z) + "\" angle=\"90.00\" speed=\"10.00\" lane=\"" + lane + "\" slope=\"" +
+         std::to_string(slope) + "\"/>\n";
+}
+
+TEST(SumoChecks, NetLanesOnARampMapToTheirRoadsIncludingInternalLanes) {
+  const RoadModel model = ramp_model();
+  const SumoNetCheck check = check_sumo_net(kNet, model, "ramp.net.xml");
+  EXPECT_EQ(check.edges, 3u);
+  EXPECT_EQ(check.lanes, 3u);
+  EXPECT_EQ(check.internal_lanes, 1u);
+  EXPECT_EQ(check.junctions, 3u);
+  EXPECT_EQ(check.points, 8u);
+  EXPECT_EQ(check.points_unmapped, 0u);  // the internal lane through the model's junction
+  EXPECT_NEAR(check.z_max_m, 0.0, 1e-9);
+  EXPECT_NEAR(check.xy_max_m, 0.0, 1e-9);
+  EXPECT_NEAR(check.max_lane_grade_percent, 10.0, 1e-9);
+  EXPECT_NEAR(check.max_internal_lane_grade_percent, 10.0, 1e-9);
+  EXPECT_EQ(check.handovers, 2u);  // 1 -> :J_0_0 and :J_0_0 -> 3
+  EXPECT_NEAR(check.max_handover_step_m, 0.0, 1e-9);
+  EXPECT_EQ(check.disallowed_lanes, 1u);
+}
+
+TEST(SumoChecks, InternalLanesNetconvertDrewAreLeftOut) {
+  const RoadModel model = ramp_model();
+  std::string net = kNet;
+  const std::string shape = R"( shape="100,-1.5,10 110,-1.5,11" via)";
+  net.replace(net.find(shape), shape.size(), " via");
+  const SumoNetCheck check = check_sumo_net(net, model, "ramp.net.xml");
+  EXPECT_EQ(check.points, 6u);
+  EXPECT_EQ(check.points_netconvert_shape, 2u);
+  EXPECT_EQ(check.points_unmapped, 0u);
+}
+
+TEST(SumoChecks, FcdHeightsAndSlopesAgainstTheRamp) {
+  const RoadModel model = ramp_model();
+  const std::string fcd =
+      "<fcd-export>\n  <timestep time=\"0.00\">\n" + fcd_sample("up", 10.0, -1.5, 1.0, kRampDeg, "1_0") +
+      // Against s the ramp goes down; this one is 0.2 m above the surface.
+      fcd_sample("down", 50.0, 1.5, 5.2, -kRampDeg, "-1_0") +
+      fcd_sample("junction", 105.0, -1.5, 10.5, kRampDeg, ":J_0_0") +
+      "  </timestep>\n  <timestep time=\"1.00\">\n" +
+      // One degree steeper than the ramp.
+      fcd_sample("up", 20.0, -1.5, 2.0, kRampDeg + 1.0, "1_0") +
+      fcd_sample("lost", 20.0, -1.5, 2.0, kRampDeg, "nowhere_0") + "  </timestep>\n</fcd-export>\n";
+  const FcdCheck check = check_sumo_fcd(fcd, kNet, model, "ramp.fcd.xml");
+  EXPECT_EQ(check.timesteps, 2u);
+  EXPECT_EQ(check.vehicles, 4u);
+  EXPECT_EQ(check.samples, 4u);
+  EXPECT_EQ(check.slope_samples, 4u);
+  EXPECT_EQ(check.samples_unmapped, 1u);
+  EXPECT_EQ(check.samples_netconvert_shape, 0u);
+  EXPECT_NEAR(check.z_max_m, 0.2, 1e-9);
+  EXPECT_NEAR(check.z_p99_m, 0.0, 1e-9);  // rank floor(0.99 * 3) = 2 of {0, 0, 0, 0.2}
+  EXPECT_NEAR(check.slope_max_deg, 1.0, 1e-5);
+  EXPECT_NEAR(check.slope_p99_deg, 0.0, 1e-5);
+}
+
+TEST(SumoChecks, FcdWithoutZOrSlopeLeavesThoseFiguresOut) {
+  const RoadModel model = ramp_model();
+  const std::string fcd =
+      "<fcd-export><timestep time=\"0\"><vehicle id=\"v\" x=\"10\" y=\"-1.5\" lane=\"1_0\"/></timestep>"
+      "</fcd-export>";
+  const FcdCheck check = check_sumo_fcd(fcd, kNet, model, "bare.fcd.xml");
+  EXPECT_EQ(check.vehicles, 1u);
+  EXPECT_EQ(check.samples, 0u);
+  EXPECT_EQ(check.slope_samples, 0u);
+  EXPECT_EQ(check.samples_unmapped, 0u);
+}
+
+TEST(SumoChecks, NotFcdOrNotANetworkThrows) {
+  const RoadModel model = ramp_model();
+  EXPECT_THROW((void)check_sumo_fcd("<fcd-export", kNet, model, "cut.fcd.xml"), InvalidInput);
+  EXPECT_THROW((void)check_sumo_fcd("<routes/>", kNet, model, "routes.xml"), InvalidInput);
+  EXPECT_THROW((void)check_sumo_fcd("<fcd-export/>", "<routes/>", model, "a.fcd.xml"), InvalidInput);
+  EXPECT_THROW((void)check_sumo_net("<routes/>", model, "routes.xml"), InvalidInput);
+  EXPECT_THROW((void)check_sumo_net("not xml <", model, "junk.xml"), InvalidInput);
+}
+
+}  // namespace
+}  // namespace relief

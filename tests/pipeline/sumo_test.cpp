@@ -1,0 +1,163 @@
+// The SUMO output on the real San Francisco data: SUMO loads the network, its lanes lie on the
+// OpenDRIVE surface, and a short simulation on the north-east quadrant runs without teleports
+// with vehicles on that surface.
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <iostream>
+#include <regex>
+#include <sstream>
+
+#include "pipeline/sf_options.h"
+#include "relief/core/subprocess.h"
+#include "relief/export/sumo_checks.h"
+#include "relief/export/sumo_tools.h"
+#include "relief/pipeline/build.h"
+#include "relief/roads/opendrive_reader.h"
+#include "support/test_data.h"
+
+namespace relief {
+namespace {
+
+std::string read_text(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+Environment sumo_env() {
+  if (const auto home = sumo_home()) return {{"SUMO_HOME", home->string()}};
+  return {};
+}
+
+BuildOptions sumo_build(BuildOptions o) {
+  o.outputs = {Output::xodr, Output::sumo, Output::report};
+  o.compare_methods = false;
+  return o;
+}
+
+void print(const std::string& name, const SumoSummary& s) {
+  std::cout << name << " SUMO: nodes " << s.nodes << ", edges " << s.edges << ", connections "
+            << s.connections << ", junctions " << s.junctions << ", traffic lights " << s.traffic_lights
+            << ", lanes " << s.lanes << ", internal lanes " << s.internal_lanes << ", signals mid-road "
+            << s.signals_mid_road << "\n  points " << s.points_checked << ", z max " << s.z_max_m << " p99 "
+            << s.z_p99_m << ", xy max " << s.xy_max_m << ", handover step " << s.max_handover_step_m
+            << "\n  lane grade max " << s.max_lane_grade_percent << " %, internal "
+            << s.max_internal_lane_grade_percent << " %, profiles " << s.max_profile_grade_percent
+            << " %, netconvert warnings " << s.netconvert_warnings << "\n  kept off by grade:";
+  for (const auto& [vclass, edges] : s.restricted_edges) std::cout << " " << vclass << " " << edges;
+  std::cout << "\n";
+}
+
+// sumo loads the network with XML validation and runs one second.
+void expect_sumo_loads(const std::filesystem::path& net) {
+  const ProcessResult r =
+      run_process({"sumo", "-n", net.string(), "--xml-validation", "always", "--end", "1"}, sumo_env());
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_EQ(r.output.find("Error"), std::string::npos) << r.output;
+}
+
+// The figures every SF network meets: lanes on the OpenDRIVE surface (z and plan), no steps
+// where a lane hands over to its internal lane, lane grades those of the profiles.
+void expect_on_surface(const SumoSummary& s, double z_max_m, double xy_max_m) {
+  EXPECT_GT(s.points_checked, 1000u);
+  EXPECT_LE(s.z_p99_m, 0.05);
+  EXPECT_LE(s.z_max_m, z_max_m);
+  EXPECT_LE(s.max_handover_step_m, 0.1);
+  EXPECT_LE(s.xy_max_m, xy_max_m);
+  EXPECT_LE(s.max_lane_grade_percent, s.max_profile_grade_percent + 0.5);
+  ASSERT_TRUE(s.restricted_edges.contains("truck"));
+  EXPECT_GT(s.restricted_edges.at("truck"), 0u);
+}
+
+TEST(Sumo, PotreroNetworkLoadsAndLiesOnTheSurface) {
+  RELIEF_REQUIRE_SHARED_DATA();
+  const BuildOptions o = sumo_build(test::potrero_options("sumo_potrero"));
+  Diagnostics d;
+  const RunReport r = build(o, d).report;
+  ASSERT_TRUE(r.sumo);
+  const SumoSummary& s = *r.sumo;
+  print(r.name, s);
+  expect_sumo_loads(o.out_dir / s.file);
+  expect_on_surface(s, 0.1, 0.01);
+  EXPECT_NEAR(static_cast<double>(s.edges), 184.0, 10.0);
+  EXPECT_NEAR(static_cast<double>(s.junctions), 98.0, 5.0);
+  EXPECT_EQ(s.traffic_lights, 0u);  // the extract has no signalled intersection
+}
+
+TEST(Sumo, NortheastNetworkLoadsAndLiesOnTheSurface) {
+  RELIEF_REQUIRE_SHARED_DATA();
+  const BuildOptions o = sumo_build(test::ne_options("sumo_ne"));
+  Diagnostics d;
+  const RunReport r = build(o, d).report;
+  ASSERT_TRUE(r.sumo);
+  const SumoSummary& s = *r.sumo;
+  print(r.name, s);
+  expect_sumo_loads(o.out_dir / s.file);
+  // Known defects: on edge -2889 (an 11 m road) netconvert moves a lane point 1.9 m off its
+  // OpenDRIVE lane centre, and one point of :J386_3_2 lies past the end of its connecting road,
+  // 0.19 m off; elsewhere lanes are within millimetres (z p99 0.004 m).
+  expect_on_surface(s, 0.2, 2.0);
+  EXPECT_NEAR(static_cast<double>(s.edges), 1929.0, 100.0);
+  EXPECT_NEAR(static_cast<double>(s.junctions), 957.0, 50.0);
+  EXPECT_EQ(s.traffic_lights, 323u);
+}
+
+// 300 random trips over 150 s at 20 Hz on the north-east quadrant: every vehicle gets in, none
+// is teleported, and the FCD heights and slopes are those of the OpenDRIVE surface.
+// Named ...Simulation: .ci/run leaves it out of the sanitizer pass (SUMO itself is not
+// instrumented; check_sumo_fcd is covered by tests/export/sumo_checks_test.cpp).
+TEST(Sumo, NortheastTrafficSimulation) {
+  RELIEF_REQUIRE_SHARED_DATA();
+  BuildOptions o = sumo_build(test::ne_options("sumo_ne_sim"));
+  o.demand.trips = 300;
+  o.demand.end_s = 150.0;
+  o.demand.step_length_s = 0.05;
+  Diagnostics d;
+  const RunReport r = build(o, d).report;
+  ASSERT_TRUE(r.sumo);
+  const SumoSummary& s = *r.sumo;
+  std::cout << "routes " << s.routes << ", step " << s.step_length_s << " s\n";
+  EXPECT_GE(s.routes, 250u);
+
+  const std::filesystem::path cfg = o.out_dir / (r.name + ".sumocfg");
+  const std::filesystem::path fcd = o.out_dir / "fcd.xml";
+  const ProcessResult run =
+      run_process({"sumo", "-c", cfg.string(), "--end", "300", "--no-step-log", "true",
+                   "--duration-log.statistics", "true", "--fcd-output", fcd.string(),
+                   "--fcd-output.attributes", "x,y,z,speed,angle,slope,lane", "--device.fcd.period", "1"},
+                  sumo_env(), o.out_dir);
+  std::cout << run.output << "\n";
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  EXPECT_EQ(run.output.find("Error"), std::string::npos);
+  EXPECT_EQ(run.output.find("Teleporting vehicle"), std::string::npos);
+  std::smatch m;
+  if (std::regex_search(run.output, m, std::regex(R"(Teleports: (\d+))"))) {
+    EXPECT_EQ(m[1].str(), "0");
+  }
+  ASSERT_TRUE(std::regex_search(run.output, m, std::regex(R"(Inserted: (\d+))"))) << run.output;
+  EXPECT_GE(std::stoi(m[1].str()), 250);
+
+  const RoadModel model = read_opendrive(o.out_dir / (r.name + ".xodr"));
+  const FcdCheck c =
+      check_sumo_fcd(read_text(fcd), read_text(o.out_dir / s.file), model, fcd.filename().string());
+  std::cout << "FCD: timesteps " << c.timesteps << ", vehicles " << c.vehicles << ", samples " << c.samples
+            << " (unmapped " << c.samples_unmapped << ", on netconvert's internal lanes "
+            << c.samples_netconvert_shape << "), z max " << c.z_max_m << " p99 " << c.z_p99_m
+            << ", slope samples " << c.slope_samples << " max " << c.slope_max_deg << " deg p99 "
+            << c.slope_p99_deg << " deg\n";
+  EXPECT_GT(c.samples, 50000u);
+  // Known: netconvert adds a few movements of its own that relief's model does not have (e.g.
+  // 1175 -> 1055 through :J527_2_0), which have no OpenDRIVE road; 38 samples of 57 599.
+  EXPECT_LE(c.samples_unmapped, c.samples / 1000);
+  // Vehicles ride on the OpenDRIVE surface (measured: p99 0.011 m, max 0.015 m).
+  EXPECT_LE(c.z_p99_m, 0.02);
+  EXPECT_LE(c.z_max_m, 0.05);
+  // SUMO's slope is taken over the vehicle's body (front to back), so it lags the surface
+  // grade where the grade changes, most on the short roads at junctions (measured p99 1.63 deg).
+  EXPECT_LE(c.slope_p99_deg, 2.0);
+}
+
+}  // namespace
+}  // namespace relief
