@@ -204,6 +204,7 @@ std::string report_json(const RunReport& r) {
                  {"traffic_lights", o.traffic_lights},
                  {"lanes", o.lanes},
                  {"internal_lanes", o.internal_lanes},
+                 {"internal_lanes_by_netconvert", o.internal_lanes_by_netconvert},
                  {"signals_mid_road", o.signals_mid_road},
                  {"restricted_edges", o.restricted_edges},
                  {"max_grade_percent", o.max_grade_percent},
@@ -220,6 +221,40 @@ std::string report_json(const RunReport& r) {
                  {"step_length_s", o.step_length_s}};
   } else {
     j["sumo"] = nullptr;
+  }
+  if (r.mesh) {
+    const MeshSummary& m = *r.mesh;
+    const auto quality = [](const std::optional<MeshQuality>& q) -> Json {
+      if (!q) return nullptr;
+      return {{"vertices", q->vertices},
+              {"triangles", q->triangles},
+              {"components", q->components},
+              {"boundary_loops", q->boundary_loops},
+              {"holes", q->holes},
+              {"non_manifold_edges", q->non_manifold_edges},
+              {"non_manifold_vertices", q->non_manifold_vertices},
+              {"self_intersecting_pairs", q->self_intersecting_pairs},
+              {"upside_down_triangles", q->upside_down_triangles},
+              {"degenerate_triangles", q->degenerate_triangles},
+              {"sliver_triangles", q->sliver_triangles}};
+    };
+    j["mesh"] = {{"files", m.files},
+                 {"junctions_meshed", m.junctions_meshed},
+                 {"junctions_failed", m.junctions_failed},
+                 {"xodr_surface_max_distance_m", round_to(m.xodr_surface_max_distance_m, 1e-4)},
+                 {"seam_road_junction_m", round_to(m.seam_road_junction_m, 1e-4)},
+                 {"seam_road_terrain_m",
+                  m.seam_road_terrain_m ? Json(round_to(*m.seam_road_terrain_m, 1e-4)) : Json()},
+                 {"road", quality(m.road)},
+                 {"terrain", quality(m.terrain)},
+                 {"ground_holes", m.ground_holes},
+                 {"ground_components", m.ground_components},
+                 {"terrain_tin_vertices", m.terrain_tin_vertices},
+                 {"terrain_max_vertical_error_m", round_to(m.terrain_max_vertical_error_m, 1e-4)},
+                 {"terrain_max_cut_m", round_to(m.terrain_max_cut_m, 1e-3)},
+                 {"terrain_max_fill_m", round_to(m.terrain_max_fill_m, 1e-3)}};
+  } else {
+    j["mesh"] = nullptr;
   }
   Json methods = Json::object();
   for (const MethodReport& m : r.methods) methods[m.method] = method_json(m);

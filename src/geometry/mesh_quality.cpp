@@ -236,14 +236,6 @@ double point_segment_distance(const Vec3& p, const Vec3& a, const Vec3& b) {
   return (p - (a + t * ab)).norm();
 }
 
-double point_segment_distance_xy(const Vec3& p, const Vec3& a, const Vec3& b) {
-  const Vec2 q = p.head<2>(), u = a.head<2>(), v = b.head<2>();
-  const Vec2 uv = v - u;
-  const double len2 = uv.squaredNorm();
-  const double t = len2 > 0.0 ? std::clamp((q - u).dot(uv) / len2, 0.0, 1.0) : 0.0;
-  return (q - (u + t * uv)).norm();
-}
-
 // Boundary edges (used by exactly one triangle) in the direction of their triangle.
 std::vector<std::pair<std::uint32_t, std::uint32_t>> boundary_edges(const TriangleMesh& mesh) {
   const std::vector<EdgeUse> uses = sorted_edge_uses(mesh);
@@ -457,8 +449,9 @@ SeamGap seam_gap(const TriangleMesh& a, const TriangleMesh& b, double reach_m) {
           seen[e] = stamp;
           const Vec3& u = b.vertices[edges_b[e].first];
           const Vec3& v = b.vertices[edges_b[e].second];
-          in_reach = in_reach || point_segment_distance_xy(p, u, v) <= reach_m;
-          best = std::min(best, point_segment_distance(p, u, v));
+          const double d = point_segment_distance(p, u, v);
+          in_reach = in_reach || d <= reach_m;
+          best = std::min(best, d);
         }
       }
     }
@@ -471,10 +464,8 @@ SeamGap seam_gap(const TriangleMesh& a, const TriangleMesh& b, double reach_m) {
       if (done[w]) continue;
       done[w] = 1;
       const Vec3& p = a.vertices[w];
-      auto [distance, in_reach] = nearest(p, reach_m);
+      const auto [distance, in_reach] = nearest(p, reach_m);
       if (!in_reach) continue;
-      // An edge nearer in 3D is nearer in the plane too: widen the search if the gap exceeds it.
-      if (distance > reach_m) distance = nearest(p, distance).first;
       ++gap.vertices_checked;
       gap.max_gap_m = std::max(gap.max_gap_m, distance);
     }

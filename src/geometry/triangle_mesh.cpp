@@ -1,7 +1,9 @@
 #include "relief/geometry/triangle_mesh.h"
 
 #include <algorithm>
+#include <cstring>
 #include <tuple>
+#include <unordered_map>
 
 #include <Eigen/Geometry>  // cross()
 
@@ -138,6 +140,36 @@ std::vector<std::vector<std::uint32_t>> boundary_loops(const TriangleMesh& mesh)
     for (const std::uint32_t u : path) position[u] = kNone;
   }
   return loops;
+}
+
+TriangleMesh weld_identical_vertices(const TriangleMesh& mesh) {
+  struct Key {
+    std::uint64_t x, y, z;
+    bool operator==(const Key&) const = default;
+  };
+  struct Hash {
+    std::size_t operator()(const Key& k) const {
+      return static_cast<std::size_t>(k.x * 0x9E3779B97F4A7C15ULL ^ (k.y * 0xC2B2AE3D27D4EB4FULL) ^
+                                      (k.z * 131));
+    }
+  };
+  std::unordered_map<Key, std::uint32_t, Hash> index;
+  TriangleMesh out;
+  out.name = mesh.name;
+  out.kind = mesh.kind;
+  std::vector<std::uint32_t> map(mesh.vertices.size());
+  for (std::size_t v = 0; v < mesh.vertices.size(); ++v) {
+    Key k{};
+    std::memcpy(&k.x, &mesh.vertices[v].x(), sizeof k.x);
+    std::memcpy(&k.y, &mesh.vertices[v].y(), sizeof k.y);
+    std::memcpy(&k.z, &mesh.vertices[v].z(), sizeof k.z);
+    const auto [it, inserted] = index.try_emplace(k, static_cast<std::uint32_t>(out.vertices.size()));
+    if (inserted) out.vertices.push_back(mesh.vertices[v]);
+    map[v] = it->second;
+  }
+  out.triangles.reserve(mesh.triangles.size());
+  for (const auto& t : mesh.triangles) out.triangles.push_back({map[t[0]], map[t[1]], map[t[2]]});
+  return out;
 }
 
 std::vector<Vec3> vertex_normals(const TriangleMesh& mesh) {

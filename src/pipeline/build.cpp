@@ -4,6 +4,7 @@
 #include <iomanip>
 #include <sstream>
 
+#include "pipeline/mesh_stage.h"
 #include "pipeline/stages.h"
 #include "pipeline/sumo_stage.h"
 #include "relief/core/atomic_file.h"
@@ -79,6 +80,7 @@ std::optional<Output> parse_output(std::string_view text) {
   if (text == "html") return Output::html;
   if (text == "xodr") return Output::xodr;
   if (text == "sumo") return Output::sumo;
+  if (text == "mesh") return Output::mesh;
   return std::nullopt;
 }
 
@@ -94,6 +96,8 @@ std::string_view to_string(Output output) {
       return "xodr";
     case Output::sumo:
       return "sumo";
+    case Output::mesh:
+      return "mesh";
   }
   return "unknown";
 }
@@ -227,7 +231,8 @@ BuildResult build(const BuildOptions& options, Diagnostics& diagnostics, const P
     result.written.push_back(path_of(".geojson"));
   }
   std::optional<RoadModelBuild> built;
-  if (options.outputs.count(Output::xodr) || options.outputs.count(Output::sumo)) {
+  if (options.outputs.count(Output::xodr) || options.outputs.count(Output::sumo) ||
+      options.outputs.count(Output::mesh)) {
     built = timer.run("build road model",
                       [&] { return build_road_model(network, profiles, options.road_model, diagnostics); });
     built->model.name = report.name;
@@ -275,6 +280,10 @@ BuildResult build(const BuildOptions& options, Diagnostics& diagnostics, const P
   if (options.outputs.count(Output::sumo)) {
     SumoStageInput in{options, loaded, built->model, report.name, diagnostics};
     report.sumo = write_sumo_outputs(in, files, timer, result.written, report.outputs);
+  }
+  if (options.outputs.count(Output::mesh)) {
+    MeshStageInput in{options, network, built->model, dem, report.name, diagnostics};
+    report.mesh = write_mesh_outputs(in, files, timer, result.written, report.outputs);
   }
   if (options.outputs.count(Output::html)) {
     report.outputs.push_back("report.html");

@@ -316,8 +316,12 @@ TEST(SeamGap, GridsSharingAnEdge) {
   const SeamGap offset = seam_gap(a, grid(2, 2, 1.0, Vec3(2, 0, 0.03)));
   EXPECT_EQ(offset.vertices_checked, 3u);
   EXPECT_NEAR(offset.max_gap_m, 0.03, 1e-9);
-  // A gap taller than the reach is still measured to the nearest edge.
-  EXPECT_NEAR(seam_gap(a, grid(2, 2, 1.0, Vec3(2, 0, 3))).max_gap_m, 3.0, 1e-9);
+  // An edge 3 m above (a deck over the other surface's edge) is no seam: the reach is in 3D.
+  const SeamGap above = seam_gap(a, grid(2, 2, 1.0, Vec3(2, 0, 3)));
+  EXPECT_EQ(above.vertices_checked, 0u);
+  EXPECT_EQ(above.max_gap_m, 0.0);
+  // With a 3.5 m reach the column one metre in counts too: sqrt(1 + 9).
+  EXPECT_NEAR(seam_gap(a, grid(2, 2, 1.0, Vec3(2, 0, 3)), 3.5).max_gap_m, std::sqrt(10.0), 1e-9);
   // Out of reach: nothing checked.
   const SeamGap apart = seam_gap(a, grid(2, 2, 1.0, Vec3(3, 0, 0)));
   EXPECT_EQ(apart.vertices_checked, 0u);

@@ -6,6 +6,7 @@
 #include <fstream>
 #include <iostream>
 
+#include "pipeline/sf_options.h"
 #include "relief/core/errors.h"
 #include "relief/pipeline/info.h"
 #include "support/test_data.h"
@@ -13,21 +14,8 @@
 namespace relief {
 namespace {
 
-BuildOptions potrero_options(const std::string& out) {
-  BuildOptions o;
-  o.osm_path = test::shared_data("sf-potrero/sf-potrero.osm.gz");
-  o.dem_paths = {test::shared_data("sf-potrero/USGS_13_n38w123-subsection-small-potrero.tif").string()};
-  o.out_dir = test::scratch_dir(out);
-  return o;
-}
-
-BuildOptions ne_options(const std::string& out) {
-  BuildOptions o;
-  o.osm_path = test::shared_data("sf-ne/sf_ne_drive_2017.osm.gz");
-  o.dem_paths = {test::shared_data("sf-ne/sf_ne_usgs24k_30m_nad27utm10_m.tif").string()};
-  o.out_dir = test::scratch_dir(out);
-  return o;
-}
+using test::ne_options;
+using test::potrero_options;
 
 const MethodReport& method(const RunReport& r, const std::string& name) {
   for (const MethodReport& m : r.methods)
@@ -66,8 +54,9 @@ TEST(Build, SyntheticPlaneHasExactGrades) {
   EXPECT_LT(r.junctions.max_gap_m, 1e-9);
   EXPECT_EQ(r.network.bridges, 1u);
   EXPECT_EQ(r.network.traffic_signals, 1u);
-  // OpenDRIVE, GeoJSON, report.html, report.json; SUMO net + its nod/edg/con + lane mapping.
-  ASSERT_EQ(result.written.size(), 9u);
+  // OpenDRIVE, GeoJSON, report.html, report.json; SUMO net + its nod/edg/con + lane mapping;
+  // the scene as .glb, .obj + .mtl, .fbx and mesh_report.json.
+  ASSERT_EQ(result.written.size(), 14u);
   for (const auto& p : result.written) EXPECT_TRUE(std::filesystem::exists(p)) << p;
   // SUMO: the signalled crossing gets a light; lanes lie on the plane the OpenDRIVE describes.
   ASSERT_TRUE(r.sumo);
@@ -75,6 +64,17 @@ TEST(Build, SyntheticPlaneHasExactGrades) {
   EXPECT_LT(r.sumo->z_max_m, 0.01);
   EXPECT_LT(r.sumo->max_handover_step_m, 0.01);
   EXPECT_NEAR(r.sumo->max_lane_grade_percent, 10.0, 0.2);
+  // The scene: every junction closed, one clean paved surface on the plane, terrain meeting it.
+  ASSERT_TRUE(r.mesh && r.mesh->road && r.mesh->terrain);
+  EXPECT_EQ(r.mesh->junctions_failed, 0u);
+  EXPECT_EQ(r.mesh->road->non_manifold_edges, 0u);
+  EXPECT_EQ(r.mesh->road->self_intersecting_pairs, 0u);
+  EXPECT_EQ(r.mesh->road->upside_down_triangles, 0u);
+  EXPECT_LE(r.mesh->xodr_surface_max_distance_m, 0.02 + 1e-9);
+  EXPECT_EQ(r.mesh->seam_road_junction_m, 0.0);
+  EXPECT_EQ(r.mesh->seam_road_terrain_m.value_or(1.0), 0.0);
+  EXPECT_EQ(r.mesh->ground_holes, 0u);
+  EXPECT_LT(r.mesh->terrain_max_vertical_error_m, 0.25 + 1e-9);
 }
 
 TEST(Build, PotreroWithReferenceDem) {

@@ -37,6 +37,10 @@ struct BuildArgs {
   double route_end_s = 0.0;
   unsigned seed = 42;
   double step_length_s = 0.05;
+  std::string mesh_formats = "glb,obj,fbx";
+  bool no_terrain = false;
+  double mesh_tolerance_m = 0.02;
+  double terrain_tolerance_m = 0.25;
 };
 
 void print_summary(const BuildResult& result) {
@@ -105,6 +109,24 @@ void print_summary(const BuildResult& result) {
     if (o.routes) out << "; " << o.routes << " routes, step " << fixed(o.step_length_s, 2) << " s";
     out << "\n";
   }
+  if (r.mesh) {
+    const MeshSummary& m = *r.mesh;
+    out << "  mesh       ";
+    for (const std::string& f : m.files) out << f << " ";
+    out << "\n";
+    if (m.road) {
+      out << "  mesh       Road_Road " << m.road->triangles << " triangles, " << m.junctions_meshed
+          << " junctions (" << m.junctions_failed << " left open), " << m.road->non_manifold_edges
+          << " non-manifold edges, " << m.road->self_intersecting_pairs << " self-intersections; within "
+          << fixed(m.xodr_surface_max_distance_m, 3) << " m of the OpenDRIVE surface\n";
+    }
+    if (m.terrain) {
+      out << "  mesh       Terrain " << m.terrain->triangles << " triangles, within "
+          << fixed(m.terrain_max_vertical_error_m, 2) << " m of the DEM; ground (roads + terrain) "
+          << m.ground_holes << " holes; seam road/terrain " << fixed(m.seam_road_terrain_m.value_or(0.0), 4)
+          << " m\n";
+    }
+  }
   out << "  gradient   max " << fixed(r.gradient.max_percent, 1) << " %, p99 "
       << fixed(r.gradient.p99_percent, 1) << " %, compliance with class limits "
       << fixed(r.gradient.compliance_percent, 1) << " %\n"
@@ -140,7 +162,8 @@ Runner add_build_command(CLI::App& app) {
   cmd->add_option(
          "--outputs", args->outputs,
          "comma-separated outputs to write: xodr, sumo (NAME.net.xml and its plain XML, via netconvert), "
-         "geojson, report (report.json), html (report.html), or all")
+         "mesh (3D scene NAME.glb/.obj/.fbx + mesh_report.json), geojson, report (report.json), html "
+         "(report.html), or all")
       ->capture_default_str();
   cmd->add_flag("-q,--quiet", args->quiet, "print only errors and the summary");
   cmd->add_option("--profiles", args->profiles,
@@ -183,6 +206,17 @@ Runner add_build_command(CLI::App& app) {
       ->check(CLI::NonNegativeNumber);
   cmd->add_option("--seed", args->seed, "SUMO: random seed of the trips")->capture_default_str();
   cmd->add_option("--step-length", args->step_length_s, "SUMO: simulation step in NAME.sumocfg, s")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--mesh-formats", args->mesh_formats, "3D scene formats: comma-separated glb, obj, fbx")
+      ->capture_default_str();
+  cmd->add_flag("--no-terrain", args->no_terrain, "3D scene: roads only, no Terrain mesh");
+  cmd->add_option("--mesh-tolerance", args->mesh_tolerance_m,
+                  "3D scene: largest distance of the road mesh from the OpenDRIVE surface, m")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--terrain-tolerance", args->terrain_tolerance_m,
+                  "3D scene: largest vertical error of the simplified terrain vs the DEM, m")
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
   cmd->add_flag("--no-compare", args->no_compare,
@@ -244,6 +278,20 @@ Runner add_build_command(CLI::App& app) {
           throw CLI::ValidationError("--vclass-max-grade", "'" + item + "': the grade must be a percent > 0");
         }
       }
+      options.mesh_formats.clear();
+      {
+        std::stringstream in(args->mesh_formats);
+        std::string item;
+        while (std::getline(in, item, ',')) {
+          const auto format = parse_mesh_format(item);
+          if (!format)
+            throw CLI::ValidationError("--mesh-formats", "'" + item + "' is not one of glb, obj, fbx");
+          options.mesh_formats.insert(*format);
+        }
+      }
+      options.terrain = !args->no_terrain;
+      options.road_mesh.tolerance_m = args->mesh_tolerance_m;
+      options.terrain_options.vertical_tolerance_m = args->terrain_tolerance_m;
       options.demand.trips = args->routes;
       options.demand.end_s = args->route_end_s;
       options.demand.seed = args->seed;
@@ -256,8 +304,8 @@ Runner add_build_command(CLI::App& app) {
         while (std::getline(in, item, ',')) {
           const auto output = parse_output(item);
           if (!output)
-            throw CLI::ValidationError("--outputs",
-                                       "'" + item + "' is not one of xodr, sumo, geojson, report, html, all");
+            throw CLI::ValidationError(
+                "--outputs", "'" + item + "' is not one of xodr, sumo, mesh, geojson, report, html, all");
           options.outputs.insert(*output);
         }
       }

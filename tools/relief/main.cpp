@@ -14,6 +14,7 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   const Runner build = add_build_command(app);
   const Runner info = add_info_command(app);
+  const Runner mesh_report = add_mesh_report_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::Success& e) {
@@ -24,5 +25,6 @@ int main(int argc, char** argv) {
   }
   if (app.got_subcommand("build")) return build();
   if (app.got_subcommand("info")) return info();
+  if (app.got_subcommand("mesh-report")) return mesh_report();
   return kUsage;
 }

@@ -10,6 +10,7 @@
 
 #include "relief/core/diagnostics.h"
 #include "relief/geometry/geo_frame.h"
+#include "relief/geometry/mesh_quality.h"
 #include "relief/roads/validation.h"
 #include "relief/terrain/dem_source.h"
 
@@ -76,6 +77,9 @@ struct SumoSummary {
   std::size_t nodes = 0, edges = 0, connections = 0;  ///< plain network given to netconvert
   std::size_t junctions = 0, traffic_lights = 0;      ///< in the .net.xml
   std::size_t lanes = 0, internal_lanes = 0;
+  /// Internal lanes netconvert drew itself because the OpenDRIVE lane centre folds back (a
+  /// connecting road bending tighter than the lane's offset); left out of the z figures.
+  std::size_t internal_lanes_by_netconvert = 0;
   std::size_t signals_mid_road = 0;  ///< OSM signals too far from any junction to control one
   std::map<std::string, std::size_t> restricted_edges;  ///< vehicle class -> edges kept off by grade
   std::map<std::string, double> max_grade_percent;      ///< the limits applied
@@ -89,6 +93,22 @@ struct SumoSummary {
   std::size_t netconvert_warnings = 0;
   std::size_t routes = 0;  ///< vehicles in NAME.rou.xml (0: no demand asked for)
   double step_length_s = 0.0;
+};
+
+/// The 3D scene written, and its quality (the full figures are in mesh_report.json).
+struct MeshSummary {
+  std::vector<std::string> files;
+  std::size_t junctions_meshed = 0, junctions_failed = 0;
+  double xodr_surface_max_distance_m = 0.0;  ///< road mesh vs the OpenDRIVE surface
+  double seam_road_junction_m = 0.0;
+  std::optional<double> seam_road_terrain_m;
+  std::optional<MeshQuality> road;     ///< Road_Road
+  std::optional<MeshQuality> terrain;  ///< Terrain
+  std::size_t ground_holes = 0;        ///< holes of roads on the ground + terrain, welded
+  std::size_t ground_components = 0;
+  std::size_t terrain_tin_vertices = 0;
+  double terrain_max_vertical_error_m = 0.0;
+  double terrain_max_cut_m = 0.0, terrain_max_fill_m = 0.0;
 };
 
 struct RunReport {
@@ -116,6 +136,7 @@ struct RunReport {
   GradeLimits grade_limits = GradeLimits::paper();
   std::optional<OpenDriveSummary> opendrive;
   std::optional<SumoSummary> sumo;
+  std::optional<MeshSummary> mesh;
   std::vector<std::pair<std::string, double>> timings_s;  ///< stage -> seconds, in order
   std::vector<std::string> outputs;                       ///< file names written
   const Diagnostics* diagnostics = nullptr;
@@ -131,12 +152,12 @@ struct RunReport {
 /// p99_percent, steepest_road, by_class{class: {length_km, limit_percent, compliance_percent,
 /// max_percent, p99_percent}}}, junctions{max_gap_m, worst_junction, over_bound, bound_m,
 /// checked}, sumo{file, nodes, edges, connections, junctions, traffic_lights, lanes,
-/// internal_lanes, signals_mid_road, restricted_edges{class: n}, max_grade_percent{class: %},
-/// points_checked, z_max_m, z_p99_m, xy_max_m, max_handover_step_m, max_lane_grade_percent,
-/// max_internal_lane_grade_percent, max_profile_grade_percent, netconvert_warnings, routes, step_length_s} |
-/// null, profiles{method, fit{...}, paper{...}}, methods{raw|paper|relief: {vs_dem, vs_dem_ground,
-/// vs_dem_structures, vs_reference, gradient, junctions, cut_fill, clearance}}, diagnostics{total,
-/// counts{code: n}, messages[]}, timings_s{stage: s}, outputs[].
+/// internal_lanes, internal_lanes_by_netconvert, signals_mid_road, restricted_edges{class: n},
+/// max_grade_percent{class: %}, points_checked, z_max_m, z_p99_m, xy_max_m, max_handover_step_m,
+/// max_lane_grade_percent, max_internal_lane_grade_percent, max_profile_grade_percent, netconvert_warnings,
+/// routes, step_length_s} | null, profiles{method, fit{...}, paper{...}}, methods{raw|paper|relief: {vs_dem,
+/// vs_dem_ground, vs_dem_structures, vs_reference, gradient, junctions, cut_fill, clearance}},
+/// diagnostics{total, counts{code: n}, messages[]}, timings_s{stage: s}, outputs[].
 [[nodiscard]] std::string report_json(const RunReport& report);
 
 /// relief's version string ("0.1.0").

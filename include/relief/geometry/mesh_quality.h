@@ -66,9 +66,11 @@ struct SeamGap {
   double max_gap_m = 0.0;            ///< largest 3D distance from such a vertex to b's boundary
 };
 
-/// Gap along the seam between two meshes: for every boundary vertex of `a` whose horizontal
-/// distance to a boundary edge of `b` is at most `reach_m`, the 3D distance to the nearest
-/// boundary edge of `b`. Shared positions give 0. reach_m < 0 or not finite: InvalidInput.
+/// Gap along the seam between two meshes: for every boundary vertex of `a` whose 3D distance to
+/// a boundary edge of `b` is at most `reach_m`, that distance (to the nearest such edge). A
+/// reach in 3D keeps a bridge deck above another surface's edge from counting as a seam; a gap
+/// wider than the reach is not a seam either and shows as a hole instead. Shared positions give 0. reach_m <
+/// 0 or not finite: InvalidInput.
 [[nodiscard]] SeamGap seam_gap(const TriangleMesh& a, const TriangleMesh& b, double reach_m = 0.5);
 
 }  // namespace relief

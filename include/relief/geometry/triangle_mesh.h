@@ -37,7 +37,7 @@ struct TriangleMesh {
 
 /// A set of named meshes in one frame, as written to one file.
 struct MeshScene {
-  GeoFrame frame;                              ///< the local frame the vertices are in
+  GeoFrame frame;  ///< the local frame the vertices are in
   std::vector<TriangleMesh> meshes;
   std::map<std::string, std::string> metadata;  ///< e.g. "relief:proj" -> frame PROJ string
 };
@@ -50,6 +50,12 @@ struct MeshScene {
 /// (first vertex not repeated), as vertex indices. Where loops touch at a vertex they are
 /// split there, so every loop is simple in index terms.
 [[nodiscard]] std::vector<std::vector<std::uint32_t>> boundary_loops(const TriangleMesh& mesh);
+
+/// The mesh with vertices at bit-identical positions merged into one (the first; normals and
+/// UVs dropped). Files that store one vertex per triangle corner (OBJ and FBX read back with
+/// assimp) regain their topology this way, and meshes that share exact positions (terrain and
+/// road outline) join.
+[[nodiscard]] TriangleMesh weld_identical_vertices(const TriangleMesh& mesh);
 
 /// Area-weighted vertex normals (unit length; +z for a vertex with no non-degenerate triangle).
 [[nodiscard]] std::vector<Vec3> vertex_normals(const TriangleMesh& mesh);

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "relief/core/diagnostics.h"
+#include "relief/export/mesh_writer.h"
 #include "relief/export/report_writer.h"
 #include "relief/export/sumo_network.h"
 #include "relief/export/sumo_tools.h"
@@ -17,9 +18,11 @@
 #include "relief/roads/osm_reader.h"
 #include "relief/roads/paper_smoothing.h"
 #include "relief/roads/profile_fit.h"
+#include "relief/roads/road_mesh.h"
 #include "relief/roads/road_model_builder.h"
 #include "relief/roads/validation.h"
 #include "relief/terrain/dem_sampler.h"
+#include "relief/terrain/terrain_tin.h"
 
 namespace relief {
 
@@ -33,7 +36,7 @@ enum class ProfileMethod {
 [[nodiscard]] std::string_view to_string(ProfileMethod method);
 
 /// Outputs `build` can write into the output directory.
-enum class Output { geojson, report, html, xodr, sumo };
+enum class Output { geojson, report, html, xodr, sumo, mesh };
 [[nodiscard]] std::optional<Output> parse_output(std::string_view text);
 [[nodiscard]] std::string_view to_string(Output output);
 
@@ -54,13 +57,18 @@ struct BuildOptions {
   int paper_max_iterations = 1000;
   /// Also run the other methods and put the comparison in the report.
   bool compare_methods = true;
-  std::set<Output> outputs = {Output::geojson, Output::report, Output::html, Output::xodr, Output::sumo};
+  std::set<Output> outputs = {Output::geojson, Output::report, Output::html,
+                              Output::xodr,    Output::sumo,   Output::mesh};
   RoadModelOptions road_model;
   int opendrive_rev_minor = 7;  ///< OpenDRIVE 1.4, 1.7 or 1.8
   SumoOptions sumo;             ///< its signalled_junctions are filled from the OSM signals
   /// Random trips for a quick SUMO run (NAME.rou.xml + NAME.sumocfg); trips = 0: none.
   DemandOptions demand;
   double signal_snap_m = 30.0;  ///< an OSM signal this close to an intersection controls it
+  RoadMeshOptions road_mesh;
+  bool terrain = true;  ///< the Terrain mesh under and around the roads
+  TerrainOptions terrain_options;
+  std::set<MeshFormat> mesh_formats = {MeshFormat::glb, MeshFormat::obj, MeshFormat::fbx};
 };
 
 struct BuildResult {

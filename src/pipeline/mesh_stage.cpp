@@ -1,0 +1,142 @@
+#include "pipeline/mesh_stage.h"
+
+#include <unordered_map>
+
+#include "relief/export/mesh_report.h"
+#include "relief/export/mesh_writer.h"
+#include "relief/geometry/mesh_quality.h"
+#include "relief/roads/road_mesh.h"
+#include "relief/terrain/terrain_tin.h"
+
+namespace relief {
+namespace {
+
+// Per road triangle: 1 when it lies on the ground (not on a bridge deck or in a tunnel).
+std::vector<std::uint8_t> ground_triangles(const RoadMeshes& roads, const RoadModel& model,
+                                           const RoadNetwork& network) {
+  std::unordered_map<int, bool> structure;  // OpenDRIVE road id -> on a structure
+  for (const ModelRoad& road : model.roads) {
+    bool on_structure = false;
+    if (road.source_road >= 0) {
+      const WayAttributes& a = network.roads[static_cast<std::size_t>(road.source_road)].attributes;
+      on_structure = a.bridge || a.tunnel;
+    }
+    structure[road.id] = on_structure;
+  }
+  std::vector<std::uint8_t> keep(roads.road.triangles.size(), 1);
+  for (std::size_t i = 0; i < keep.size(); ++i) {
+    const int owner = roads.road_triangle_owner[i];
+    if (owner >= 0 && structure[owner]) keep[i] = 0;
+  }
+  return keep;
+}
+
+}  // namespace
+
+MeshSummary write_mesh_outputs(const MeshStageInput& in, OutputSet& files, StageTimer& timer,
+                               std::vector<std::filesystem::path>& written, std::vector<std::string>& names) {
+  const BuildOptions& options = in.options;
+  MeshSummary summary;
+
+  RoadMeshes roads =
+      timer.run("mesh roads", [&] { return build_road_meshes(in.model, options.road_mesh, in.diagnostics); });
+  summary.junctions_meshed = roads.junctions_meshed;
+  summary.junctions_failed = roads.junctions_failed;
+  summary.xodr_surface_max_distance_m = roads.max_surface_deviation_m;
+
+  constexpr double kSeamReachM = 0.1;  // a gap wider than this is a hole, counted as such
+  // Junction patches share the road-end vertices: the seam gap measures that they do.
+  std::vector<std::uint8_t> junction(roads.road.triangles.size()), lanes(roads.road.triangles.size());
+  for (std::size_t i = 0; i < junction.size(); ++i) {
+    junction[i] = roads.road_triangle_owner[i] < 0;
+    lanes[i] = !junction[i];
+  }
+  summary.seam_road_junction_m =
+      seam_gap(submesh(roads.road, lanes), submesh(roads.road, junction), kSeamReachM).max_gap_m;
+
+  const std::vector<std::uint8_t> ground = ground_triangles(roads, in.model, in.network);
+  const TriangleMesh ground_road = submesh(roads.road, ground);
+
+  std::optional<TerrainBuild> terrain;
+  if (options.terrain) {
+    terrain = timer.run("mesh terrain", [&] {
+      std::vector<Polyline3> outline;
+      for (const auto& loop : boundary_loops(ground_road)) {
+        Polyline3 points;
+        for (const std::uint32_t v : loop) points.push_back(ground_road.vertices[v]);
+        if (points.size() >= 3) outline.push_back(std::move(points));
+      }
+      Aabb2 area;
+      for (const Vec3& p : roads.road.vertices) area.extend(Vec2(p.x(), p.y()));
+      return build_terrain(in.dem, area, outline, options.terrain_options);
+    });
+    summary.terrain_tin_vertices = terrain->tin_vertices;
+    summary.terrain_max_vertical_error_m = terrain->max_vertical_error_m;
+    summary.terrain_max_cut_m = terrain->max_cut_m;
+    summary.terrain_max_fill_m = terrain->max_fill_m;
+  }
+
+  // The scene, in CARLA's naming: Road_Road, Road_Marking, Road_Sidewalk, Terrain.
+  MeshScene scene;
+  scene.frame = in.model.frame;
+  const auto add_mesh = [&](TriangleMesh mesh, const char* mesh_name, SurfaceKind kind) {
+    if (mesh.empty()) return;
+    mesh.name = mesh_name;
+    mesh.kind = kind;
+    if (mesh.normals.size() != mesh.vertices.size()) mesh.normals = vertex_normals(mesh);
+    scene.meshes.push_back(std::move(mesh));
+  };
+  add_mesh(roads.road, "Road_Road", SurfaceKind::road);
+  add_mesh(roads.marking, "Road_Marking", SurfaceKind::marking);
+  add_mesh(roads.sidewalk, "Road_Sidewalk", SurfaceKind::sidewalk);
+  if (terrain) add_mesh(terrain->terrain, "Terrain", SurfaceKind::terrain);
+
+  // Quality of every mesh, of the paved surface, and of the ground (roads + terrain) as a whole.
+  std::vector<MeshQuality> quality = timer.run("check meshes", [&] {
+    std::vector<MeshQuality> q;
+    for (const TriangleMesh& m : scene.meshes) q.push_back(analyse_mesh(m));
+    if (terrain) {
+      // Roads on the ground and terrain as one surface: the terrain took the outline's exact
+      // positions over, so welding identical positions joins them.
+      TriangleMesh ground_all = ground_road;
+      ground_all.append(terrain->terrain);
+      ground_all = weld_identical_vertices(ground_all);
+      ground_all.name = "Ground (Road_Road on the ground + Terrain, welded)";
+      q.push_back(analyse_mesh(ground_all));
+      summary.ground_holes = q.back().holes;
+      summary.ground_components = q.back().components;
+      summary.seam_road_terrain_m = seam_gap(ground_road, terrain->terrain, kSeamReachM).max_gap_m;
+    }
+    return q;
+  });
+  for (const MeshQuality& q : quality) {
+    if (q.name == "Road_Road") summary.road = q;
+    if (q.name == "Terrain") summary.terrain = q;
+  }
+
+  // Files: every format asked for, then the report.
+  for (const MeshFormat format : options.mesh_formats) {
+    timer.run("write " + std::string(to_string(format)), [&] {
+      for (EncodedFile& f : encode_mesh_scene(scene, format, in.name)) {
+        const std::string bytes = std::move(f.bytes);
+        files.add(options.out_dir / f.filename, [&](std::ostream& out) { out << bytes; });
+        written.push_back(options.out_dir / f.filename);
+        names.push_back(f.filename);
+        summary.files.push_back(f.filename);
+      }
+      return 0;
+    });
+  }
+  MeshReportExtras extras;
+  extras.file = in.name;
+  extras.seam_road_junction_m = summary.seam_road_junction_m;
+  if (summary.seam_road_terrain_m) extras.seam_road_terrain_m = *summary.seam_road_terrain_m;
+  extras.xodr_surface_max_distance_m = summary.xodr_surface_max_distance_m;
+  const std::string report = mesh_report_json(quality, extras);
+  files.add(options.out_dir / "mesh_report.json", [&](std::ostream& out) { out << report; });
+  written.push_back(options.out_dir / "mesh_report.json");
+  names.push_back("mesh_report.json");
+  return summary;
+}
+
+}  // namespace relief
