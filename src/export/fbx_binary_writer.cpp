@@ -54,7 +54,7 @@ void put_array(std::string& out, const std::vector<T>& values, const EncodeOptio
     std::string packed(packed_bytes, '\0');
     if (compress2(reinterpret_cast<Bytef*>(packed.data()), &packed_bytes,
                   reinterpret_cast<const Bytef*>(values.data()), static_cast<uLong>(raw_bytes),
-                  Z_DEFAULT_COMPRESSION) != Z_OK) {
+                  Z_BEST_SPEED) != Z_OK) {
       throw InvalidInput("FBX: zlib failed to compress an array of " + std::to_string(values.size()) +
                          " values");
     }

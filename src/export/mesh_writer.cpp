@@ -19,6 +19,7 @@
 #include <sstream>
 
 #include "export/fbx_scene_writer.h"
+#include "export/obj_writer.h"
 #include "relief/core/errors.h"
 
 namespace relief {
@@ -110,7 +111,7 @@ fbx::SceneDesc prepare_scene(const MeshScene& scene) {
   return out;
 }
 
-// --- assimp encoding (glb, obj) ---------------------------------------------------------------
+// --- assimp encoding (glb) -------------------------------------------------------------------
 
 aiMetadata* make_metadata(const fbx::SceneDesc& desc) {
   aiMetadata* meta = aiMetadata::Alloc(static_cast<unsigned>(desc.user_properties.size()));
@@ -229,28 +230,12 @@ std::string unescape_obj_comment(std::string_view text) {
   return out;
 }
 
-// assimp names the .mtl after its blob file and writes "mtllib <that name>": point it at
-// `mtl_name` instead, add the metadata comments after assimp's header comments, and start an
-// object at each group.
-std::string fix_up_obj(const std::string& obj, const std::string& mtl_name, const fbx::SceneDesc& desc) {
-  std::istringstream in(obj);
+// The metadata as OBJ comment lines.
+std::string obj_metadata_lines(const fbx::SceneDesc& desc) {
   std::string out;
-  std::string line;
-  bool metadata_written = false;
-  while (std::getline(in, line)) {
-    if (!metadata_written && !line.starts_with('#')) {
-      for (const auto& [key, value] : desc.user_properties) {
-        out += kObjMetadataPrefix;
-        out += escape_obj_comment(key) + '\t' + escape_obj_comment(value) + '\n';
-      }
-      metadata_written = true;
-    }
-    if (line.starts_with("mtllib ")) line = "mtllib " + mtl_name;
-    // assimp writes groups only ("g name"); an object statement as well makes Blender and
-    // most other tools import one named object per mesh by default.
-    if (line.starts_with("g ")) out += "o " + line.substr(2) + '\n';
-    out += line;
-    out += '\n';
+  for (const auto& [key, value] : desc.user_properties) {
+    out += kObjMetadataPrefix;
+    out += escape_obj_comment(key) + '\t' + escape_obj_comment(value) + '\n';
   }
   return out;
 }
@@ -323,7 +308,7 @@ std::vector<EncodedFile> encode_with_assimp(const fbx::SceneDesc& desc, MeshForm
                                             const std::string& base_name) {
   const std::unique_ptr<aiScene> scene = make_ai_scene(desc);
   Assimp::Exporter exporter;
-  const char* format_id = format == MeshFormat::glb ? "glb2" : "obj";
+  const char* format_id = "glb2";
   const aiExportDataBlob* blob = exporter.ExportToBlob(scene.get(), format_id);
   if (blob == nullptr) {
     throw IoError("assimp could not encode '" + base_name + std::string(extension(format)) +
@@ -336,13 +321,6 @@ std::vector<EncodedFile> encode_with_assimp(const fbx::SceneDesc& desc, MeshForm
   files.push_back({base_name + std::string(extension(format)), bytes_of(blob)});
   if (format == MeshFormat::glb)
     files.front().bytes = add_glb_metadata(files.front().bytes, desc, files.front().filename);
-  if (format == MeshFormat::obj) {
-    // The blob chain holds the .obj then the .mtl.
-    const std::string mtl_name = base_name + ".mtl";
-    if (blob->next == nullptr) throw IoError("assimp wrote no .mtl for '" + files.front().filename + "'");
-    files.front().bytes = fix_up_obj(files.front().bytes, mtl_name, desc);
-    files.push_back({mtl_name, bytes_of(blob->next)});
-  }
   return files;
 }
 
@@ -484,6 +462,11 @@ std::vector<EncodedFile> encode_mesh_scene(const MeshScene& scene, MeshFormat fo
   const fbx::SceneDesc desc = prepare_scene(scene);
   if (format == MeshFormat::fbx) {
     return {{base_name + ".fbx", fbx::encode_scene(desc)}};
+  }
+  if (format == MeshFormat::obj) {
+    const std::string mtl_name = base_name + ".mtl";
+    ObjText text = encode_obj(desc, mtl_name, obj_metadata_lines(desc));
+    return {{base_name + ".obj", std::move(text.obj)}, {mtl_name, std::move(text.mtl)}};
   }
   return encode_with_assimp(desc, format, base_name);
 }

@@ -277,18 +277,23 @@ BuildResult build(const BuildOptions& options, Diagnostics& diagnostics, const P
     report.outputs.push_back(report.name + ".xodr");
     result.written.push_back(path_of(".xodr"));
   }
+  // netconvert runs in the background while the meshes are built.
+  std::optional<SumoStageInput> sumo_in;
+  std::optional<SumoJob> sumo;
   if (options.outputs.count(Output::sumo)) {
-    SumoStageInput in{options, loaded, built->model, report.name, diagnostics};
-    report.sumo = write_sumo_outputs(in, files, timer, result.written, report.outputs);
+    sumo_in.emplace(SumoStageInput{options, loaded, built->model, report.name, diagnostics});
+    sumo = start_sumo(*sumo_in, timer);
   }
   if (options.outputs.count(Output::mesh)) {
     MeshStageInput in{options, network, built->model, dem, report.name, diagnostics};
     report.mesh = write_mesh_outputs(in, files, timer, result.written, report.outputs);
   }
+  if (sumo) report.sumo = finish_sumo(*sumo_in, *sumo, files, timer, result.written, report.outputs);
   if (options.outputs.count(Output::html)) {
     report.outputs.push_back("report.html");
     result.written.push_back(options.out_dir / "report.html");
     report.timings_s = timer.timings();
+    report.wall_s = timer.elapsed();
     timer.run("write report.html", [&] {
       HtmlReportInput in;
       in.report = &report;
@@ -304,10 +309,12 @@ BuildResult build(const BuildOptions& options, Diagnostics& diagnostics, const P
     report.outputs.push_back("report.json");
     result.written.push_back(options.out_dir / "report.json");
     report.timings_s = timer.timings();
+    report.wall_s = timer.elapsed();
     files.add(options.out_dir / "report.json", [&](std::ostream& out) { out << report_json(report); });
   }
   files.commit();
   report.timings_s = timer.timings();
+  report.wall_s = timer.elapsed();
   return result;
 }
 

@@ -15,7 +15,13 @@ namespace relief {
 /// Runs named stages, reports them to the progress callback and records their wall time.
 class StageTimer {
  public:
-  explicit StageTimer(ProgressFn progress) : progress_(std::move(progress)) {}
+  explicit StageTimer(ProgressFn progress)
+      : progress_(std::move(progress)), start_(std::chrono::steady_clock::now()) {}
+
+  /// Wall time since the timer was made, seconds.
+  [[nodiscard]] double elapsed() const {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  }
 
   template <typename F>
   auto run(const std::string& stage, F&& f) {
@@ -28,10 +34,14 @@ class StageTimer {
     return value;
   }
 
+  /// Records a stage timed elsewhere (work done on another thread).
+  void add(const std::string& stage, double seconds) { timings_.emplace_back(stage, seconds); }
+
   [[nodiscard]] const std::vector<std::pair<std::string, double>>& timings() const { return timings_; }
 
  private:
   ProgressFn progress_;
+  std::chrono::steady_clock::time_point start_;
   std::vector<std::pair<std::string, double>> timings_;
 };
 

@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <chrono>
 #include <cmath>
 #include <fstream>
 #include <sstream>
@@ -11,30 +12,7 @@
 #include "relief/geometry/polyline.h"
 
 namespace relief {
-namespace {
-
-// A scratch directory beside the outputs, removed when the stage ends.
-class ScratchDir {
- public:
-  explicit ScratchDir(const std::filesystem::path& parent)
-      : path_(parent / (".relief-sumo-" + std::to_string(::getpid()))) {
-    std::error_code ec;
-    std::filesystem::create_directories(path_, ec);
-    if (ec) throw IoError("cannot create '" + path_.string() + "': " + ec.message());
-  }
-  ~ScratchDir() {
-    std::error_code ec;
-    std::filesystem::remove_all(path_, ec);
-  }
-  ScratchDir(const ScratchDir&) = delete;
-  ScratchDir& operator=(const ScratchDir&) = delete;
-  [[nodiscard]] const std::filesystem::path& path() const { return path_; }
-
- private:
-  std::filesystem::path path_;
-};
-
-}  // namespace
+namespace {}  // namespace
 
 std::set<int> signalled_junctions(const LoadedNetwork& loaded, const RoadModel& model, double snap_m,
                                   std::size_t& mid_road) {
@@ -68,15 +46,27 @@ std::set<int> signalled_junctions(const LoadedNetwork& loaded, const RoadModel& 
   return out;
 }
 
-SumoSummary write_sumo_outputs(const SumoStageInput& in, OutputSet& files, StageTimer& timer,
-                               std::vector<std::filesystem::path>& written, std::vector<std::string>& names) {
+ScratchDir::ScratchDir(const std::filesystem::path& parent)
+    : path_(parent / (".relief-sumo-" + std::to_string(::getpid()))) {
+  std::error_code ec;
+  std::filesystem::create_directories(path_, ec);
+  if (ec) throw IoError("cannot create '" + path_.string() + "': " + ec.message());
+}
+
+ScratchDir::~ScratchDir() {
+  std::error_code ec;
+  std::filesystem::remove_all(path_, ec);
+}
+
+SumoJob start_sumo(const SumoStageInput& in, StageTimer& timer) {
   const BuildOptions& options = in.options;
   const RoadNetwork& network = in.loaded.network;
-  SumoSummary summary;
+  SumoJob job;
+  SumoSummary& summary = job.summary;
   summary.file = in.name + ".net.xml";
   summary.max_grade_percent = options.sumo.max_grade_percent;
 
-  const SumoPlainNetwork plain = timer.run("build SUMO network", [&] {
+  job.plain = std::make_shared<const SumoPlainNetwork>(timer.run("build SUMO network", [&] {
     std::vector<SumoRoadInfo> info(in.model.roads.size());
     for (std::size_t r = 0; r < in.model.roads.size(); ++r) {
       const int source = in.model.roads[r].source_road;
@@ -93,7 +83,8 @@ SumoSummary write_sumo_outputs(const SumoStageInput& in, OutputSet& files, Stage
               " m from any intersection (pedestrian crossings); SUMO gets no light for them");
     }
     return build_sumo_network(in.model, info, so, in.diagnostics);
-  });
+  }));
+  const SumoPlainNetwork& plain = *job.plain;
   summary.nodes = plain.stats.nodes;
   summary.edges = plain.stats.edges;
   summary.connections = plain.stats.connections;
@@ -101,9 +92,29 @@ SumoSummary write_sumo_outputs(const SumoStageInput& in, OutputSet& files, Stage
   summary.internal_lanes_by_netconvert = plain.stats.internal_lanes_by_netconvert;
   summary.max_profile_grade_percent = plain.stats.max_edge_grade_percent;
 
-  const ScratchDir scratch(options.out_dir);
-  const NetconvertRun nc =
-      timer.run("netconvert", [&] { return run_netconvert(plain, scratch.path(), in.name); });
+  // netconvert is another process: it runs on the other core while the meshes are built.
+  job.scratch = std::make_unique<ScratchDir>(options.out_dir);
+  job.netconvert =
+      std::async(std::launch::async, [plain = job.plain, dir = job.scratch->path(), name = in.name] {
+        const auto t0 = std::chrono::steady_clock::now();
+        NetconvertRun run = run_netconvert(*plain, dir, name);
+        return std::pair(std::move(run),
+                         std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+      });
+  return job;
+}
+
+SumoSummary finish_sumo(const SumoStageInput& in, SumoJob& job, OutputSet& files, StageTimer& timer,
+                        std::vector<std::filesystem::path>& written, std::vector<std::string>& names) {
+  const BuildOptions& options = in.options;
+  const SumoPlainNetwork& plain = *job.plain;
+  SumoSummary& summary = job.summary;
+  const ScratchDir& scratch = *job.scratch;
+  const auto t_wait = std::chrono::steady_clock::now();
+  const auto [nc, seconds] = job.netconvert.get();
+  timer.add("netconvert (beside the meshes)", seconds);
+  timer.add("wait for netconvert",
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - t_wait).count());
   summary.netconvert_warnings = nc.warnings;
 
   const auto add = [&](const std::string& file, const std::string& text) {

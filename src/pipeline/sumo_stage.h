@@ -3,12 +3,15 @@
 // OpenDRIVE surface, optional demand.
 
 #include <filesystem>
+#include <future>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "pipeline/stages.h"
 #include "relief/core/atomic_file.h"
 #include "relief/export/report_writer.h"
+#include "relief/export/sumo_tools.h"
 #include "relief/roads/road_model.h"
 
 namespace relief {
@@ -21,11 +24,38 @@ struct SumoStageInput {
   Diagnostics& diagnostics;
 };
 
-/// Writes NAME.net.xml, NAME.{nod,edg,con}.xml, NAME.sumo_mapping.json (and NAME.rou.xml,
-/// NAME.sumocfg when options.demand.trips > 0) into `files`; appends their paths / names.
-[[nodiscard]] SumoSummary write_sumo_outputs(const SumoStageInput& in, OutputSet& files, StageTimer& timer,
-                                             std::vector<std::filesystem::path>& written,
-                                             std::vector<std::string>& names);
+/// A scratch directory beside the outputs (netconvert and randomTrips need files), removed
+/// when it goes out of scope.
+class ScratchDir {
+ public:
+  explicit ScratchDir(const std::filesystem::path& parent);
+  ~ScratchDir();
+  ScratchDir(const ScratchDir&) = delete;
+  ScratchDir& operator=(const ScratchDir&) = delete;
+  [[nodiscard]] const std::filesystem::path& path() const { return path_; }
+
+ private:
+  std::filesystem::path path_;
+};
+
+/// The SUMO stage under way: the plain network built, netconvert running.
+struct SumoJob {
+  SumoSummary summary;
+  std::shared_ptr<const SumoPlainNetwork> plain;  ///< shared with the netconvert thread
+  std::unique_ptr<ScratchDir> scratch;
+  std::future<std::pair<NetconvertRun, double>> netconvert;  ///< its output and wall time
+};
+
+/// Builds the plain network and starts netconvert on it in the background.
+[[nodiscard]] SumoJob start_sumo(const SumoStageInput& in, StageTimer& timer);
+
+/// Waits for netconvert, then writes NAME.net.xml, NAME.{nod,edg,con}.xml,
+/// NAME.sumo_mapping.json (and NAME.rou.xml, NAME.sumocfg when options.demand.trips > 0) into
+/// `files`, checks the net and returns the summary; appends the paths / names written.
+/// Rethrows what netconvert's run threw.
+[[nodiscard]] SumoSummary finish_sumo(const SumoStageInput& in, SumoJob& job, OutputSet& files,
+                                      StageTimer& timer, std::vector<std::filesystem::path>& written,
+                                      std::vector<std::string>& names);
 
 /// OpenDRIVE junction ids of `model` that get a traffic light: intersections tagged with a
 /// signal, and those within `snap_m` along a road of a signal node inside that road (OSM maps

@@ -138,7 +138,8 @@ struct RunReport {
   std::optional<SumoSummary> sumo;
   std::optional<MeshSummary> mesh;
   std::vector<std::pair<std::string, double>> timings_s;  ///< stage -> seconds, in order
-  std::vector<std::string> outputs;                       ///< file names written
+  double wall_s = 0.0;               ///< the whole run's wall time (stages may overlap); 0 when not measured
+  std::vector<std::string> outputs;  ///< file names written
   const Diagnostics* diagnostics = nullptr;
 };
 

@@ -1,0 +1,95 @@
+#include "export/obj_writer.h"
+
+#include <charconv>
+
+namespace relief {
+namespace {
+
+// Shortest text that reads back as the same float.
+void append_float(std::string& out, float value) {
+  char buffer[32];
+  const auto [end, ec] = std::to_chars(buffer, buffer + sizeof buffer, value);
+  out.append(buffer, ec == std::errc() ? end : buffer);
+}
+
+void append_uint(std::string& out, std::size_t value) {
+  char buffer[24];
+  const auto [end, ec] = std::to_chars(buffer, buffer + sizeof buffer, value);
+  out.append(buffer, ec == std::errc() ? end : buffer);
+}
+
+}  // namespace
+
+ObjText encode_obj(const fbx::SceneDesc& scene, const std::string& mtl_name,
+                   const std::string& metadata_lines) {
+  ObjText text;
+  std::string& o = text.obj;
+  o += "# written by relief\n";
+  o += metadata_lines;
+  o += "\nmtllib " + mtl_name + "\n";
+  // Indices in OBJ are global and 1-based: each mesh's vertices follow the previous ones.
+  std::size_t v_base = 1, vt_base = 1, vn_base = 1;
+  for (const fbx::MeshDesc& mesh : scene.meshes) {
+    o +=
+        "\no " + mesh.name + "\ng " + mesh.name + "\nusemtl " + scene.materials.at(mesh.material).name + "\n";
+    for (const auto& p : mesh.positions) {
+      o += "v ";
+      append_float(o, p[0]);
+      o += ' ';
+      append_float(o, p[1]);
+      o += ' ';
+      append_float(o, p[2]);
+      o += '\n';
+    }
+    for (const auto& uv : mesh.uvs) {
+      o += "vt ";
+      append_float(o, uv[0]);
+      o += ' ';
+      append_float(o, uv[1]);
+      o += '\n';
+    }
+    for (const auto& n : mesh.normals) {
+      o += "vn ";
+      append_float(o, n[0]);
+      o += ' ';
+      append_float(o, n[1]);
+      o += ' ';
+      append_float(o, n[2]);
+      o += '\n';
+    }
+    const bool uvs = !mesh.uvs.empty(), normals = !mesh.normals.empty();
+    for (const auto& t : mesh.triangles) {
+      o += 'f';
+      for (const std::uint32_t i : t) {
+        o += ' ';
+        append_uint(o, v_base + i);
+        if (uvs || normals) {
+          o += '/';
+          if (uvs) append_uint(o, vt_base + i);
+          if (normals) {
+            o += '/';
+            append_uint(o, vn_base + i);
+          }
+        }
+      }
+      o += '\n';
+    }
+    v_base += mesh.positions.size();
+    vt_base += mesh.uvs.size();
+    vn_base += mesh.normals.size();
+  }
+  std::string& m = text.mtl;
+  m = "# written by relief\n";
+  for (const fbx::MaterialDesc& mat : scene.materials) {
+    m += "\nnewmtl " + mat.name + "\nKd ";
+    append_float(m, mat.diffuse_rgb[0]);
+    m += ' ';
+    append_float(m, mat.diffuse_rgb[1]);
+    m += ' ';
+    append_float(m, mat.diffuse_rgb[2]);
+    m += "\nillum 1\n";
+  }
+  return text;
+}
+
+}  // namespace relief
