@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Benchmark (not a test): times `relief build` on the NE San Francisco set and prints the
-# median wall time of each stage over N runs (default 5), beside SUMO's netconvert reading the
-# same OSM and DEM when it is installed. Usage: bench/bench_build.sh [N]  (after tools/build.sh)
+# median wall time of each stage over N runs (default 5), then relief's OpenDRIVE alone
+# (--outputs xodr --no-compare) beside SUMO's netconvert building its .net.xml and .xodr from
+# the same OSM and DEM (warped to WGS84 for it). Usage: bench/bench_build.sh [N]  (after tools/build.sh)
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 runs=${1:-5}
@@ -30,19 +31,31 @@ for stage in reports[0]["timings_s"]:
 print(f"  {'process wall time':22s} {statistics.median(wall):8.3f} s, peak RSS {max(rss) / 1024:.0f} MiB")
 PY
 
+for i in $(seq "$runs"); do
+  /usr/bin/time -f "%e" -o "$tmp/xodr.$i" "$relief" build --quiet --outputs xodr --no-compare \
+    --osm "$data/sf_ne_drive_2017.osm.gz" --dem "$data/sf_ne_usgs24k_30m_nad27utm10_m.tif" \
+    --out "$tmp/out-xodr" >/dev/null
+done
+
 if command -v netconvert >/dev/null; then
   export SUMO_HOME=${SUMO_HOME:-/usr/share/sumo}
   # netconvert wants the DEM in WGS84.
   gdalwarp -q -t_srs EPSG:4326 -r bilinear "$data/sf_ne_usgs24k_30m_nad27utm10_m.tif" "$tmp/dem_wgs84.tif"
-  best=""
   for i in $(seq "$runs"); do
     /usr/bin/time -f "%e" -o "$tmp/nc.$i" netconvert --osm-files "$data/sf_ne_drive_2017.osm.gz" \
-      --heightmap.geotiff "$tmp/dem_wgs84.tif" -o "$tmp/ne.net.xml" --no-warnings >/dev/null 2>&1 || true
+      --heightmap.geotiff "$tmp/dem_wgs84.tif" -o "$tmp/ne.net.xml" --opendrive-output "$tmp/ne.xodr" \
+      --no-warnings >/dev/null 2>&1 || true
   done
-  python3 - "$tmp" "$runs" <<'PY'
-import statistics, sys
-tmp, runs = sys.argv[1], int(sys.argv[2])
-t = [float(open(f"{tmp}/nc.{i}").read().split()[0]) for i in range(1, runs + 1)]
-print(f"  netconvert (same OSM + DEM, writes .net.xml): median {statistics.median(t):.3f} s")
-PY
 fi
+python3 - "$tmp" "$runs" <<'PY'
+import os, statistics, sys
+tmp, runs = sys.argv[1], int(sys.argv[2])
+def median(prefix):
+    return statistics.median(float(open(f"{tmp}/{prefix}.{i}").read().split()[0]) for i in range(1, runs + 1))
+wall = median("time")
+print(f"  relief, OpenDRIVE only (--outputs xodr --no-compare): median {median('xodr'):.3f} s")
+if os.path.exists(f"{tmp}/nc.1"):
+    nc = median("nc")
+    print(f"  netconvert, .net.xml + .xodr from the same OSM + DEM: median {nc:.3f} s")
+    print(f"  whole relief build / netconvert: {wall / nc:.1f}x")
+PY

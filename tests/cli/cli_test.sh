@@ -174,6 +174,21 @@ check "no netconvert" run_without_sumo 3 "$out" build --osm "$fix/hill.osm" --de
 check "no netconvert message" stderr_has "netconvert"
 check "no netconvert no outputs" no_outputs "$out"
 
+# mesh-report: the scene of the good build in every format; bad mesh files exit 3.
+good="$RELIEF_TMP/good"
+for ext in glb obj fbx; do
+  check "mesh-report $ext" run 0 "" mesh-report "$good/hill.$ext"
+  check "mesh-report $ext names Road_Road" grep -q "Road_Road" "$RELIEF_TMP/stdout"
+done
+check "mesh-report --json -" run 0 "" mesh-report "$good/hill.glb" --json -
+check "mesh-report --json - is JSON" python3 -m json.tool "$RELIEF_TMP/stdout" /dev/null
+check "mesh-report --json - names Road_Road" grep -q "Road_Road" "$RELIEF_TMP/stdout"
+check "mesh-report missing file" run 3 "" mesh-report "$RELIEF_TMP/nope.glb"
+check "mesh-report missing file message" stderr_has "nope.glb"
+echo "not a mesh" > "$RELIEF_TMP/x.glb"
+check "mesh-report text as .glb" run 3 "" mesh-report "$RELIEF_TMP/x.glb"
+check "mesh-report text as .glb message" stderr_has "x.glb"
+
 # info: describes without writing.
 check "info" run 0 "" info --osm "$fix/hill.osm" --dem "$fix/hill_dem.asc"
 check "info coverage" grep -q "100.00 % with height" "$RELIEF_TMP/stdout"

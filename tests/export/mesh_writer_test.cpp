@@ -4,17 +4,15 @@
 #include <nlohmann/json.hpp>
 
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <functional>
 #include <iostream>
 #include <map>
 #include <set>
-#include <sstream>
 
 #include "relief/core/errors.h"
+#include "support/blender.h"
 #include "support/test_data.h"
 
 namespace relief {
@@ -266,80 +264,17 @@ TEST(MeshWriter, FbxBytesHaveMagicVersionNodesAndFooter) {
 
 // --- Blender ---------------------------------------------------------------------------------
 
-bool have_blender() {
-  return std::system("command -v blender > /dev/null 2>&1") == 0;
-}
-
-std::string run_and_capture(const std::string& command) {
-  std::string out;
-  FILE* pipe = popen(command.c_str(), "r");
-  if (pipe == nullptr) return out;
-  char buffer[4096];
-  while (std::fgets(buffer, sizeof buffer, pipe) != nullptr) out += buffer;
-  pclose(pipe);
-  return out;
-}
-
-// Imports each file into an empty Blender scene and prints, per mesh object, its vertex and
-// polygon counts and world-space bounding box, as one JSON line per file.
-constexpr const char* kBlenderScript = R"PY(
-import bpy, json, sys
-import numpy
-if not hasattr(numpy, "bool"):
-    numpy.bool = bool  # Blender 3.4's glTF importer still uses np.bool, gone in numpy >= 1.24
-files = sys.argv[sys.argv.index("--") + 1:]
-for path in files:
-    bpy.ops.wm.read_factory_settings(use_empty=True)
-    try:
-        if path.endswith(".fbx"):
-            bpy.ops.import_scene.fbx(filepath=path)
-        elif path.endswith(".glb"):
-            bpy.ops.import_scene.gltf(filepath=path)
-        else:
-            bpy.ops.wm.obj_import(filepath=path)
-    except Exception as e:
-        print("RELIEF_JSON " + json.dumps({"file": path, "error": str(e), "objects": {}}))
-        continue
-    objects = {}
-    for o in bpy.context.scene.objects:
-        if o.type != "MESH":
-            continue
-        world = [o.matrix_world @ v.co for v in o.data.vertices]
-        objects[o.name] = {
-            "vertices": len(o.data.vertices), "polygons": len(o.data.polygons),
-            "min": [min(p[i] for p in world) for i in range(3)],
-            "max": [max(p[i] for p in world) for i in range(3)],
-            "materials": [m.name for m in o.data.materials if m],
-            "proj": str(o.get("relief:proj", "")),
-        }
-    carriers = sorted(o.name for o in bpy.context.scene.objects if "relief:proj" in o)
-    proj = [str(o["relief:proj"]) for o in bpy.context.scene.objects if "relief:proj" in o]
-    print("RELIEF_JSON " + json.dumps({"file": path, "objects": objects, "proj_carriers": carriers,
-                                       "proj": proj[0] if proj else ""}))
-)PY";
-
 TEST(MeshWriter, BlenderImportsFbxGlbAndObjInMetresZUp) {
-  if (!have_blender()) GTEST_SKIP() << "blender is not on PATH";
+  if (!test::have_blender()) GTEST_SKIP() << "blender is not on PATH";
   const MeshScene scene = test_scene();
   const auto dir = test::scratch_dir("mesh_writer_blender");
   std::vector<std::filesystem::path> paths;
   for (const MeshFormat f : {MeshFormat::fbx, MeshFormat::glb, MeshFormat::obj}) {
     paths.push_back(write_files(encode_mesh_scene(scene, f, "scene"), dir));
   }
-  std::ofstream(dir / "inspect.py") << kBlenderScript;
-  std::string command = "blender -b --factory-startup --python '" + (dir / "inspect.py").string() + "' --";
-  for (const auto& p : paths) command += " '" + p.string() + "'";
-  const std::string output = run_and_capture(command + " 2>&1");
-
-  std::map<std::string, nlohmann::json> by_file;
-  std::istringstream lines(output);
-  for (std::string line; std::getline(lines, line);) {
-    if (line.starts_with("RELIEF_JSON ")) {
-      const auto j = nlohmann::json::parse(line.substr(12));
-      by_file[j["file"].get<std::string>()] = j;
-    }
-  }
-  ASSERT_EQ(by_file.size(), 3u) << output;
+  const test::BlenderImports imports = test::import_in_blender(paths, dir);
+  const auto& by_file = imports.by_file;
+  ASSERT_EQ(by_file.size(), 3u) << imports.output;
   for (const auto& p : paths) {
     SCOPED_TRACE(p.filename().string());
     const nlohmann::json& imported = by_file.at(p.string());

@@ -1,0 +1,417 @@
+// The 3D scene that `build` writes (pipeline/mesh_stage.cpp): its figures on the real San
+// Francisco data, the files read back by assimp and by Blender, and tiny synthetic networks with
+// exact answers.
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <fstream>
+#include <iostream>
+#include <map>
+#include <optional>
+#include <stdexcept>
+#include <vector>
+
+#include "pipeline/sf_options.h"
+#include "relief/export/mesh_writer.h"
+#include "relief/geometry/crs_transform.h"
+#include "relief/pipeline/build.h"
+#include "support/blender.h"
+#include "support/osm_sketch.h"
+#include "support/synthetic.h"
+#include "support/test_data.h"
+
+namespace relief {
+namespace {
+
+// --- helpers ---------------------------------------------------------------------------------
+
+BuildOptions scene_options(BuildOptions o) {
+  o.outputs = {Output::xodr, Output::mesh, Output::report};
+  o.mesh_formats = {MeshFormat::glb, MeshFormat::obj, MeshFormat::fbx};
+  o.compare_methods = false;  // the scene carries relief's fit either way
+  return o;
+}
+
+struct SceneBuild {
+  BuildOptions options;
+  BuildResult result;
+  nlohmann::json mesh_report;  ///< mesh_report.json
+};
+
+SceneBuild build_scene(const BuildOptions& options) {
+  SceneBuild b{options, {}, {}};
+  Diagnostics d;
+  b.result = build(options, d);
+  std::ifstream in(options.out_dir / "mesh_report.json");
+  b.mesh_report = nlohmann::json::parse(in);
+  return b;
+}
+
+// Potrero is built once per process (the Potrero tests share it when run in one process; under
+// ctest each builds it, ~0.5 s).
+const SceneBuild& potrero() {
+  static const SceneBuild b = build_scene(scene_options(test::potrero_options("mesh_potrero")));
+  return b;
+}
+
+// The report's mesh figures; throws (failing the test) when the build made no road or terrain mesh.
+const MeshSummary& summary(const SceneBuild& b) {
+  const auto& m = b.result.report.mesh;
+  if (!m || !m->road || !m->terrain)
+    throw std::runtime_error("the report has no Road_Road or Terrain figures");
+  return *m;
+}
+
+void print(const std::string& name, const MeshSummary& m) {
+  std::cout << name << ": junctions meshed " << m.junctions_meshed << " failed " << m.junctions_failed
+            << ", xodr surface max " << m.xodr_surface_max_distance_m << " m, seams road/junction "
+            << m.seam_road_junction_m << " road/terrain " << m.seam_road_terrain_m.value_or(-1.0)
+            << ", Road_Road: " << m.road->triangles << " triangles, non-manifold edges "
+            << m.road->non_manifold_edges << ", self-intersecting pairs " << m.road->self_intersecting_pairs
+            << ", upside down " << m.road->upside_down_triangles << "; Terrain " << m.terrain->triangles
+            << " triangles, max vertical error " << m.terrain_max_vertical_error_m << " m; ground holes "
+            << m.ground_holes << ", components " << m.ground_components << "\n";
+}
+
+// Upper bounds of the known defects of a data set (measured; a regression goes above them).
+struct KnownDefects {
+  std::size_t junctions_failed = 0;
+  std::size_t self_intersecting_pairs = 0;
+  std::size_t upside_down_triangles = 0;
+  std::size_t ground_holes = 0;
+};
+
+void expect_scene_figures(const MeshSummary& m, const KnownDefects& known) {
+  ASSERT_TRUE(m.road && m.terrain);
+  EXPECT_EQ(m.road->non_manifold_edges, 0u);
+  EXPECT_TRUE(m.road->self_intersections_checked);
+  EXPECT_LE(m.xodr_surface_max_distance_m, 0.02 + 1e-9);
+  ASSERT_TRUE(m.seam_road_terrain_m);
+  EXPECT_EQ(*m.seam_road_terrain_m, 0.0);
+  EXPECT_LE(m.seam_road_junction_m, 0.1);
+  EXPECT_LE(m.terrain_max_vertical_error_m, 0.25 + 1e-9);  // TerrainOptions::vertical_tolerance_m
+  EXPECT_LE(m.junctions_failed, known.junctions_failed);
+  EXPECT_LE(m.road->self_intersecting_pairs, known.self_intersecting_pairs);
+  EXPECT_LE(m.road->upside_down_triangles, known.upside_down_triangles);
+  EXPECT_LE(m.ground_holes, known.ground_holes);
+}
+
+struct Box {
+  Vec3 lo = Vec3::Constant(1e300);
+  Vec3 hi = Vec3::Constant(-1e300);
+};
+
+// Box of the vertices the triangles use.
+Box used_box(const TriangleMesh& m) {
+  Box b;
+  for (const auto& t : m.triangles) {
+    for (const auto v : t) {
+      b.lo = b.lo.cwiseMin(m.vertices[v]);
+      b.hi = b.hi.cwiseMax(m.vertices[v]);
+    }
+  }
+  return b;
+}
+
+const TriangleMesh* find_mesh(const MeshScene& scene, const std::string& name) {
+  for (const TriangleMesh& m : scene.meshes)
+    if (m.name == name) return &m;
+  return nullptr;
+}
+
+// Height at `p` (plan) of the first of `triangles` of `m` that covers it.
+std::optional<double> height_at(const TriangleMesh& m, const std::vector<std::size_t>& triangles,
+                                const Vec2& p) {
+  for (const std::size_t t : triangles) {
+    const Vec3& a = m.vertices[m.triangles[t][0]];
+    const Vec3& b = m.vertices[m.triangles[t][1]];
+    const Vec3& c = m.vertices[m.triangles[t][2]];
+    const double det = (b.x() - a.x()) * (c.y() - a.y()) - (c.x() - a.x()) * (b.y() - a.y());
+    if (std::abs(det) < 1e-12) continue;
+    const double u = ((p.x() - a.x()) * (c.y() - a.y()) - (c.x() - a.x()) * (p.y() - a.y())) / det;
+    const double v = ((b.x() - a.x()) * (p.y() - a.y()) - (p.x() - a.x()) * (b.y() - a.y())) / det;
+    if (u >= 0.0 && v >= 0.0 && u + v <= 1.0) return a.z() + u * (b.z() - a.z()) + v * (c.z() - a.z());
+  }
+  return std::nullopt;
+}
+
+// The meshes of the files (mesh_report.json also has the welded ground, which is no file mesh).
+std::map<std::string, nlohmann::json> file_meshes(const nlohmann::json& mesh_report) {
+  std::map<std::string, nlohmann::json> out;
+  for (const auto& m : mesh_report["meshes"]) {
+    const std::string name = m["name"].get<std::string>();
+    if (!name.starts_with("Ground")) out[name] = m;
+  }
+  return out;
+}
+
+// Every mesh file written re-imports with assimp: the meshes of mesh_report.json by name, with
+// its triangle counts and (0.1 mm rounded) bounds within 1 mm; triangle corners of the .obj and
+// .fbx equal the .glb's within 1 mm at every 97th triangle (triangle and corner order survive).
+void expect_files_reimport(const SceneBuild& b) {
+  const auto expected = file_meshes(b.mesh_report);
+  ASSERT_GE(expected.size(), 3u);  // Road_Road, Road_Marking, Terrain at least
+  const std::string name = b.result.report.name;
+  const MeshScene glb = read_mesh_file(b.options.out_dir / (name + ".glb"));
+  for (const char* ext : {".glb", ".obj", ".fbx"}) {
+    SCOPED_TRACE(ext);
+    const MeshScene scene =
+        ext == std::string(".glb") ? glb : read_mesh_file(b.options.out_dir / (name + ext));
+    EXPECT_EQ(scene.meshes.size(), expected.size());
+    for (const auto& [mesh_name, want] : expected) {
+      SCOPED_TRACE(mesh_name);
+      const TriangleMesh* m = find_mesh(scene, mesh_name);
+      ASSERT_NE(m, nullptr);
+      EXPECT_EQ(m->triangles.size(), want["triangles"].get<std::size_t>());
+      const Box box = used_box(*m);
+      constexpr double kTolM = 1e-3;
+      EXPECT_NEAR(box.lo.x(), want["bounds"]["min_x"].get<double>(), kTolM);
+      EXPECT_NEAR(box.lo.y(), want["bounds"]["min_y"].get<double>(), kTolM);
+      EXPECT_NEAR(box.hi.x(), want["bounds"]["max_x"].get<double>(), kTolM);
+      EXPECT_NEAR(box.hi.y(), want["bounds"]["max_y"].get<double>(), kTolM);
+      EXPECT_NEAR(box.lo.z(), want["z"]["min"].get<double>(), kTolM);
+      EXPECT_NEAR(box.hi.z(), want["z"]["max"].get<double>(), kTolM);
+      const TriangleMesh* ref = find_mesh(glb, mesh_name);
+      ASSERT_NE(ref, nullptr);
+      ASSERT_EQ(ref->triangles.size(), m->triangles.size());
+      double worst_m = 0.0;
+      for (std::size_t t = 0; t < m->triangles.size(); t += 97) {
+        for (int c = 0; c < 3; ++c) {
+          worst_m = std::max(worst_m,
+                             (m->vertices[m->triangles[t][c]] - ref->vertices[ref->triangles[t][c]]).norm());
+        }
+      }
+      EXPECT_LE(worst_m, kTolM);
+    }
+  }
+}
+
+// --- San Francisco ---------------------------------------------------------------------------
+
+TEST(MeshPipeline, PotreroSceneFigures) {
+  RELIEF_REQUIRE_SHARED_DATA();
+  const MeshSummary& m = summary(potrero());
+  print("potrero", m);
+  // Known defects (measured): junction 2's outline is not simple (CGAL splits a constraint at
+  // a crossing), so its area is left open; one pair of Road_Road triangles intersects; the
+  // ground (roads on the ground + terrain, welded) has 20 holes (that open junction and thin
+  // 1 m x 4-8 m slits between road edges and terrain) and 8 non-manifold edges.
+  expect_scene_figures(
+      m,
+      {.junctions_failed = 1, .self_intersecting_pairs = 1, .upside_down_triangles = 0, .ground_holes = 20});
+}
+
+TEST(MeshPipeline, NorthEastSceneFiguresAndReimport) {
+  RELIEF_REQUIRE_SHARED_DATA();
+  const SceneBuild b = build_scene(scene_options(test::ne_options("mesh_ne")));
+  const MeshSummary& m = summary(b);
+  print("sf-ne", m);
+  // Known defects (measured): 11 junctions left open (outlines that are not simple), 13
+  // intersecting Road_Road triangle pairs and 85 upside-down triangles, all on one transition
+  // road that folds over itself; the welded ground has 69 holes, 4 components and 36
+  // non-manifold edges.
+  expect_scene_figures(m, {.junctions_failed = 11,
+                           .self_intersecting_pairs = 13,
+                           .upside_down_triangles = 85,
+                           .ground_holes = 69});
+  expect_files_reimport(b);
+}
+
+TEST(MeshPipeline, PotreroFilesReimportWithAssimp) {
+  RELIEF_REQUIRE_SHARED_DATA();
+  expect_files_reimport(potrero());
+}
+
+TEST(MeshPipeline, PotreroFbxImportsInBlender) {
+  RELIEF_REQUIRE_SHARED_DATA();
+  if (!test::have_blender()) GTEST_SKIP() << "blender is not on PATH";
+  const SceneBuild& b = potrero();
+  const auto fbx = b.options.out_dir / (b.result.report.name + ".fbx");
+  const test::BlenderImports imports =
+      test::import_in_blender({fbx}, test::scratch_dir("mesh_potrero_blender"));
+  ASSERT_EQ(imports.by_file.count(fbx.string()), 1u) << imports.output;
+  const nlohmann::json& objects = imports.by_file.at(fbx.string())["objects"];
+  const auto expected = file_meshes(b.mesh_report);
+  for (const char* name : {"Road_Road", "Road_Marking", "Terrain"})
+    EXPECT_TRUE(expected.contains(name)) << name;
+  EXPECT_EQ(objects.size(), expected.size()) << objects.dump();
+  for (const auto& [name, want] : expected) {
+    SCOPED_TRACE(name);
+    ASSERT_TRUE(objects.contains(name)) << objects.dump();
+    const nlohmann::json& o = objects[name];
+    EXPECT_EQ(o["polygons"].get<std::size_t>(), want["triangles"].get<std::size_t>());
+    // World box, Z up, metres: relief's local frame within 1 cm.
+    constexpr double kTolM = 0.01;
+    EXPECT_NEAR(o["min"][0].get<double>(), want["bounds"]["min_x"].get<double>(), kTolM);
+    EXPECT_NEAR(o["min"][1].get<double>(), want["bounds"]["min_y"].get<double>(), kTolM);
+    EXPECT_NEAR(o["min"][2].get<double>(), want["z"]["min"].get<double>(), kTolM);
+    EXPECT_NEAR(o["max"][0].get<double>(), want["bounds"]["max_x"].get<double>(), kTolM);
+    EXPECT_NEAR(o["max"][1].get<double>(), want["bounds"]["max_y"].get<double>(), kTolM);
+    EXPECT_NEAR(o["max"][2].get<double>(), want["z"]["max"].get<double>(), kTolM);
+  }
+}
+
+// --- Synthetic networks with exact answers ---------------------------------------------------
+
+// WGS84 position of the synthetic frame's origin: sketches drawn there lie on the DEMs of
+// write_local_dem.
+LonLat synthetic_origin_lonlat() {
+  const GeoFrame frame = test::synthetic_frame();
+  const Vec2 p = CrsTransform(frame.crs(), "EPSG:4326").apply(frame.origin());
+  return {p.x(), p.y()};
+}
+
+// A sketch's node in the synthetic frame (local metres), as the build projects it.
+Vec2 synthetic_local(const test::OsmSketch& sketch, char letter) {
+  const GeoFrame frame = test::synthetic_frame();
+  const LonLat ll = sketch.lonlat(letter);
+  return CrsTransform("EPSG:4326", frame.crs()).apply(Vec2(ll.lon_deg, ll.lat_deg)) - frame.origin();
+}
+
+BuildOptions synthetic_options(const std::string& name, const test::OsmSketch& sketch,
+                               const std::function<double(double, double)>& ground) {
+  BuildOptions o;
+  const auto dir = test::scratch_dir("mesh_" + name);
+  o.osm_path = sketch.write(dir / (name + ".osm"));
+  o.dem_paths = {test::write_local_dem(name, 400.0, 5.0, ground)};
+  o.out_dir = dir / "out";
+  o.crs = test::synthetic_frame().crs();
+  return scene_options(o);
+}
+
+TEST(MeshPipeline, StraightRoadOnAPlaneIsExact) {
+  const test::OsmSketch sketch = test::OsmSketch(R"(
+      A----------B
+  )",
+                                                 10.0, synthetic_origin_lonlat())
+                                     .way("AB", {{"highway", "residential"}, {"lanes", "2"}, {"width", "7"}});
+  // The plane rises 5 % along the road (as projected: UTM's grid is turned against the
+  // meridians), level across it, so that the level cross-section lies on it.
+  const Vec2 a = synthetic_local(sketch, 'A');
+  const Vec2 b = synthetic_local(sketch, 'B');
+  const Vec2 dir = (b - a).normalized();
+  constexpr double kGrade = 0.05;
+  const auto plane = [&](double x, double y) { return 20.0 + kGrade * (Vec2(x, y) - a).dot(dir); };
+  BuildOptions o = synthetic_options("straight", sketch, plane);
+  o.profile_method = ProfileMethod::raw;  // the drape of a plane is the plane
+  const SceneBuild built = build_scene(o);
+  const MeshSummary& m = summary(built);
+  print("straight", m);
+  ASSERT_TRUE(m.road);
+
+  const double length_m = (b - a).norm() * std::sqrt(1.0 + kGrade * kGrade);
+  EXPECT_NEAR(m.road->area_m2, length_m * 7.0, 1e-6 * length_m * 7.0);
+  EXPECT_EQ(m.road->components, 1u);
+  EXPECT_EQ(m.road->holes, 0u);
+  EXPECT_EQ(m.ground_holes, 0u);
+  EXPECT_EQ(m.ground_components, 1u);
+  EXPECT_EQ(m.seam_road_terrain_m.value_or(1.0), 0.0);
+
+  // Every road vertex on the plane (the build's frame has its own origin).
+  const Vec2 shift = built.result.report.frame.origin() - test::synthetic_frame().origin();
+  const MeshScene scene = read_mesh_file(o.out_dir / "straight.glb");
+  const TriangleMesh* road = find_mesh(scene, "Road_Road");
+  ASSERT_NE(road, nullptr);
+  double worst_m = 0.0;
+  for (const Vec3& v : road->vertices) {
+    worst_m = std::max(worst_m, std::abs(v.z() - plane(v.x() + shift.x(), v.y() + shift.y())));
+  }
+  EXPECT_LE(worst_m, 1e-6 + 2e-6);  // plus the float rounding of the file (z ~ 20 m: 1e-6)
+  EXPECT_LE(m.xodr_surface_max_distance_m, 1e-6);
+}
+
+TEST(MeshPipeline, TJunctionOnAPlaneIsOneCleanSurface) {
+  const test::OsmSketch sketch = test::OsmSketch(R"(
+      A-----B-----C
+            |
+            |
+            D
+  )",
+                                                 10.0, synthetic_origin_lonlat())
+                                     .way("ABC", {{"highway", "residential"}})
+                                     .way("BD", {{"highway", "residential"}});
+  const auto plane = [](double x, double y) { return 20.0 + 0.03 * x + 0.02 * y; };
+  const SceneBuild built = build_scene(synthetic_options("tee", sketch, plane));
+  const MeshSummary& m = summary(built);
+  print("tee", m);
+  ASSERT_TRUE(m.road);
+  EXPECT_EQ(m.junctions_meshed, 1u);
+  EXPECT_EQ(m.junctions_failed, 0u);
+  EXPECT_EQ(m.road->components, 1u);
+  EXPECT_EQ(m.road->holes, 0u);
+  EXPECT_EQ(m.road->non_manifold_edges, 0u);
+  EXPECT_EQ(m.road->self_intersecting_pairs, 0u);
+  EXPECT_EQ(m.road->upside_down_triangles, 0u);
+  EXPECT_EQ(m.seam_road_junction_m, 0.0);
+  EXPECT_EQ(m.ground_holes, 0u);
+  EXPECT_EQ(m.ground_components, 1u);
+}
+
+TEST(MeshPipeline, BridgeOverARoadClearsIt) {
+  // CD (bridge, layer 1) crosses AB without a shared node; both on a level plane at 20 m.
+  const test::OsmSketch sketch =
+      test::OsmSketch(R"(
+                C
+                |
+                |
+                |
+                |
+      A---------+---------B
+                |
+                |
+                |
+                |
+                D
+  )",
+                      10.0, synthetic_origin_lonlat())
+          .way("AB", {{"highway", "residential"}})
+          .way("CD", {{"highway", "residential"}, {"bridge", "yes"}, {"layer", "1"}});
+  BuildOptions o = synthetic_options("bridge", sketch, [](double, double) { return 20.0; });
+  const SceneBuild built = build_scene(o);
+  const MeshSummary& m = summary(built);
+  print("bridge", m);
+  ASSERT_TRUE(m.road);
+  EXPECT_EQ(m.road->self_intersecting_pairs, 0u);
+  EXPECT_EQ(m.road->non_manifold_edges, 0u);
+
+  // Where the deck and the ground road overlap in plan (within the 6 m x 6 m square around the
+  // crossing), the vertical distance between the two surfaces, on a 0.1 m grid.
+  const MeshScene scene = read_mesh_file(o.out_dir / "bridge.glb");
+  const TriangleMesh* road = find_mesh(scene, "Road_Road");
+  ASSERT_NE(road, nullptr);
+  std::vector<std::size_t> deck, ground;
+  constexpr double kDeckAboveM = 21.0;  // the plane is at 20 m; the deck reaches ~25 m
+  for (std::size_t t = 0; t < road->triangles.size(); ++t) {
+    bool high = true;
+    for (const auto v : road->triangles[t]) high = high && road->vertices[v].z() > kDeckAboveM;
+    (high ? deck : ground).push_back(t);
+  }
+  const Vec2 shift = built.result.report.frame.origin() - test::synthetic_frame().origin();
+  const double y_ab = 0.5 * (synthetic_local(sketch, 'A').y() + synthetic_local(sketch, 'B').y()) - shift.y();
+  const double x_cd = 0.5 * (synthetic_local(sketch, 'C').x() + synthetic_local(sketch, 'D').x()) - shift.x();
+  constexpr double kHalfWidthM = 3.0;  // two residential lanes of 3 m
+  std::optional<double> least_m, at_crossing_m;
+  for (double dx = -kHalfWidthM; dx <= kHalfWidthM + 1e-9; dx += 0.1) {
+    for (double dy = -kHalfWidthM; dy <= kHalfWidthM + 1e-9; dy += 0.1) {
+      const Vec2 p(x_cd + dx, y_ab + dy);
+      const auto upper = height_at(*road, deck, p);
+      const auto lower = height_at(*road, ground, p);
+      if (!upper || !lower) continue;
+      least_m = std::min(least_m.value_or(1e300), *upper - *lower);
+      if (std::abs(dx) < 0.05 && std::abs(dy) < 0.05) at_crossing_m = *upper - *lower;
+    }
+  }
+  ASSERT_TRUE(least_m && at_crossing_m) << "no deck over the ground road";
+  std::cout << "bridge: surfaces " << *at_crossing_m << " m apart at the crossing, " << *least_m
+            << " m at least where they overlap (clearance " << o.fit.clearance_m << " m)\n";
+  // The profiles keep the clearance where the centrelines cross (report: min 5.0 m)...
+  EXPECT_GE(*at_crossing_m, o.fit.clearance_m - 0.01);  // 0.01: elevation records vs the fit
+  // ... but not over the whole overlap: the fit puts a crest on the deck and a sag in the
+  // ground road right at the crossing, so 3 m away (the edge of the other road) the surfaces
+  // are closer. Known defect, measured 4.868 m; a regression goes lower.
+  EXPECT_GE(*least_m, 4.86);
+}
+
+}  // namespace
+}  // namespace relief
