@@ -308,6 +308,11 @@ PlanView fit_reference_line(const Polyline2& polyline, const ReferenceLineOption
   return plan;
 }
 
+double arc_tangent_scale(double turn_rad) {
+  const double turn = std::min(std::abs(wrap_angle(turn_rad)), 0.9 * std::numbers::pi);
+  return turn < 1e-6 ? 1.0 : 2.0 * std::tan(0.25 * turn) / std::sin(0.5 * turn);
+}
+
 PlanGeometry hermite_connector(const Pose2& from, const Pose2& to, double tangent_scale) {
   if (!(tangent_scale > 0.0) || !std::isfinite(tangent_scale)) {
     throw InvalidInput("hermite connector: tangent scale must be positive and finite");

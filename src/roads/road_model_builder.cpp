@@ -208,12 +208,9 @@ void add_transition_road(RoadModel& model, ModelRoad& a_ref, bool a_at_start, in
   Pose2 from = a.plan.at(sa), to = b.plan.at(sb);
   if (a_at_start) from.heading = wrap_angle(from.heading + kPi);  // leave a away from its body
   if (!b_at_start) to.heading = wrap_angle(to.heading + kPi);     // enter b along its body
-  // Tangents as long as those of the circular arc through the same turn (2 tan(θ/4) /
-  // sin(θ/2) chords, 1 when straight): shorter ones pinch the bend into a radius smaller than
-  // the lanes are wide, and the lanes fold.
-  const double turn = std::min(std::abs(wrap_angle(to.heading - from.heading)), 0.9 * kPi);
-  const double scale = turn < 1e-6 ? 1.0 : 2.0 * std::tan(0.25 * turn) / std::sin(0.5 * turn);
-  t.plan = PlanView({hermite_connector(from, to, scale)});
+  // Tangents as long as those of the circular arc through the same turn: shorter ones pinch the
+  // bend into a radius smaller than the lanes are wide, and the lanes fold.
+  t.plan = PlanView({hermite_connector(from, to, arc_tangent_scale(to.heading - from.heading))});
   const double len = t.plan.length();
   const auto [z0, g0] = end_height(a, a_at_start, /*along_reference=*/!a_at_start);
   const auto [z1, g1] = end_height(b, b_at_start, /*along_reference=*/b_at_start);
@@ -706,7 +703,9 @@ RoadModelBuild build_road_model(const RoadNetwork& network, const std::vector<Ro
           c.speed_mps = std::min(a.speed_mps.value_or(10.0), b.speed_mps.value_or(10.0));
           const Pose2 from = lane_inner_pose(a, in.at_start, la);
           const Pose2 dest = lane_inner_pose(b, to.at_start, lb);
-          c.plan = PlanView({hermite_connector(from, dest)});
+          // As round as the circular arc through the turn (see arc_tangent_scale): the lane lies
+          // on the inside of a right turn and must not fold.
+          c.plan = PlanView({hermite_connector(from, dest, arc_tangent_scale(dest.heading - from.heading))});
           const double len = c.plan.length();
           const auto [z0, g0] = end_height(a, in.at_start, /*along_reference=*/la < 0);
           const auto [z1, g1] = end_height(b, to.at_start, /*along_reference=*/lb < 0);

@@ -377,6 +377,32 @@ TEST(HermiteConnector, ReproducesBothPoses) {
   }
 }
 
+TEST(HermiteConnector, ArcTangentScaleFollowsTheCircle) {
+  EXPECT_NEAR(arc_tangent_scale(0.0), 1.0, 1e-12);
+  EXPECT_NEAR(arc_tangent_scale(kPi / 2.0), 2.0 * std::tan(kPi / 8.0) / std::sin(kPi / 4.0), 1e-12);
+  EXPECT_NEAR(arc_tangent_scale(-kPi / 2.0), arc_tangent_scale(kPi / 2.0), 1e-12);
+  EXPECT_NEAR(arc_tangent_scale(kPi), arc_tangent_scale(0.9 * kPi), 1e-12);
+  // A right turn through 90 degrees on a circle of radius 10 m: with the arc scale the curve
+  // stays within 0.03 m of the circle and its radius within 3 % of 10 m; the old default 0.5
+  // pinches it to a radius under 5 m, which folds a lane wider than that on the inside.
+  const Pose2 from{{0.0, 10.0}, 0.0, 0.0};
+  const Pose2 to{{10.0, 0.0}, -kPi / 2.0, 0.0};
+  const auto extremes = [&](double scale) {
+    const PlanGeometry g = hermite_connector(from, to, scale);
+    double min_radius = 1e9, max_off = 0.0;
+    for (int i = 0; i <= 200; ++i) {
+      const Pose2 p = evaluate(g, g.length * i / 200.0);
+      max_off = std::max(max_off, std::abs(p.position.norm() - 10.0));
+      min_radius = std::min(min_radius, 1.0 / std::abs(p.curvature));
+    }
+    return std::pair{min_radius, max_off};
+  };
+  const auto [arc_radius, arc_off] = extremes(arc_tangent_scale(kPi / 2.0));
+  EXPECT_GT(arc_radius, 9.7);
+  EXPECT_LT(arc_off, 0.03);
+  EXPECT_LT(extremes(0.5).first, 5.0);
+}
+
 TEST(HermiteConnector, StraightAheadGivesALine) {
   const Pose2 from{{1.0, 1.0}, kPi / 4.0, 0.0};
   const Pose2 to{{11.0, 11.0}, kPi / 4.0, 0.0};

@@ -123,4 +123,11 @@ struct ReferenceLineReport {
 /// Throws InvalidInput when the positions coincide or tangent_scale is not positive.
 [[nodiscard]] PlanGeometry hermite_connector(const Pose2& from, const Pose2& to, double tangent_scale = 0.5);
 
+/// The tangent scale (tangent length over chord) at which hermite_connector follows the circular
+/// arc through a turn of `turn_rad` radians, 2 tan(θ/4) / sin(θ/2): 1 when straight, about 1.17 at
+/// a right angle. Shorter tangents pinch the bend in the middle into a radius well under the
+/// arc's (at 0.5 and a right angle, under half of it), which folds the lanes of a tight turn.
+/// Turns beyond 0.9 π are taken as 0.9 π (the scale grows without bound towards a U-turn).
+[[nodiscard]] double arc_tangent_scale(double turn_rad);
+
 }  // namespace relief
