@@ -393,12 +393,12 @@ void XodrWriter::plan_view(const ModelRoad& r) {
         break;
       case PlanGeometry::Kind::arc:
         open(4, "arc");
-        attr("curvature", g.curvature);
+        attr_coefficient("curvature", g.curvature);
         break;
       case PlanGeometry::Kind::spiral:
         open(4, "spiral");
-        attr("curvStart", g.curvature_start);
-        attr("curvEnd", g.curvature_end);
+        attr_coefficient("curvStart", g.curvature_start);
+        attr_coefficient("curvEnd", g.curvature_end);
         break;
       case PlanGeometry::Kind::param_poly3:
         open(4, "paramPoly3");

@@ -354,4 +354,43 @@ PlanGeometry hermite_connector(const Pose2& from, const Pose2& to, double tangen
   return g;
 }
 
+std::vector<PlanGeometry> corner_connector(const Pose2& from, const Pose2& to) {
+  const double turn = wrap_angle(to.heading - from.heading);
+  const auto fallback = [&] { return std::vector<PlanGeometry>{hermite_connector(from, to, arc_tangent_scale(turn))}; };
+  if (std::abs(turn) < 1e-3 || std::abs(turn) > 0.9 * std::numbers::pi) return fallback();
+  if (!from.position.allFinite() || !to.position.allFinite()) return fallback();  // throws
+  const Vec2 d0(std::cos(from.heading), std::sin(from.heading));
+  const Vec2 d1(std::cos(to.heading), std::sin(to.heading));
+  const Vec2 delta = to.position - from.position;
+  const auto cross = [](const Vec2& u, const Vec2& v) { return u.x() * v.y() - u.y() * v.x(); };
+  // from + a d0 = to - b d1.
+  const double det = cross(d0, d1);
+  const double a = cross(delta, d1) / det;
+  const double b = cross(d0, delta) / det;
+  // An S-bend: the cubic whose tangents are as long as the chord (a lane change's smoothstep).
+  if (!(a > 1e-6) || !(b > 1e-6)) return std::vector<PlanGeometry>{hermite_connector(from, to, 1.0)};
+  const double tangent = std::min(a, b);
+  const double radius = tangent / std::tan(0.5 * std::abs(turn));
+  std::vector<PlanGeometry> records;
+  double s = 0.0;
+  Pose2 at = from;
+  const auto push = [&](PlanGeometry g) {
+    g.s = s;
+    g.start = at.position;
+    g.heading = at.heading;
+    at = evaluate(g, g.length);
+    s += g.length;
+    records.push_back(g);
+  };
+  constexpr double kMinLine_m = 1e-6;
+  if (a - tangent > kMinLine_m) push({PlanGeometry::Kind::line, 0.0, {}, 0.0, a - tangent});
+  PlanGeometry arc;
+  arc.kind = PlanGeometry::Kind::arc;
+  arc.curvature = (turn > 0.0 ? 1.0 : -1.0) / radius;
+  arc.length = radius * std::abs(turn);
+  push(arc);
+  if (b - tangent > kMinLine_m) push({PlanGeometry::Kind::line, 0.0, {}, 0.0, b - tangent});
+  return records;
+}
+
 }  // namespace relief

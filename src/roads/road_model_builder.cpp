@@ -16,6 +16,7 @@ namespace relief {
 namespace {
 
 constexpr double kPi = std::numbers::pi;
+constexpr double kUTurn_rad = 5.0 * kPi / 6.0;
 constexpr double kMinRoadLength = 0.05;  // m left after trimming, else the road is skipped
 constexpr double kTrimStep = 0.5;        // m added to an overlapping road end's trim per pass
 constexpr int kMaxTrimPasses = 400;      // bounds the trims' growth at one junction
@@ -648,7 +649,6 @@ RoadModelBuild build_road_model(const RoadNetwork& network, const std::vector<Ro
         if (ia == ib) continue;
         const EndRef& in = ends[ia];
         const EndRef& to = ends[ib];
-        if (!options.u_turns && in.network_road == to.network_road) continue;
         // Copies: adding connecting roads may reallocate model.roads.
         const ModelRoad a = model_of(in);
         const ModelRoad b = model_of(to);
@@ -658,6 +658,11 @@ RoadModelBuild build_road_model(const RoadNetwork& network, const std::vector<Ro
         const Pose2 from0 = lane_inner_pose(a, in.at_start, arriving.front());
         const Pose2 to0 = lane_inner_pose(b, to.at_start, departing.front());
         const double turn = wrap_angle(to0.heading - from0.heading);
+        // A U-turn goes back into the arriving road, or turns back by more than 150 degrees into
+        // another (the two carriageways where a divided street splits: their ends lie a metre
+        // apart and the hairpin between them cannot carry a lane).
+        const bool u_turn = in.network_road == to.network_road || std::abs(turn) > kUTurn_rad;
+        if (u_turn && !options.u_turns) continue;
         const char* movement = std::abs(turn) < kPi / 6.0 ? "through" : turn > 0.0 ? "left" : "right";
         // A slight turn (under 60 degrees) may also be made from a through lane: streets bend.
         const bool slight = std::abs(turn) < kPi / 3.0;
@@ -703,9 +708,9 @@ RoadModelBuild build_road_model(const RoadNetwork& network, const std::vector<Ro
           c.speed_mps = std::min(a.speed_mps.value_or(10.0), b.speed_mps.value_or(10.0));
           const Pose2 from = lane_inner_pose(a, in.at_start, la);
           const Pose2 dest = lane_inner_pose(b, to.at_start, lb);
-          // As round as the circular arc through the turn (see arc_tangent_scale): the lane lies
-          // on the inside of a right turn and must not fold.
-          c.plan = PlanView({hermite_connector(from, dest, arc_tangent_scale(dest.heading - from.heading))});
+          // The roundest arc the corner allows: the lane lies on the inside of a right turn and
+          // must not fold.
+          c.plan = PlanView(corner_connector(from, dest));
           const double len = c.plan.length();
           const auto [z0, g0] = end_height(a, in.at_start, /*along_reference=*/la < 0);
           const auto [z1, g1] = end_height(b, to.at_start, /*along_reference=*/lb < 0);

@@ -403,6 +403,42 @@ TEST(HermiteConnector, ArcTangentScaleFollowsTheCircle) {
   EXPECT_LT(extremes(0.5).first, 5.0);
 }
 
+TEST(CornerConnector, LineThenTheRoundestArc) {
+  // Heading east from the origin, arriving heading south at (10, -4): the headings' lines meet
+  // at (10, 0), 10 m ahead and 4 m behind, so a 6 m line and a quarter circle of radius 4 m.
+  const Pose2 from{{0.0, 0.0}, 0.0, 0.0};
+  const Pose2 to{{10.0, -4.0}, -kPi / 2.0, 0.0};
+  const std::vector<PlanGeometry> records = corner_connector(from, to);
+  ASSERT_EQ(records.size(), 2u);
+  EXPECT_EQ(records[0].kind, PlanGeometry::Kind::line);
+  EXPECT_NEAR(records[0].length, 6.0, 1e-12);
+  EXPECT_EQ(records[1].kind, PlanGeometry::Kind::arc);
+  EXPECT_NEAR(records[1].curvature, -0.25, 1e-12);
+  EXPECT_NEAR(records[1].s, 6.0, 1e-12);
+  const PlanView plan(records);
+  EXPECT_NEAR(plan.length(), 6.0 + 2.0 * kPi, 1e-9);
+  const Pose2 end = plan.at(plan.length());
+  EXPECT_LT((end.position - to.position).norm(), 1e-9);
+  EXPECT_LT(angle_gap(end.heading, to.heading), 1e-9);
+  // Mirrored (the near end first): arc, then line.
+  const std::vector<PlanGeometry> back = corner_connector({{10.0, 4.0}, -kPi / 2.0, 0.0}, {{0.0, 0.0}, kPi, 0.0});
+  ASSERT_EQ(back.size(), 2u);
+  EXPECT_EQ(back[0].kind, PlanGeometry::Kind::arc);
+  EXPECT_NEAR(back[0].curvature, -0.25, 1e-12);
+  EXPECT_NEAR(back[1].length, 6.0, 1e-12);
+}
+
+TEST(CornerConnector, SBendsAndStraightsFallBackToHermite) {
+  // The headings' lines meet behind `from`: no corner to round.
+  const std::vector<PlanGeometry> s_bend = corner_connector({{0.0, 0.0}, 0.0, 0.0}, {{10.0, 5.0}, 0.3, 0.0});
+  ASSERT_EQ(s_bend.size(), 1u);
+  EXPECT_EQ(s_bend[0].kind, PlanGeometry::Kind::param_poly3);
+  const std::vector<PlanGeometry> straight = corner_connector({{0.0, 0.0}, 0.0, 0.0}, {{10.0, 0.0}, 0.0, 0.0});
+  ASSERT_EQ(straight.size(), 1u);
+  EXPECT_EQ(straight[0].kind, PlanGeometry::Kind::line);
+  EXPECT_THROW((void)corner_connector({{0.0, 0.0}, 0.0, 0.0}, {{0.0, 0.0}, 1.0, 0.0}), InvalidInput);
+}
+
 TEST(HermiteConnector, StraightAheadGivesALine) {
   const Pose2 from{{1.0, 1.0}, kPi / 4.0, 0.0};
   const Pose2 to{{11.0, 11.0}, kPi / 4.0, 0.0};

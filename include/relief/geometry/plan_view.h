@@ -123,6 +123,17 @@ struct ReferenceLineReport {
 /// Throws InvalidInput when the positions coincide or tangent_scale is not positive.
 [[nodiscard]] PlanGeometry hermite_connector(const Pose2& from, const Pose2& to, double tangent_scale = 0.5);
 
+/// A connector from `from` to `to` (both headings kept) made of the roundest circular arc that
+/// fits the corner between them, and a line before or after it: the two headings' lines meet at
+/// distances a (ahead of `from`) and b (behind `to`); the arc turns with radius
+/// min(a, b) / tan(|θ|/2) and a line takes up |a - b|. Its smallest radius is the largest any
+/// curve keeping both poses can have where a and b differ (a cubic Hermite between such poses
+/// bends far tighter near the nearer end). Where the turn is under 0.001 rad or over 0.9 π it
+/// falls back to hermite_connector with arc_tangent_scale, and where the lines do not meet ahead
+/// of both poses (an S-bend) to hermite_connector with tangents as long as the chord. Throws
+/// InvalidInput as hermite_connector does.
+[[nodiscard]] std::vector<PlanGeometry> corner_connector(const Pose2& from, const Pose2& to);
+
 /// The tangent scale (tangent length over chord) at which hermite_connector follows the circular
 /// arc through a turn of `turn_rad` radians, 2 tan(θ/4) / sin(θ/2): 1 when straight, about 1.17 at
 /// a right angle. Shorter tangents pinch the bend in the middle into a radius well under the

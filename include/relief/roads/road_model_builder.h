@@ -39,7 +39,7 @@ struct RoadModelOptions {
   double max_trim_fraction = 0.4;       ///< a road loses at most this share of its length per end
   double min_radius_margin_m = 0.5;     ///< smallest arc radius beyond the outermost lane border
   double junction_end_gap_m = 0.5;      ///< least distance between road ends at a junction
-  bool u_turns = false;                 ///< connecting roads back into the arriving road
+  bool u_turns = false;  ///< U-turns: back into the arriving road, or any turn over 150 degrees
 };
 
 struct RoadModelStats {
