@@ -211,6 +211,8 @@ std::string report_json(const RunReport& r) {
                  {"points_checked", o.points_checked},
                  {"z_max_m", round_to(o.z_max_m, 1e-4)},
                  {"z_p99_m", round_to(o.z_p99_m, 1e-4)},
+                 {"z_max_lane", o.z_max_lane},
+                 {"netconvert_lanes_z_max_m", round_to(o.netconvert_lanes_z_max_m, 1e-4)},
                  {"xy_max_m", round_to(o.xy_max_m, 1e-4)},
                  {"max_handover_step_m", round_to(o.max_handover_step_m, 1e-4)},
                  {"max_lane_grade_percent", round_to(o.max_lane_grade_percent, 1e-2)},

@@ -39,6 +39,12 @@ std::optional<int> param_int(const pugi::xml_node& node, const char* key) {
   return std::nullopt;
 }
 
+// Where a point lies on a road: station and offset, and how far it lies past the road's start
+// (negative) or end (positive) along the reference line (0 when it projects inside).
+struct Projection {
+  double s = 0.0, t = 0.0, beyond = 0.0;
+};
+
 // (s, t) of the point of `road`'s reference line nearest to p: a 1 m scan, then Newton steps.
 class RoadProjector {
  public:
@@ -53,7 +59,7 @@ class RoadProjector {
     }
   }
 
-  [[nodiscard]] std::pair<double, double> project(const Vec2& p) const {
+  [[nodiscard]] Projection project(const Vec2& p) const {
     std::size_t best = 0;
     double best_d = std::numeric_limits<double>::infinity();
     for (std::size_t i = 0; i < points_.size(); ++i) {
@@ -64,17 +70,27 @@ class RoadProjector {
       }
     }
     double s = stations_[best];
-    for (int it = 0; it < 6; ++it) {
+    for (int it = 0; it < 20; ++it) {
+      // Newton on (p - o(s)) . T(s) = 0, whose derivative is -(1 - curvature t): on a tight
+      // bend the plain tangent step (the derivative taken as -1) overshoots on the outside and
+      // never settles.
+      const Pose2 pose = road_.plan.at(s);
       const Vec3 o = surface_point(road_, s, 0.0);
       const double h = heading_at(road_, s);
-      const double ds = (p - Vec2(o.x(), o.y())).dot(Vec2(std::cos(h), std::sin(h)));
+      const Vec2 d = p - Vec2(o.x(), o.y());
+      const double along = d.dot(Vec2(std::cos(h), std::sin(h)));
+      const double across = d.dot(Vec2(-std::sin(h), std::cos(h)));
+      const double scale = 1.0 - pose.curvature * across;
+      const double ds = along / std::max(scale, 0.25);
       s = std::clamp(s + ds, 0.0, road_.length());
       if (std::abs(ds) < 1e-6) break;
     }
     const Vec3 o = surface_point(road_, s, 0.0);
     const double h = heading_at(road_, s);
-    const double t = (p - Vec2(o.x(), o.y())).dot(Vec2(-std::sin(h), std::cos(h)));
-    return {s, t};
+    const Vec2 d = p - Vec2(o.x(), o.y());
+    const double along = d.dot(Vec2(std::cos(h), std::sin(h)));
+    const bool at_end = s <= 0.0 || s >= road_.length();
+    return {s, d.dot(Vec2(-std::sin(h), std::cos(h))), at_end ? along : 0.0};
   }
 
  private:
@@ -185,20 +201,44 @@ class LaneLocator {
   }
 
   /// The OpenDRIVE road, lane and (s, t) of point p of SUMO lane `lane_id`; nullopt when the
-  /// lane has no road in the model.
+  /// lane has no road in the model. A point past an end of its road (netconvert stretches an
+  /// internal lane to where it cut the next lane) lies on the road linked there, if any: the
+  /// surface at that (x, y) is that road's.
   [[nodiscard]] std::optional<LanePoint> locate(const std::string& lane_id, const Vec2& p) {
     const auto it = lanes_.find(lane_id);
     if (it == lanes_.end()) return std::nullopt;
-    const int index = model_.road_index(it->second.road);
-    if (index < 0) return std::nullopt;
-    const ModelRoad& road = model_.roads[static_cast<std::size_t>(index)];
-    auto proj = projectors_.find(road.id);
-    if (proj == projectors_.end()) proj = projectors_.emplace(road.id, RoadProjector(road)).first;
-    const auto [s, t] = proj->second.project(p);
-    return LanePoint{&road, s, t, it->second};
+    const ModelRoad* road = road_of(it->second.road);
+    if (road == nullptr) return std::nullopt;
+    const Projection at = projector(*road).project(p);
+    if (std::abs(at.beyond) > kPastEnd_m) {
+      const std::optional<RoadLink>& link = at.beyond < 0.0 ? road->predecessor : road->successor;
+      const ModelRoad* next = link && link->element == RoadLink::Element::road ? road_of(link->id) : nullptr;
+      if (next != nullptr) {
+        const Projection on = projector(*next).project(p);
+        if (std::abs(on.beyond) <= kPastEnd_m) {
+          LaneRoad lane = it->second;
+          lane.lane.reset();  // not on this road's lane centre: height only
+          return LanePoint{next, on.s, on.t, lane};
+        }
+      }
+    }
+    return LanePoint{road, at.s, at.t, it->second};
   }
 
  private:
+  static constexpr double kPastEnd_m = 0.01;
+
+  [[nodiscard]] const ModelRoad* road_of(int id) const {
+    const int index = model_.road_index(id);
+    return index < 0 ? nullptr : &model_.roads[static_cast<std::size_t>(index)];
+  }
+
+  RoadProjector& projector(const ModelRoad& road) {
+    auto it = projectors_.find(road.id);
+    if (it == projectors_.end()) it = projectors_.emplace(road.id, RoadProjector(road)).first;
+    return it->second;
+  }
+
   const RoadModel& model_;
   std::unordered_map<std::string, LaneRoad> lanes_;
   std::unordered_map<int, RoadProjector> projectors_;
@@ -228,6 +268,7 @@ SumoNetCheck check_sumo_net(std::string_view net_xml, const RoadModel& model, co
   SumoNetCheck check;
   LaneLocator locator(net, model);
   std::vector<double> errors;
+  double worst_error = 0.0;
   std::unordered_map<std::string, Polyline3> lane_shapes;
   for (const pugi::xml_node& edge : net.children("edge")) {
     const bool internal = std::string_view(edge.attribute("function").as_string()) == "internal";
@@ -251,11 +292,19 @@ SumoNetCheck check_sumo_net(std::string_view net_xml, const RoadModel& model, co
           ++check.points_unmapped;
           continue;
         }
+        const double error = std::abs(p.z() - surface_point(*at->road, at->s, at->t).z());
         if (!at->lane.odr_shape) {
+          // netconvert's own curve where the OpenDRIVE lane folds: measured apart.
           ++check.points_netconvert_shape;
+          check.netconvert_shape_z_max_m = std::max(check.netconvert_shape_z_max_m, error);
           continue;
         }
-        errors.push_back(std::abs(p.z() - surface_point(*at->road, at->s, at->t).z()));
+        errors.push_back(error);
+        if (check.z_max_lane.empty() || errors.back() > worst_error) {
+          worst_error = errors.back();
+          check.z_max_lane = id;
+          check.z_max_point = p;
+        }
         if (at->lane.lane) {
           // Lane centre points lie on the OpenDRIVE lane centre.
           check.xy_max_m =

@@ -57,7 +57,14 @@ Polyline3 sample_road_curve(const ModelRoad& road, const std::function<double(do
                             double tolerance_m, double s_begin, double s_end) {
   if (s_end < 0.0) s_end = road.length();
   const double length = s_end - s_begin;
-  const int n = std::max(1, static_cast<int>(std::ceil(length)));
+  // Every metre, and closer where the road turns: at most kMaxTurnRad between samples, or an
+  // offset lane on a tight bend (a few metres of radius) would be cut short by its chords.
+  constexpr double kMaxTurnRad = 2.0 * M_PI / 180.0;
+  double turn = 0.0;
+  const int fine = std::max(1, static_cast<int>(std::ceil(length / 0.25)));
+  for (int i = 0; i < fine; ++i) turn += std::abs(road.plan.at(s_begin + length * (i + 0.5) / fine).curvature);
+  turn *= length / fine;
+  const int n = std::max({1, static_cast<int>(std::ceil(length)), static_cast<int>(std::ceil(turn / kMaxTurnRad))});
   Polyline3 line;
   std::vector<double> headings;
   line.reserve(static_cast<std::size_t>(n) + 1);
@@ -73,7 +80,6 @@ Polyline3 sample_road_curve(const ModelRoad& road, const std::function<double(do
     line.push_back(p);
     headings.push_back(h);
   }
-  constexpr double kMaxTurnRad = 2.0 * M_PI / 180.0;
   return simplify_3d(line, tolerance_m, headings, kMaxTurnRad);
 }
 

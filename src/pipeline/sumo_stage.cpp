@@ -142,6 +142,8 @@ SumoSummary finish_sumo(const SumoStageInput& in, SumoJob& job, OutputSet& files
     summary.points_checked = check.points;
     summary.z_max_m = check.z_max_m;
     summary.z_p99_m = check.z_p99_m;
+    summary.z_max_lane = check.z_max_lane;
+    summary.netconvert_lanes_z_max_m = check.netconvert_shape_z_max_m;
     summary.xy_max_m = check.xy_max_m;
     summary.max_handover_step_m = check.max_handover_step_m;
     summary.max_lane_grade_percent = check.max_lane_grade_percent;

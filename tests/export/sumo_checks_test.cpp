@@ -132,14 +132,22 @@ TEST(SumoChecks, NetLanesOnARampMapToTheirRoadsIncludingInternalLanes) {
   EXPECT_EQ(check.disallowed_lanes, 1u);
 }
 
-TEST(SumoChecks, InternalLanesNetconvertDrewAreLeftOut) {
+TEST(SumoChecks, InternalLanesNetconvertDrewAreMeasuredApart) {
   const RoadModel model = ramp_model();
   std::string net = kNet;
   const std::string shape = R"( shape="100,-1.5,10 110,-1.5,11" via)";
   net.replace(net.find(shape), shape.size(), " via");
+  // netconvert's own curve for it: 0.3 m beside the lane centre, 0.04 m above the surface.
+  const std::string lane = R"(shape="100,-1.5,10 110,-1.5,11")";
+  const std::size_t at = net.find(lane, net.find(":J_0_0"));
+  ASSERT_NE(at, std::string::npos);
+  net.replace(at, lane.size(), R"(shape="100,-1.8,10.04 110,-1.8,11")");
   const SumoNetCheck check = check_sumo_net(net, model, "ramp.net.xml");
   EXPECT_EQ(check.points, 6u);
   EXPECT_EQ(check.points_netconvert_shape, 2u);
+  EXPECT_NEAR(check.netconvert_shape_z_max_m, 0.04, 1e-9);
+  EXPECT_NEAR(check.z_max_m, 0.0, 1e-9);
+  EXPECT_NEAR(check.xy_max_m, 0.0, 1e-9);  // off the lane centre, but netconvert drew it
   EXPECT_EQ(check.points_unmapped, 0u);
 }
 

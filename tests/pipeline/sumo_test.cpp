@@ -81,6 +81,10 @@ TEST(Sumo, PotreroNetworkLoadsAndLiesOnTheSurface) {
   print(r.name, s);
   expect_sumo_loads(o.out_dir / s.file);
   expect_on_surface(s, 0.1, 0.01);
+  // Internal lanes whose OpenDRIVE lane centre bends tighter than its offset are drawn by
+  // netconvert (3 measured; 163 before connecting roads followed circular arcs).
+  EXPECT_LE(s.internal_lanes_by_netconvert, 5u);
+  EXPECT_LE(s.netconvert_lanes_z_max_m, 0.05);
   EXPECT_NEAR(static_cast<double>(s.edges), 184.0, 10.0);
   EXPECT_NEAR(static_cast<double>(s.junctions), 98.0, 5.0);
   EXPECT_EQ(s.traffic_lights, 0u);  // the extract has no signalled intersection
@@ -95,10 +99,13 @@ TEST(Sumo, NortheastNetworkLoadsAndLiesOnTheSurface) {
   const SumoSummary& s = *r.sumo;
   print(r.name, s);
   expect_sumo_loads(o.out_dir / s.file);
-  // Known defects: on edge -2889 (an 11 m road) netconvert moves a lane point 1.9 m off its
-  // OpenDRIVE lane centre, and one point of :J386_3_2 lies past the end of its connecting road,
-  // 0.19 m off; elsewhere lanes are within millimetres (z p99 0.004 m).
-  expect_on_surface(s, 0.2, 2.0);
+  // Known defect: on edge -2889 (an 11 m road) netconvert moves a lane point 1.9 m off its
+  // OpenDRIVE lane centre (its height stays within 0.08 m); elsewhere lanes are within
+  // millimetres (z p99 0.002 m). 133 internal lanes at turns too tight for their lane centre are
+  // netconvert's own curves, up to 0.32 m off the OpenDRIVE surface (measured apart).
+  expect_on_surface(s, 0.1, 2.0);
+  EXPECT_LE(s.internal_lanes_by_netconvert, 150u);
+  EXPECT_LE(s.netconvert_lanes_z_max_m, 0.4);
   EXPECT_NEAR(static_cast<double>(s.edges), 1929.0, 100.0);
   EXPECT_NEAR(static_cast<double>(s.junctions), 957.0, 50.0);
   EXPECT_EQ(s.traffic_lights, 323u);

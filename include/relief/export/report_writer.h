@@ -85,6 +85,8 @@ struct SumoSummary {
   std::map<std::string, double> max_grade_percent;      ///< the limits applied
   std::size_t points_checked = 0;
   double z_max_m = 0.0, z_p99_m = 0.0;           ///< lane points vs the OpenDRIVE surface
+  std::string z_max_lane;                        ///< SUMO lane of the z_max_m point
+  double netconvert_lanes_z_max_m = 0.0;         ///< the same for internal lanes netconvert drew
   double xy_max_m = 0.0;                         ///< lane centre points vs the OpenDRIVE lane centres
   double max_handover_step_m = 0.0;              ///< lane <-> internal lane height step
   double max_lane_grade_percent = 0.0;           ///< normal lanes
@@ -154,7 +156,7 @@ struct RunReport {
 /// max_percent, p99_percent}}}, junctions{max_gap_m, worst_junction, over_bound, bound_m,
 /// checked}, sumo{file, nodes, edges, connections, junctions, traffic_lights, lanes,
 /// internal_lanes, internal_lanes_by_netconvert, signals_mid_road, restricted_edges{class: n},
-/// max_grade_percent{class: %}, points_checked, z_max_m, z_p99_m, xy_max_m, max_handover_step_m,
+/// max_grade_percent{class: %}, points_checked, z_max_m, z_p99_m, z_max_lane, netconvert_lanes_z_max_m, xy_max_m, max_handover_step_m,
 /// max_lane_grade_percent, max_internal_lane_grade_percent, max_profile_grade_percent, netconvert_warnings,
 /// routes, step_length_s} | null, profiles{method, fit{...}, paper{...}}, methods{raw|paper|relief: {vs_dem,
 /// vs_dem_ground, vs_dem_structures, vs_reference, gradient, junctions, cut_fill, clearance}},

@@ -13,6 +13,7 @@
 #include <string>
 #include <string_view>
 
+#include "relief/geometry/types.h"
 #include "relief/roads/road_model.h"
 
 namespace relief {
@@ -26,10 +27,13 @@ struct SumoNetCheck {
   std::size_t points = 0;           ///< lane shape points compared with the surface
   std::size_t points_unmapped = 0;  ///< lane points whose OpenDRIVE road is unknown
   /// Points of internal lanes that netconvert drew itself (connections given without a shape,
-  /// where the OpenDRIVE lane centre folds): not on an OpenDRIVE lane, left out of the figures.
+  /// where the OpenDRIVE lane centre folds): not in the figures below, but measured apart.
   std::size_t points_netconvert_shape = 0;
+  double netconvert_shape_z_max_m = 0.0;  ///< largest |z_sumo - z_odr(x, y)| of those points
   double z_max_m = 0.0;  ///< largest |z_sumo - z_odr(x, y)|
   double z_p99_m = 0.0;
+  std::string z_max_lane;  ///< SUMO lane holding the point of z_max_m (empty when no point)
+  Vec3 z_max_point = Vec3::Zero();  ///< that point, in the network frame
   double xy_max_m = 0.0;  ///< largest horizontal distance of a lane centre point to its OpenDRIVE lane centre
   double max_handover_step_m =
       0.0;  ///< |z| step between a lane's end and the internal lane it feeds (and back)
