@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <limits>
+#include <mutex>
 #include <vector>
 
 #include "relief/core/errors.h"
@@ -61,6 +62,9 @@ struct CrsTransform::Impl {
   std::optional<double> accuracy;
   bool better_missing = false;
   std::string missing_grids;
+  // A PROJ context and its operations serve one thread at a time; the pipeline samples the DEM
+  // from a stage running beside another.
+  mutable std::mutex mutex;
 };
 
 CrsTransform::CrsTransform(std::string_view from, std::string_view to, std::optional<LonLatBox> area)
@@ -158,15 +162,18 @@ Vec2 transform_point(PJ* op, PJ_DIRECTION direction, const Vec2& p, const std::s
 }  // namespace
 
 Vec2 CrsTransform::apply(const Vec2& p) const {
+  const std::lock_guard lock(impl_->mutex);
   return transform_point(impl_->op.get(), PJ_FWD, p, impl_->name);
 }
 
 Vec2 CrsTransform::apply_inverse(const Vec2& p) const {
+  const std::lock_guard lock(impl_->mutex);
   return transform_point(impl_->op.get(), PJ_INV, p, impl_->name);
 }
 
 void CrsTransform::apply(std::span<Vec2> points) const {
   if (points.empty()) return;
+  const std::lock_guard lock(impl_->mutex);
   double* x = points.data()->data();
   double* y = x + 1;
   proj_trans_generic(impl_->op.get(), PJ_FWD, x, sizeof(Vec2), points.size(), y, sizeof(Vec2), points.size(),
@@ -180,6 +187,7 @@ void CrsTransform::apply(std::span<Vec2> points) const {
 
 Aabb2 CrsTransform::transform_bounds(const Aabb2& box) const {
   double xmin = 0, ymin = 0, xmax = 0, ymax = 0;
+  const std::lock_guard lock(impl_->mutex);
   if (!proj_trans_bounds(impl_->ctx.get(), impl_->op.get(), PJ_FWD, box.min.x(), box.min.y(), box.max.x(),
                          box.max.y(), &xmin, &ymin, &xmax, &ymax, 21)) {
     throw ProjectionError("cannot transform a bounding box with '" + impl_->name +

@@ -189,30 +189,35 @@ BuildResult build(const BuildOptions& options, Diagnostics& diagnostics, const P
     });
     report.reference_dems = reference->sources();
   }
-  timer.run("validate", [&] {
+  // Validation only reads the profiles and the DEM: it runs beside the outputs.
+  BackgroundStage<std::vector<MethodReport>> validation("validate (beside the outputs)", [&] {
+    std::vector<MethodReport> methods;
     const HeightValidator validator(raw, dem, reference ? &*reference : nullptr);
     // The fit found the crossings of different layers on the same stations already.
     const std::vector<GradeSeparation> separations =
         fit ? fit->separations : find_grade_separations(network, raw);
     if (wanted(ProfileMethod::raw)) {
-      report.methods.push_back(evaluate("raw", network, raw, raw, validator, separations, options, 0.0));
+      methods.push_back(evaluate("raw", network, raw, raw, validator, separations, options, 0.0));
     }
     if (paper) {
-      report.methods.push_back(
+      methods.push_back(
           evaluate("paper", network, paper->profiles, raw, validator, separations, options, paper_seconds));
     }
     if (fit) {
-      report.methods.push_back(
+      methods.push_back(
           evaluate("relief", network, fit->profiles, raw, validator, separations, options, fit_seconds));
     }
+    return methods;
+  });
+  const auto take_validation = [&] {
+    report.methods = validation.take(timer);
     for (const MethodReport& m : report.methods) {
       if (m.method != report.profile_method) continue;
       report.heights = m.all;
       report.gradient = m.gradient;
       report.junctions = m.junctions;
     }
-    return 0;
-  });
+  };
 
   // Every output goes to a temporary first; all are renamed together at the end.
   std::error_code ec;
@@ -237,9 +242,10 @@ BuildResult build(const BuildOptions& options, Diagnostics& diagnostics, const P
                       [&] { return build_road_model(network, profiles, options.road_model, diagnostics); });
     built->model.name = report.name;
   }
+  std::optional<BackgroundStage<OpenDriveSummary>> xodr_check;
   if (options.outputs.count(Output::xodr)) {
     const RoadModel& model = built->model;
-    const std::string xodr = timer.run("write OpenDRIVE", [&] {
+    std::string xodr = timer.run("write OpenDRIVE", [&] {
       OpenDriveOptions odr;
       odr.rev_minor = options.opendrive_rev_minor;
       odr.date = report.created_utc;
@@ -249,8 +255,9 @@ BuildResult build(const BuildOptions& options, Diagnostics& diagnostics, const P
       files.add(path_of(".xodr"), [&](std::ostream& out) { out << written; });
       return written;
     });
-    timer.run("check OpenDRIVE", [&] {
-      // The file read back is the model written; lane borders meet at every link.
+    // The file read back is the model written; lane borders meet at every link. Only reads the
+    // model and the text, so it runs beside the outputs that follow.
+    xodr_check.emplace("check OpenDRIVE (beside the outputs)", [&, xodr = std::move(xodr)] {
       const RoadModel back = parse_opendrive(xodr, report.name + ".xodr");
       const ModelDeviation dev = compare_models(model, back);
       const LinkContinuity links = check_link_continuity(model);
@@ -271,8 +278,7 @@ BuildResult build(const BuildOptions& options, Diagnostics& diagnostics, const P
       o.round_trip_max_z_m = dev.max_z_m;
       o.round_trip_points = dev.points;
       o.elevation_max_deviation_m = built->stats.max_elevation_deviation_m;
-      report.opendrive = o;
-      return 0;
+      return o;
     });
     report.outputs.push_back(report.name + ".xodr");
     result.written.push_back(path_of(".xodr"));
@@ -289,6 +295,8 @@ BuildResult build(const BuildOptions& options, Diagnostics& diagnostics, const P
     report.mesh = write_mesh_outputs(in, files, timer, result.written, report.outputs);
   }
   if (sumo) report.sumo = finish_sumo(*sumo_in, *sumo, files, timer, result.written, report.outputs);
+  if (xodr_check) report.opendrive = xodr_check->take(timer);
+  take_validation();
   if (options.outputs.count(Output::html)) {
     report.outputs.push_back("report.html");
     result.written.push_back(options.out_dir / "report.html");

@@ -1,5 +1,6 @@
 #include "pipeline/mesh_stage.h"
 
+#include <optional>
 #include <unordered_map>
 
 #include "relief/export/mesh_report.h"
@@ -91,9 +92,16 @@ MeshSummary write_mesh_outputs(const MeshStageInput& in, OutputSet& files, Stage
   add_mesh(roads.sidewalk, "Road_Sidewalk", SurfaceKind::sidewalk);
   if (terrain) add_mesh(terrain->terrain, "Terrain", SurfaceKind::terrain);
 
-  // Quality of every mesh, of the paved surface, and of the ground (roads + terrain) as a whole.
-  std::vector<MeshQuality> quality = timer.run("check meshes", [&] {
-    std::vector<MeshQuality> q;
+  // Quality of every mesh, of the paved surface, and of the ground (roads + terrain) as a whole;
+  // it only reads the scene, so it runs beside the file writers.
+  struct Checked {
+    std::vector<MeshQuality> quality;
+    std::size_t ground_holes = 0, ground_components = 0;
+    std::optional<double> seam_road_terrain_m;
+  };
+  BackgroundStage<Checked> check("check meshes (beside the files)", [&] {
+    Checked c;
+    std::vector<MeshQuality>& q = c.quality;
     for (const TriangleMesh& m : scene.meshes) q.push_back(analyse_mesh(m));
     if (terrain) {
       // Roads on the ground and terrain as one surface: the terrain took the outline's exact
@@ -103,16 +111,12 @@ MeshSummary write_mesh_outputs(const MeshStageInput& in, OutputSet& files, Stage
       ground_all = weld_identical_vertices(ground_all);
       ground_all.name = "Ground (Road_Road on the ground + Terrain, welded)";
       q.push_back(analyse_mesh(ground_all));
-      summary.ground_holes = q.back().holes;
-      summary.ground_components = q.back().components;
-      summary.seam_road_terrain_m = seam_gap(ground_road, terrain->terrain, kSeamReachM).max_gap_m;
+      c.ground_holes = q.back().holes;
+      c.ground_components = q.back().components;
+      c.seam_road_terrain_m = seam_gap(ground_road, terrain->terrain, kSeamReachM).max_gap_m;
     }
-    return q;
+    return c;
   });
-  for (const MeshQuality& q : quality) {
-    if (q.name == "Road_Road") summary.road = q;
-    if (q.name == "Terrain") summary.terrain = q;
-  }
 
   // Files: every format asked for, then the report.
   for (const MeshFormat format : options.mesh_formats) {
@@ -126,6 +130,17 @@ MeshSummary write_mesh_outputs(const MeshStageInput& in, OutputSet& files, Stage
       }
       return 0;
     });
+  }
+  Checked checked = check.take(timer);
+  const std::vector<MeshQuality>& quality = checked.quality;
+  if (terrain) {
+    summary.ground_holes = checked.ground_holes;
+    summary.ground_components = checked.ground_components;
+    summary.seam_road_terrain_m = checked.seam_road_terrain_m;
+  }
+  for (const MeshQuality& q : quality) {
+    if (q.name == "Road_Road") summary.road = q;
+    if (q.name == "Terrain") summary.terrain = q;
   }
   MeshReportExtras extras;
   extras.file = in.name;

@@ -2,6 +2,7 @@
 // Stages shared by `build` and `info`: timing, reading the OSM file and building the network.
 
 #include <chrono>
+#include <future>
 #include <string>
 #include <utility>
 #include <vector>
@@ -43,6 +44,32 @@ class StageTimer {
   ProgressFn progress_;
   std::chrono::steady_clock::time_point start_;
   std::vector<std::pair<std::string, double>> timings_;
+};
+
+/// A stage run on a thread of its own beside the stages that follow it (the machine has more
+/// than one core; the work must only read what the main thread does not change meanwhile).
+/// take() waits for it, records its time under `stage` and returns its value (or rethrows).
+template <typename T>
+class BackgroundStage {
+ public:
+  template <typename F>
+  BackgroundStage(std::string stage, F&& f)
+      : stage_(std::move(stage)), future_(std::async(std::launch::async, [f = std::forward<F>(f)]() mutable {
+          const auto t0 = std::chrono::steady_clock::now();
+          T value = f();
+          return std::pair<T, double>(std::move(value),
+                                      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+        })) {}
+
+  T take(StageTimer& timer) {
+    auto [value, seconds] = future_.get();
+    timer.add(stage_, seconds);
+    return std::move(value);
+  }
+
+ private:
+  std::string stage_;
+  std::future<std::pair<T, double>> future_;
 };
 
 struct LoadedNetwork {
