@@ -166,6 +166,13 @@ Pose2 lane_inner_pose(const ModelRoad& m, bool at_start, int lane) {
   return p;
 }
 
+// The centre of a lane of width w whose inner border runs along `inner` (lanes lie right of
+// their direction of travel).
+Pose2 to_lane_centre(Pose2 inner, double w) {
+  inner.position += 0.5 * w * Vec2(std::sin(inner.heading), -std::cos(inner.heading));
+  return inner;
+}
+
 double lane_width_at(const ModelRoad& m, bool at_start, int lane) {
   const double s = at_start ? 0.0 : m.length();
   return std::abs(lane_border_t(m, s, lane) - lane_border_t(m, s, lane < 0 ? lane + 1 : lane - 1));
@@ -706,18 +713,19 @@ RoadModelBuild build_road_model(const RoadNetwork& network, const std::vector<Ro
                    std::to_string(b.id) + ":" + std::to_string(lb);
           c.type = a.type;
           c.speed_mps = std::min(a.speed_mps.value_or(10.0), b.speed_mps.value_or(10.0));
-          const Pose2 from = lane_inner_pose(a, in.at_start, la);
-          const Pose2 dest = lane_inner_pose(b, to.at_start, lb);
-          // The roundest arc the corner allows: the lane lies on the inside of a right turn and
-          // must not fold.
+          // The reference line runs along the lane's centre (the lane kept right of it by a lane
+          // offset of half its width), as the roundest arc the corner allows: then neither
+          // border of a tight turn folds before the centre is tighter than half a lane.
+          const double w0 = lane_width_at(a, in.at_start, la), w1 = lane_width_at(b, to.at_start, lb);
+          const Pose2 from = to_lane_centre(lane_inner_pose(a, in.at_start, la), w0);
+          const Pose2 dest = to_lane_centre(lane_inner_pose(b, to.at_start, lb), w1);
           c.plan = PlanView(corner_connector(from, dest));
           const double len = c.plan.length();
           const auto [z0, g0] = end_height(a, in.at_start, /*along_reference=*/la < 0);
           const auto [z1, g1] = end_height(b, to.at_start, /*along_reference=*/lb < 0);
           c.elevation = hermite_profile(len, z0, g0, z1, g1);
           c.superelevation = CubicProfile::constant(0.0);
-          c.lane_offset = CubicProfile::constant(0.0);
-          const double w0 = lane_width_at(a, in.at_start, la), w1 = lane_width_at(b, to.at_start, lb);
+          c.lane_offset = CubicProfile({CubicPiece{0.0, Poly3{0.5 * w0, 0.5 * (w1 - w0) / len, 0.0, 0.0}}});
           LaneSection sec;
           LaneModel lane;
           lane.id = -1;

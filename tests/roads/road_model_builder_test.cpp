@@ -53,12 +53,24 @@ TEST(RoadModelBuilder, TJunctionOnASlope) {
   EXPECT_EQ(c.borders_checked, 6u * 2u * 2u);  // 6 connecting roads, two ends, two borders
   EXPECT_LT(c.max_horizontal_m, 1e-6);
   EXPECT_LT(c.max_vertical_m, 1e-6);
-  // Connecting roads carry the plane's grade at both ends (slope continuity).
+  // Connecting roads run along their lane's centre (a lane offset of half a lane) and start
+  // and end at the height and grade of the roads they join: the streets keep the plane's
+  // height along their reference lines, level across, and so does the connecting road.
   for (const ModelRoad& r : b.model.roads) {
     if (r.junction < 0) continue;
-    const Vec3 start = surface_point(r, 0.0, 0.0), end = surface_point(r, r.length(), 0.0);
-    EXPECT_NEAR(start.z(), plane(start.head<2>()), 1e-6) << r.name;
-    EXPECT_NEAR(end.z(), plane(end.head<2>()), 1e-6) << r.name;
+    EXPECT_NEAR(lane_centre_t(r, 0.0, -1), 0.0, 1e-9) << r.name;
+    EXPECT_NEAR(lane_centre_t(r, r.length(), -1), 0.0, 1e-9) << r.name;
+    for (const bool at_start : {true, false}) {
+      const double s = at_start ? 0.0 : r.length();
+      const Pose2 pose = r.plan.at(s);
+      const Vec2 d(std::cos(pose.heading), std::sin(pose.heading));
+      // The joined street's reference line point beside this end: the plane's height there.
+      const ModelRoad& street = b.model.roads[b.model.road_index((at_start ? r.predecessor : r.successor)->id)];
+      const Vec2 n(-std::sin(street.plan.at(0.0).heading), std::cos(street.plan.at(0.0).heading));
+      const Vec2 on_street = pose.position - n * n.dot(pose.position - street.plan.at(0.0).position);
+      EXPECT_NEAR(r.elevation.value(s), plane(on_street), 1e-6) << r.name;
+      EXPECT_NEAR(r.elevation.derivative(s), plane(on_street + d) - plane(on_street), 1e-6) << r.name;
+    }
   }
   EXPECT_LT(b.stats.max_elevation_deviation_m, 1e-6);
 }

@@ -33,10 +33,10 @@ struct SumoOptions {
   /// follows, in plan and in height (the polylines are the curves sampled every metre, then
   /// simplified to this tolerance).
   double shape_tolerance_m = 0.01;
-  double junction_inset_m = 0.05;
+  double junction_inset_m = 0.05;  ///< junction outlines stay this far inside the road ends
   /// A road that loops back to its own junction becomes two edges per direction (SUMO has no
   /// self-loops); one shorter than this is left out (turning circles) and reported.
-  double min_loop_length_m = 30.0;  ///< junction outlines stay this far inside the road ends
+  double min_loop_length_m = 30.0;
   /// Vehicle classes kept off lanes steeper than a grade (percent): written as `disallow`.
   std::map<std::string, double> max_grade_percent = {
       {"truck", 15.0}, {"trailer", 10.0}, {"bus", 20.0}, {"coach", 15.0}};
