@@ -214,6 +214,7 @@ std::string report_json(const RunReport& r) {
                  {"z_max_lane", o.z_max_lane},
                  {"netconvert_lanes_z_max_m", round_to(o.netconvert_lanes_z_max_m, 1e-4)},
                  {"xy_max_m", round_to(o.xy_max_m, 1e-4)},
+                 {"xy_max_lane", o.xy_max_lane},
                  {"max_handover_step_m", round_to(o.max_handover_step_m, 1e-4)},
                  {"max_lane_grade_percent", round_to(o.max_lane_grade_percent, 1e-2)},
                  {"max_internal_lane_grade_percent", round_to(o.max_internal_lane_grade_percent, 1e-2)},

@@ -307,8 +307,11 @@ SumoNetCheck check_sumo_net(std::string_view net_xml, const RoadModel& model, co
         }
         if (at->lane.lane) {
           // Lane centre points lie on the OpenDRIVE lane centre.
-          check.xy_max_m =
-              std::max(check.xy_max_m, std::abs(at->t - lane_centre_t(*at->road, at->s, *at->lane.lane)));
+          const double off = std::abs(at->t - lane_centre_t(*at->road, at->s, *at->lane.lane));
+          if (off > check.xy_max_m) {
+            check.xy_max_m = off;
+            check.xy_max_lane = id;
+          }
         }
       }
     }

@@ -145,6 +145,7 @@ SumoSummary finish_sumo(const SumoStageInput& in, SumoJob& job, OutputSet& files
     summary.z_max_lane = check.z_max_lane;
     summary.netconvert_lanes_z_max_m = check.netconvert_shape_z_max_m;
     summary.xy_max_m = check.xy_max_m;
+    summary.xy_max_lane = check.xy_max_lane;
     summary.max_handover_step_m = check.max_handover_step_m;
     summary.max_lane_grade_percent = check.max_lane_grade_percent;
     summary.max_internal_lane_grade_percent = check.max_internal_lane_grade_percent;

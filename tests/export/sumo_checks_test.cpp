@@ -132,6 +132,21 @@ TEST(SumoChecks, NetLanesOnARampMapToTheirRoadsIncludingInternalLanes) {
   EXPECT_EQ(check.disallowed_lanes, 1u);
 }
 
+TEST(SumoChecks, NamesTheLanesOfTheWorstPoints) {
+  const RoadModel model = ramp_model();
+  std::string net = kNet;
+  // Lane 3_0's far end 0.03 m high and 0.2 m off its lane centre; the plane z = 0.1 x keeps
+  // the surface height at the moved point.
+  const std::string end = "210,-1.5,21\"";
+  net.replace(net.find(end), end.size(), "210,-1.7,21.03\"");
+  const SumoNetCheck check = check_sumo_net(net, model, "ramp.net.xml");
+  EXPECT_NEAR(check.z_max_m, 0.03, 1e-9);
+  EXPECT_EQ(check.z_max_lane, "3_0");
+  EXPECT_LT((check.z_max_point - Vec3(210.0, -1.7, 21.03)).norm(), 1e-9);
+  EXPECT_NEAR(check.xy_max_m, 0.2, 1e-9);
+  EXPECT_EQ(check.xy_max_lane, "3_0");
+}
+
 TEST(SumoChecks, InternalLanesNetconvertDrewAreMeasuredApart) {
   const RoadModel model = ramp_model();
   std::string net = kNet;

@@ -88,6 +88,7 @@ struct SumoSummary {
   std::string z_max_lane;                        ///< SUMO lane of the z_max_m point
   double netconvert_lanes_z_max_m = 0.0;         ///< the same for internal lanes netconvert drew
   double xy_max_m = 0.0;                         ///< lane centre points vs the OpenDRIVE lane centres
+  std::string xy_max_lane;                       ///< SUMO lane of the xy_max_m point
   double max_handover_step_m = 0.0;              ///< lane <-> internal lane height step
   double max_lane_grade_percent = 0.0;           ///< normal lanes
   double max_internal_lane_grade_percent = 0.0;  ///< junction-internal lanes (connecting roads)
@@ -156,7 +157,7 @@ struct RunReport {
 /// max_percent, p99_percent}}}, junctions{max_gap_m, worst_junction, over_bound, bound_m,
 /// checked}, sumo{file, nodes, edges, connections, junctions, traffic_lights, lanes,
 /// internal_lanes, internal_lanes_by_netconvert, signals_mid_road, restricted_edges{class: n},
-/// max_grade_percent{class: %}, points_checked, z_max_m, z_p99_m, z_max_lane, netconvert_lanes_z_max_m, xy_max_m, max_handover_step_m,
+/// max_grade_percent{class: %}, points_checked, z_max_m, z_p99_m, z_max_lane, netconvert_lanes_z_max_m, xy_max_m, xy_max_lane, max_handover_step_m,
 /// max_lane_grade_percent, max_internal_lane_grade_percent, max_profile_grade_percent, netconvert_warnings,
 /// routes, step_length_s} | null, profiles{method, fit{...}, paper{...}}, methods{raw|paper|relief: {vs_dem,
 /// vs_dem_ground, vs_dem_structures, vs_reference, gradient, junctions, cut_fill, clearance}},

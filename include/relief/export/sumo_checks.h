@@ -35,6 +35,7 @@ struct SumoNetCheck {
   std::string z_max_lane;  ///< SUMO lane holding the point of z_max_m (empty when no point)
   Vec3 z_max_point = Vec3::Zero();  ///< that point, in the network frame
   double xy_max_m = 0.0;  ///< largest horizontal distance of a lane centre point to its OpenDRIVE lane centre
+  std::string xy_max_lane;  ///< SUMO lane holding that point
   double max_handover_step_m =
       0.0;  ///< |z| step between a lane's end and the internal lane it feeds (and back)
   std::size_t handovers = 0;
