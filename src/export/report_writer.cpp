@@ -242,6 +242,8 @@ std::string report_json(const RunReport& r) {
               {"sliver_triangles", q->sliver_triangles}};
     };
     j["mesh"] = {{"files", m.files},
+                 {"tile_size_m", m.tile_size_m},
+                 {"tile_files", m.tile_files},
                  {"junctions_meshed", m.junctions_meshed},
                  {"junctions_failed", m.junctions_failed},
                  {"xodr_surface_max_distance_m", round_to(m.xodr_surface_max_distance_m, 1e-4)},

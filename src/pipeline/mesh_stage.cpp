@@ -6,6 +6,7 @@
 #include "relief/export/mesh_report.h"
 #include "relief/export/mesh_writer.h"
 #include "relief/geometry/mesh_quality.h"
+#include "relief/geometry/mesh_tiles.h"
 #include "relief/roads/road_mesh.h"
 #include "relief/terrain/terrain_tin.h"
 
@@ -127,6 +128,24 @@ MeshSummary write_mesh_outputs(const MeshStageInput& in, OutputSet& files, Stage
         written.push_back(options.out_dir / f.filename);
         names.push_back(f.filename);
         summary.files.push_back(f.filename);
+      }
+      return 0;
+    });
+  }
+  if (options.mesh_tile_size_m > 0.0) {
+    summary.tile_size_m = options.mesh_tile_size_m;
+    timer.run("write tiles", [&] {
+      for (const SceneTile& tile : split_into_tiles(scene, options.mesh_tile_size_m)) {
+        const std::string base = in.name + "_Tile_" + std::to_string(tile.x) + "_" + std::to_string(tile.y);
+        for (const MeshFormat format : options.mesh_formats) {
+          for (EncodedFile& f : encode_mesh_scene(tile.scene, format, base)) {
+            const std::string bytes = std::move(f.bytes);
+            files.add(options.out_dir / f.filename, [&](std::ostream& out) { out << bytes; });
+            written.push_back(options.out_dir / f.filename);
+            names.push_back(f.filename);
+            summary.tile_files.push_back(f.filename);
+          }
+        }
       }
       return 0;
     });

@@ -160,6 +160,16 @@ assert c.find("input/route-files").get("value") == "hill.rou.xml"
 PY
 check "sumo runs the config" bash -c "cd '$out' && sumo -c hill.sumocfg --end 30 --no-step-log true >'$RELIEF_TMP/sumo.log' 2>&1 \
   || { cat '$RELIEF_TMP/sumo.log'; exit 1; }"
+# --mesh-tile-size: the scene also cut into tiles; a size that is not positive is exit 2.
+out="$RELIEF_TMP/tiles"
+check "mesh tiles" run 0 "$out" build --osm "$fix/hill.osm" --dem "$fix/hill_dem.asc" --out "$out" --quiet \
+  --outputs mesh --mesh-formats glb --mesh-tile-size 50
+tile=$(ls "$out"/hill_Tile_*_*.glb 2>/dev/null | head -1)
+check "mesh tiles written" test -n "$tile"
+check "mesh tile re-reads" run 0 "" mesh-report "${tile:-$out/none.glb}"
+check "bad --mesh-tile-size" run 2 "" build --osm "$fix/hill.osm" --dem "$fix/hill_dem.asc" --out "$RELIEF_TMP/x" \
+  --mesh-tile-size 0
+
 check "bad --vclass-max-grade" run 2 "" build --osm "$fix/hill.osm" --dem "$fix/hill_dem.asc" --out "$RELIEF_TMP/x" \
   --vclass-max-grade truck=abc
 

@@ -9,6 +9,7 @@
 #include <iostream>
 #include <map>
 #include <optional>
+#include <sstream>
 #include <stdexcept>
 #include <vector>
 
@@ -222,6 +223,43 @@ TEST(MeshPipeline, NorthEastSceneFiguresAndReimport) {
 TEST(MeshPipeline, PotreroFilesReimportWithAssimp) {
   RELIEF_REQUIRE_SHARED_DATA();
   expect_files_reimport(potrero());
+}
+
+// --mesh-tile-size: the scene cut into 250 m tiles, written beside the whole scene; read back,
+// the tiles hold every triangle of every mesh once, each inside its tile's bounds, and carry
+// the georeference and their place in the grid.
+TEST(MeshPipeline, PotreroTilesAddUpToTheScene) {
+  RELIEF_REQUIRE_SHARED_DATA();
+  BuildOptions o = scene_options(test::potrero_options("mesh_potrero_tiles"));
+  o.mesh_formats = {MeshFormat::glb};
+  o.mesh_tile_size_m = 250.0;
+  const SceneBuild b = build_scene(o);
+  const MeshSummary& m = summary(b);
+  ASSERT_FALSE(m.tile_files.empty());
+  EXPECT_EQ(m.tile_size_m, 250.0);
+  const MeshScene whole = read_mesh_file(o.out_dir / (b.result.report.name + ".glb"));
+  std::map<std::string, std::size_t> triangles;
+  for (const std::string& file : m.tile_files) {
+    ASSERT_TRUE(file.starts_with(b.result.report.name + "_Tile_")) << file;
+    const MeshScene tile = read_mesh_file(o.out_dir / file);
+    ASSERT_TRUE(tile.metadata.contains("relief:tile_bounds")) << file;
+    EXPECT_EQ(tile.metadata.at("relief:crs"), whole.metadata.at("relief:crs"));
+    std::istringstream bounds(tile.metadata.at("relief:tile_bounds"));
+    double x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+    bounds >> x0 >> y0 >> x1 >> y1;
+    EXPECT_NEAR(x1 - x0, 250.0, 1e-9);
+    for (const TriangleMesh& mesh : tile.meshes) {
+      triangles[mesh.name] += mesh.triangles.size();
+      for (const auto& t : mesh.triangles) {
+        const Vec3 c = (mesh.vertices[t[0]] + mesh.vertices[t[1]] + mesh.vertices[t[2]]) / 3.0;
+        EXPECT_GE(c.x(), x0 - 1e-3);  // float storage
+        EXPECT_LE(c.x(), x1 + 1e-3);
+        EXPECT_GE(c.y(), y0 - 1e-3);
+        EXPECT_LE(c.y(), y1 + 1e-3);
+      }
+    }
+  }
+  for (const TriangleMesh& mesh : whole.meshes) EXPECT_EQ(triangles[mesh.name], mesh.triangles.size()) << mesh.name;
 }
 
 TEST(MeshPipeline, PotreroFbxImportsInBlender) {

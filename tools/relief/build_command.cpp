@@ -41,6 +41,7 @@ struct BuildArgs {
   bool no_terrain = false;
   double mesh_tolerance_m = 0.02;
   double terrain_tolerance_m = 0.25;
+  double mesh_tile_size_m = 0.0;
 };
 
 void print_summary(const BuildResult& result) {
@@ -114,6 +115,10 @@ void print_summary(const BuildResult& result) {
     out << "  mesh       ";
     for (const std::string& f : m.files) out << f << " ";
     out << "\n";
+    if (!m.tile_files.empty()) {
+      out << "  mesh       " << m.tile_files.size() << " tile files of " << fixed(m.tile_size_m, 0)
+          << " m tiles, " << r.name << "_Tile_X_Y.*\n";
+    }
     if (m.road) {
       out << "  mesh       Road_Road " << m.road->triangles << " triangles, " << m.junctions_meshed
           << " junctions (" << m.junctions_failed << " left open), " << m.road->non_manifold_edges
@@ -219,6 +224,10 @@ Runner add_build_command(CLI::App& app) {
                   "3D scene: largest vertical error of the simplified terrain vs the DEM, m")
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
+  cmd->add_option("--mesh-tile-size", args->mesh_tile_size_m,
+                  "3D scene: also write it cut into square tiles of this size, m, as NAME_Tile_X_Y "
+                  "(CARLA large maps)")
+      ->check(CLI::PositiveNumber);
   cmd->add_flag("--no-compare", args->no_compare,
                 "run only the chosen profile method (no comparison in the report)");
 
@@ -292,6 +301,7 @@ Runner add_build_command(CLI::App& app) {
       options.terrain = !args->no_terrain;
       options.road_mesh.tolerance_m = args->mesh_tolerance_m;
       options.terrain_options.vertical_tolerance_m = args->terrain_tolerance_m;
+      options.mesh_tile_size_m = args->mesh_tile_size_m;
       options.demand.trips = args->routes;
       options.demand.end_s = args->route_end_s;
       options.demand.seed = args->seed;

@@ -100,7 +100,9 @@ struct SumoSummary {
 
 /// The 3D scene written, and its quality (the full figures are in mesh_report.json).
 struct MeshSummary {
-  std::vector<std::string> files;
+  std::vector<std::string> files;  ///< the whole scene's
+  double tile_size_m = 0.0;        ///< 0: no tiles written
+  std::vector<std::string> tile_files;
   std::size_t junctions_meshed = 0, junctions_failed = 0;
   double xodr_surface_max_distance_m = 0.0;  ///< road mesh vs the OpenDRIVE surface
   double seam_road_junction_m = 0.0;

@@ -69,6 +69,9 @@ struct BuildOptions {
   bool terrain = true;  ///< the Terrain mesh under and around the roads
   TerrainOptions terrain_options;
   std::set<MeshFormat> mesh_formats = {MeshFormat::glb, MeshFormat::obj, MeshFormat::fbx};
+  /// Besides the whole scene, the scene cut into tiles of this size (m) in every format, as
+  /// NAME_Tile_X_Y (see split_into_tiles); 0: no tiles.
+  double mesh_tile_size_m = 0.0;
 };
 
 struct BuildResult {

@@ -1,0 +1,108 @@
+#include "relief/geometry/mesh_tiles.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <map>
+#include <string>
+#include <utility>
+
+#include "relief/core/errors.h"
+#include "relief/core/number_format.h"
+
+namespace relief {
+namespace {
+
+constexpr std::uint32_t kUnused = ~std::uint32_t{0};
+
+// The triangles `ids` of `mesh` as a mesh of their own; `index` (one entry per vertex of
+// `mesh`, all kUnused) is left as it was found.
+TriangleMesh extract(const TriangleMesh& mesh, const std::vector<std::uint32_t>& ids,
+                     std::vector<std::uint32_t>& index) {
+  TriangleMesh out;
+  out.name = mesh.name;
+  out.kind = mesh.kind;
+  const bool normals = mesh.normals.size() == mesh.vertices.size();
+  const bool uvs = mesh.uvs.size() == mesh.vertices.size();
+  out.triangles.reserve(ids.size());
+  for (const std::uint32_t id : ids) {
+    std::array<std::uint32_t, 3> t{};
+    for (std::size_t k = 0; k < 3; ++k) {
+      const std::uint32_t v = mesh.triangles[id][k];
+      if (index[v] == kUnused) {
+        index[v] = static_cast<std::uint32_t>(out.vertices.size());
+        out.vertices.push_back(mesh.vertices[v]);
+        if (normals) out.normals.push_back(mesh.normals[v]);
+        if (uvs) out.uvs.push_back(mesh.uvs[v]);
+      }
+      t[k] = index[v];
+    }
+    out.triangles.push_back(t);
+  }
+  for (const std::uint32_t id : ids) {
+    for (const std::uint32_t v : mesh.triangles[id]) index[v] = kUnused;
+  }
+  return out;
+}
+
+}  // namespace
+
+std::vector<SceneTile> split_into_tiles(const MeshScene& scene, double size_m) {
+  if (!(size_m > 0.0) || !std::isfinite(size_m)) {
+    throw InvalidInput("tiles: the tile size must be positive and finite (got " + std::to_string(size_m) + ")");
+  }
+  // Grid cell of every triangle, per mesh; the cells used, in row-major order.
+  using Cell = std::pair<long long, long long>;  // (row, column): sorts row-major
+  std::map<Cell, std::vector<std::vector<std::uint32_t>>> cells;
+  for (std::size_t m = 0; m < scene.meshes.size(); ++m) {
+    const TriangleMesh& mesh = scene.meshes[m];
+    for (std::size_t i = 0; i < mesh.triangles.size(); ++i) {
+      Vec3 c = Vec3::Zero();
+      for (const std::uint32_t v : mesh.triangles[i]) {
+        if (v >= mesh.vertices.size()) {
+          throw InvalidInput("tiles: mesh '" + mesh.name + "' has a vertex index out of range");
+        }
+        c += mesh.vertices[v];
+      }
+      c /= 3.0;
+      const Cell cell{static_cast<long long>(std::floor(c.y() / size_m)),
+                      static_cast<long long>(std::floor(c.x() / size_m))};
+      auto& per_mesh = cells[cell];
+      if (per_mesh.empty()) per_mesh.resize(scene.meshes.size());
+      per_mesh[m].push_back(static_cast<std::uint32_t>(i));
+    }
+  }
+  if (cells.empty()) return {};
+  long long min_row = cells.begin()->first.first, min_col = cells.begin()->first.second;
+  for (const auto& [cell, per_mesh] : cells) min_col = std::min(min_col, cell.second);
+
+  std::vector<std::vector<std::uint32_t>> index(scene.meshes.size());
+  for (std::size_t m = 0; m < scene.meshes.size(); ++m) index[m].assign(scene.meshes[m].vertices.size(), kUnused);
+  std::vector<SceneTile> tiles;
+  tiles.reserve(cells.size());
+  for (const auto& [cell, per_mesh] : cells) {
+    SceneTile tile;
+    tile.x = static_cast<int>(cell.second - min_col);
+    tile.y = static_cast<int>(cell.first - min_row);
+    tile.bounds.extend(Vec2(static_cast<double>(cell.second) * size_m, static_cast<double>(cell.first) * size_m));
+    tile.bounds.extend(
+        Vec2(static_cast<double>(cell.second + 1) * size_m, static_cast<double>(cell.first + 1) * size_m));
+    tile.scene.frame = scene.frame;
+    tile.scene.metadata = scene.metadata;
+    tile.scene.metadata["relief:tile"] = std::to_string(tile.x) + " " + std::to_string(tile.y);
+    std::string bounds;
+    for (const double v : {tile.bounds.min.x(), tile.bounds.min.y(), tile.bounds.max.x(), tile.bounds.max.y()}) {
+      if (!bounds.empty()) bounds += ' ';
+      append_fixed(bounds, v, 3);
+    }
+    tile.scene.metadata["relief:tile_bounds"] = bounds;
+    for (std::size_t m = 0; m < scene.meshes.size(); ++m) {
+      if (per_mesh[m].empty()) continue;
+      tile.scene.meshes.push_back(extract(scene.meshes[m], per_mesh[m], index[m]));
+    }
+    tiles.push_back(std::move(tile));
+  }
+  return tiles;
+}
+
+}  // namespace relief
