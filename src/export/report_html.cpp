@@ -14,6 +14,7 @@
 #include "relief/core/errors.h"
 #include "relief/core/number_format.h"
 #include "relief/export/geojson_writer.h"
+#include "relief/geometry/polyline.h"
 #include "relief/roads/highway_class.h"
 #include "relief/roads/validation.h"
 
@@ -639,13 +640,17 @@ void map_road(std::string& h, const MapFrame& f, const Road& road, const RoadPro
               const ColourScale& cs, const Value& value) {
   if (p.size() < 2) return;
   const std::string structure = road.attributes.bridge ? " br" : road.attributes.tunnel ? " tu" : "";
-  std::vector<std::uint8_t> keep(p.size(), 0);
   const auto emit = [&](std::size_t a, std::size_t b, const std::string& cls) {
-    keep[a] = keep[b] = 1;
-    douglas_peucker(p.xy, a, b, kMapToleranceM, keep);
+    // Douglas-Peucker on the perpendicular distance in plan.
+    const std::vector<std::uint8_t> keep =
+        douglas_peucker(b - a + 1, kMapToleranceM, [&](std::size_t i, std::size_t k, std::size_t j) {
+          const Vec2 d = p.xy[a + j] - p.xy[a + i], v = p.xy[a + k] - p.xy[a + i];
+          const double len = d.norm();
+          return len > 0.0 ? std::abs(d.x() * v.y() - d.y() * v.x()) / len : v.norm();
+        });
     h += "<polyline class=\"" + cls + structure + "\" points=\"";
     for (std::size_t i = a; i <= b; ++i) {
-      if (keep[i]) h += fixed(f.a.x(p.xy[i].x()), 1) + "," + fixed(f.a.y(p.xy[i].y()), 1) + " ";
+      if (keep[i - a]) h += fixed(f.a.x(p.xy[i].x()), 1) + "," + fixed(f.a.y(p.xy[i].y()), 1) + " ";
     }
     h.back() = '"';
     h += "/>\n";

@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "relief/geometry/polyline.h"
 #include "relief/roads/road_surface.h"
 
 namespace relief {
@@ -21,31 +22,12 @@ double distance_to_segment(const Vec3& p, const Vec3& a, const Vec3& b) {
 Polyline3 simplify_3d(const Polyline3& line, double tolerance_m, const std::vector<double>& headings,
                       double max_turn_rad) {
   if (line.size() <= 2) return line;
-  std::vector<std::uint8_t> keep(line.size(), 0);
-  keep.front() = keep.back() = 1;
-  // Iterative Douglas-Peucker with an explicit stack of (first, last) ranges.
-  std::vector<std::pair<std::size_t, std::size_t>> stack{{0, line.size() - 1}};
-  while (!stack.empty()) {
-    const auto [i, j] = stack.back();
-    stack.pop_back();
-    double worst = -1.0;
-    std::size_t at = i;
-    for (std::size_t k = i + 1; k < j; ++k) {
-      const double d = distance_to_segment(line[k], line[i], line[j]);
-      if (d > worst) {
-        worst = d;
-        at = k;
-      }
-    }
-    const bool turns = !headings.empty() && j > i + 1 &&
-                       std::abs(std::remainder(headings[j] - headings[i], 2.0 * M_PI)) > max_turn_rad;
-    if (turns && worst <= tolerance_m) at = (i + j) / 2;
-    if (worst > tolerance_m || turns) {
-      keep[at] = 1;
-      stack.emplace_back(i, at);
-      stack.emplace_back(at, j);
-    }
-  }
+  const std::vector<std::uint8_t> keep = douglas_peucker(
+      line.size(), tolerance_m,
+      [&](std::size_t i, std::size_t k, std::size_t j) { return distance_to_segment(line[k], line[i], line[j]); },
+      [&](std::size_t i, std::size_t j) {
+        return !headings.empty() && std::abs(std::remainder(headings[j] - headings[i], 2.0 * M_PI)) > max_turn_rad;
+      });
   Polyline3 out;
   for (std::size_t k = 0; k < line.size(); ++k) {
     if (keep[k]) out.push_back(line[k]);

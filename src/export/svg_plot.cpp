@@ -64,23 +64,4 @@ void draw_axes(std::string& h, const Axes& a, std::string_view x_title, std::str
            " transform=\"rotate(-90 12 " + fixed((a.y.p0 + a.y.p1) / 2, 1) + ")\"");
 }
 
-// Perpendicular-distance Douglas–Peucker over pts[i0..i1]; marks kept vertices.
-void douglas_peucker(const std::vector<Vec2>& pts, std::size_t i0, std::size_t i1, double tol,
-                     std::vector<std::uint8_t>& keep) {
-  if (i1 <= i0 + 1) return;
-  const Vec2 a = pts[i0], d = pts[i1] - a;
-  const double len = d.norm();
-  double worst = -1.0;
-  std::size_t at = i0;
-  for (std::size_t i = i0 + 1; i < i1; ++i) {
-    const Vec2 v = pts[i] - a;
-    const double dist = len > 0.0 ? std::abs(d.x() * v.y() - d.y() * v.x()) / len : v.norm();
-    if (dist > worst) worst = dist, at = i;
-  }
-  if (worst <= tol) return;
-  keep[at] = 1;
-  douglas_peucker(pts, i0, at, tol, keep);
-  douglas_peucker(pts, at, i1, tol, keep);
-}
-
 }  // namespace relief::html

@@ -33,8 +33,5 @@ void svg_text(std::string& h, double x, double y, std::string_view anchor, const
 /// Grid lines, axes, tick labels and axis titles for `a`.
 void draw_axes(std::string& h, const Axes& a, std::string_view x_title, std::string_view y_title, int x_ticks,
                int y_ticks);
-/// Perpendicular-distance Douglas-Peucker over pts[i0..i1]; marks kept vertices in `keep`.
-void douglas_peucker(const std::vector<Vec2>& pts, std::size_t i0, std::size_t i1, double tol,
-                     std::vector<std::uint8_t>& keep);
 
 }  // namespace relief::html

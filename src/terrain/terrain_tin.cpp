@@ -11,6 +11,7 @@
 #include <utility>
 
 #include "relief/core/errors.h"
+#include "relief/geometry/polyline.h"
 #include "terrain/outline_index.h"
 #include "terrain/terrain_cdt.h"
 
@@ -128,31 +129,13 @@ void apply_batter(GridSamples& grid, const std::vector<Polyline3>& outline, cons
 // is kept, the last is not (it starts the next chain).
 void simplify_chain(const GridSamples& grid, const std::vector<std::uint32_t>& chain,
                     const std::vector<long>& position, double tolerance_m, std::vector<std::uint32_t>& kept) {
-  std::vector<std::uint8_t> keep(chain.size(), 0);
-  keep.front() = keep.back() = 1;
-  std::vector<std::pair<std::size_t, std::size_t>> stack{{0, chain.size() - 1}};
-  while (!stack.empty()) {
-    const auto [a, b] = stack.back();
-    stack.pop_back();
-    if (b <= a + 1) continue;
-    const double za = grid.z_target[chain[a]];
-    const double zb = grid.z_target[chain[b]];
-    const auto span = static_cast<double>(position[b] - position[a]);
-    std::size_t worst = a;
-    double worst_error = tolerance_m;
-    for (std::size_t m = a + 1; m < b; ++m) {
-      const double t = static_cast<double>(position[m] - position[a]) / span;
-      const double e = std::abs(grid.z_target[chain[m]] - (za + t * (zb - za)));
-      if (e > worst_error) {
-        worst_error = e;
-        worst = m;
-      }
-    }
-    if (worst == a) continue;
-    keep[worst] = 1;
-    stack.emplace_back(a, worst);
-    stack.emplace_back(worst, b);
-  }
+  const std::vector<std::uint8_t> keep =
+      douglas_peucker(chain.size(), tolerance_m, [&](std::size_t a, std::size_t m, std::size_t b) {
+        const double za = grid.z_target[chain[a]];
+        const double zb = grid.z_target[chain[b]];
+        const double t = static_cast<double>(position[m] - position[a]) / static_cast<double>(position[b] - position[a]);
+        return std::abs(grid.z_target[chain[m]] - (za + t * (zb - za)));
+      });
   for (std::size_t m = 0; m + 1 < chain.size(); ++m) {
     if (keep[m]) kept.push_back(chain[m]);
   }

@@ -46,5 +46,22 @@ TEST(Polyline, DedupeDropsRepeatedVertices) {
   EXPECT_EQ(kept, (std::vector<std::size_t>{0, 2, 4}));
 }
 
+TEST(DouglasPeucker, KeepsWhatLiesBeyondTheToleranceAndSplitsWhereAsked) {
+  // Heights over x = 0..8: flat but for a 1 m bump at x = 4 and a 0.05 m ripple at x = 6.
+  const std::vector<double> z{0, 0, 0, 0, 1, 0, 0.05, 0, 0};
+  const auto deviation = [&](std::size_t i, std::size_t k, std::size_t j) {
+    const double t = static_cast<double>(k - i) / static_cast<double>(j - i);
+    return std::abs(z[k] - (z[i] + t * (z[j] - z[i])));
+  };
+  EXPECT_EQ(douglas_peucker(z.size(), 0.1, deviation), (std::vector<std::uint8_t>{1, 0, 0, 1, 1, 1, 0, 0, 1}));
+  EXPECT_EQ(douglas_peucker(z.size(), 0.01, deviation), (std::vector<std::uint8_t>{1, 0, 0, 1, 1, 1, 1, 1, 1}));
+  // Chords longer than 4 points are split even where straight enough (at their middle).
+  const auto long_chord = [](std::size_t i, std::size_t j) { return j - i > 4; };
+  EXPECT_EQ(douglas_peucker(z.size(), 2.0, deviation, long_chord),
+            (std::vector<std::uint8_t>{1, 0, 0, 0, 1, 0, 0, 0, 1}));
+  EXPECT_TRUE(douglas_peucker(0, 1.0, deviation).empty());
+  EXPECT_EQ(douglas_peucker(2, 1.0, deviation), (std::vector<std::uint8_t>{1, 1}));
+}
+
 }  // namespace
 }  // namespace relief
