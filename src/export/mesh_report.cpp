@@ -22,6 +22,10 @@ Json optional_length(const std::optional<double>& v) {
 
 Json mesh_json(const MeshQuality& m) {
   const bool has_vertices = !m.bounds.empty();
+  Json sites = Json::array();
+  for (const Vec3& p : m.self_intersection_sites) {
+    sites.push_back(Json::array({round_to(p.x(), 1e-2), round_to(p.y(), 1e-2), round_to(p.z(), 1e-2)}));
+  }
   return {{"name", m.name},
           {"vertices", m.vertices},
           {"triangles", m.triangles},
@@ -36,6 +40,7 @@ Json mesh_json(const MeshQuality& m) {
           {"upside_down_triangles", m.upside_down_triangles},
           {"self_intersecting_pairs",
            m.self_intersections_checked ? Json(m.self_intersecting_pairs) : Json(nullptr)},
+          {"self_intersection_sites", sites},
           {"degenerate_triangles", m.degenerate_triangles},
           {"sliver_triangles", m.sliver_triangles},
           {"min_angle_deg", round_to(m.min_angle_deg, 1e-3)},

@@ -180,7 +180,26 @@ bool triangles_intersect(const std::vector<Point3>& p, const Triangle& s, const 
 
 // Triangle soup: boxes around the non-degenerate triangles, box_intersection_d for candidate
 // pairs, then the exact test above.
-std::size_t soup_self_intersections(const TriangleMesh& mesh) {
+// Where a pair of triangles intersects: the midpoint of their centroids.
+Vec3 pair_site(const TriangleMesh& mesh, std::size_t s, std::size_t t) {
+  Vec3 c = Vec3::Zero();
+  for (const std::size_t f : {s, t}) {
+    for (const std::uint32_t v : mesh.triangles[f]) c += mesh.vertices[v];
+  }
+  return c / 6.0;
+}
+
+struct PairCount {
+  std::size_t pairs = 0;
+  std::vector<Vec3> sites;  // the first kMaxSites pairs'
+
+  void add(const TriangleMesh& mesh, std::size_t s, std::size_t t) {
+    ++pairs;
+    if (sites.size() < kMaxSelfIntersectionSites) sites.push_back(pair_site(mesh, s, t));
+  }
+};
+
+PairCount soup_self_intersections(const TriangleMesh& mesh) {
   using Box = CGAL::Box_intersection_d::Box_with_info_d<double, 3, std::uint32_t,
                                                         CGAL::Box_intersection_d::ID_FROM_BOX_ADDRESS>;
   const std::vector<Point3> p = cgal_points(mesh);
@@ -194,9 +213,11 @@ std::size_t soup_self_intersections(const TriangleMesh& mesh) {
   std::vector<const Box*> pointers;
   pointers.reserve(boxes.size());
   for (const Box& b : boxes) pointers.push_back(&b);
-  std::size_t pairs = 0;
+  PairCount pairs;
   const auto on_overlap = [&](const Box* x, const Box* y) {
-    if (triangles_intersect(p, mesh.triangles[x->info()], mesh.triangles[y->info()])) ++pairs;
+    if (triangles_intersect(p, mesh.triangles[x->info()], mesh.triangles[y->info()])) {
+      pairs.add(mesh, x->info(), y->info());
+    }
   };
   // A cutoff of 2000 boxes (scan below it, as PMP does) is several times faster than the default 10.
   CGAL::box_self_intersection_d<CGAL::Sequential_tag>(pointers.begin(), pointers.end(), on_overlap,
@@ -206,7 +227,7 @@ std::size_t soup_self_intersections(const TriangleMesh& mesh) {
 
 // Manifold, consistently oriented mesh: CGAL::Surface_mesh and PMP::self_intersections.
 // Returns nothing if CGAL refuses a face (then the soup test is used).
-std::optional<std::size_t> pmp_self_intersections(const TriangleMesh& mesh) {
+std::optional<PairCount> pmp_self_intersections(const TriangleMesh& mesh) {
   using SurfaceMesh = CGAL::Surface_mesh<Point3>;
   SurfaceMesh sm;
   sm.reserve(static_cast<SurfaceMesh::size_type>(mesh.vertices.size()),
@@ -218,10 +239,11 @@ std::optional<std::size_t> pmp_self_intersections(const TriangleMesh& mesh) {
                                SurfaceMesh::Vertex_index(t[2]));
     if (f == SurfaceMesh::null_face()) return std::nullopt;
   }
-  std::size_t pairs = 0;
+  PairCount pairs;
   // PMP reports a degenerate face f as the pair (f, f): those are counted as degenerate instead.
-  const auto count = [&pairs](const std::pair<SurfaceMesh::Face_index, SurfaceMesh::Face_index>& fg) {
-    if (fg.first != fg.second) ++pairs;
+  // Faces were added in triangle order, so a face index is the triangle's.
+  const auto count = [&](const std::pair<SurfaceMesh::Face_index, SurfaceMesh::Face_index>& fg) {
+    if (fg.first != fg.second) pairs.add(mesh, std::size_t(fg.first), std::size_t(fg.second));
   };
   CGAL::Polygon_mesh_processing::self_intersections(sm, boost::make_function_output_iterator(count));
   return pairs;
@@ -389,9 +411,11 @@ MeshQuality analyse_mesh(const TriangleMesh& mesh, const MeshQualityOptions& opt
     const bool manifold = q.non_manifold_edges == 0 && q.non_manifold_vertices == 0 &&
                           q.inconsistent_orientation_edges == 0 &&
                           std::none_of(mesh.triangles.begin(), mesh.triangles.end(), repeats_index);
-    std::optional<std::size_t> pairs;
+    std::optional<PairCount> pairs;
     if (manifold) pairs = pmp_self_intersections(mesh);
-    q.self_intersecting_pairs = pairs ? *pairs : soup_self_intersections(mesh);
+    if (!pairs) pairs = soup_self_intersections(mesh);
+    q.self_intersecting_pairs = pairs->pairs;
+    q.self_intersection_sites = std::move(pairs->sites);
   }
   return q;
 }

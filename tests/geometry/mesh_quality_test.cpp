@@ -128,6 +128,9 @@ TEST(MeshQuality, CrossingTrianglesIntersect) {
       {{0, 0, 0}, {2, 0, 0}, {0, 2, 0}, {0.5, 0.5, -1}, {0.5, 0.5, 1}, {3, 3, 0}}, {{0, 1, 2}, {3, 5, 4}}));
   EXPECT_EQ(q.components, 2u);
   EXPECT_EQ(q.self_intersecting_pairs, 1u);
+  // Located (CGAL PMP's path: the mesh is manifold) at the midpoint of the two centroids.
+  ASSERT_EQ(q.self_intersection_sites.size(), 1u);
+  EXPECT_LT((q.self_intersection_sites[0] - Vec3(1.0, 1.0, 0.0)).norm(), 1e-12);
 }
 
 TEST(MeshQuality, TrianglesSharingAnEdgeAtAnAngleDoNotIntersect) {
@@ -146,6 +149,9 @@ TEST(MeshQuality, TrianglesTouchingAtAVertex) {
   // A vertical triangle from the shared vertex that pierces the flat one.
   const MeshQuality through = analyse_mesh(soup(v, {{0, 1, 2}, {0, 5, 6}}));
   EXPECT_EQ(through.self_intersecting_pairs, 1u);
+  // Located by the soup test (a non-manifold vertex): centroids (2/3, 2/3, 0) and (2/3, 2/3, 0).
+  ASSERT_EQ(through.self_intersection_sites.size(), 1u);
+  EXPECT_LT((through.self_intersection_sites[0] - Vec3(2.0 / 3.0, 2.0 / 3.0, 0.0)).norm(), 1e-12);
 }
 
 TEST(MeshQuality, CoplanarTrianglesTouchingAtAVertex) {

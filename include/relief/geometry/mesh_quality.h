@@ -12,6 +12,8 @@
 
 namespace relief {
 
+inline constexpr std::size_t kMaxSelfIntersectionSites = 20;
+
 struct MeshQualityOptions {
   double sliver_min_angle_deg = 5.0;    ///< a triangle with a smaller angle is a sliver
   double sliver_max_aspect_ratio = 20;  ///< ... or with a larger longest-edge / shortest-altitude
@@ -45,6 +47,9 @@ struct MeshQuality {
   /// Vertices are compared by index: two triangles that touch at distinct vertices with equal
   /// positions intersect. Triangles with collinear corners are left out (they are degenerate).
   std::size_t self_intersecting_pairs = 0;
+  /// Where the first kMaxSelfIntersectionSites pairs are (the midpoint of the two triangles'
+  /// centroids), to find them in a viewer.
+  std::vector<Vec3> self_intersection_sites;
   bool self_intersections_checked = false;  ///< false when MeshQualityOptions::self_intersections is off
   std::size_t degenerate_triangles = 0;
   std::size_t sliver_triangles = 0;
