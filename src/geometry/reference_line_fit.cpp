@@ -28,6 +28,24 @@ double cross(const Vec2& a, const Vec2& b) {
   return a.x() * b.y() - a.y() * b.x();
 }
 
+// Plan records laid end to end: each starts at the previous one's end pose (exact G1).
+struct RecordChain {
+  explicit RecordChain(const Pose2& start) : end(start) {}
+
+  void append(PlanGeometry g) {
+    g.s = length;
+    g.start = end.position;
+    g.heading = end.heading;
+    end = evaluate(g, g.length);
+    length += g.length;
+    records.push_back(g);
+  }
+
+  std::vector<PlanGeometry> records;
+  Pose2 end;
+  double length = 0.0;
+};
+
 }  // namespace
 
 PlanView fit_reference_line(const Polyline2& polyline, const ReferenceLineOptions& options,
@@ -212,18 +230,12 @@ PlanView fit_reference_line(const Polyline2& polyline, const ReferenceLineOption
 
   // 4. Records: lines along the runs, arcs at the corners. Each record starts at the previous
   //    record's end (exact G1); each arc's sweep absorbs the heading drift of merged lines.
-  std::vector<PlanGeometry> records;
-  Pose2 cur{p[0], seg_heading[0], 0.0};
-  double s = 0.0;
+  RecordChain chain(Pose2{p[0], seg_heading[0], 0.0});
+  std::vector<PlanGeometry>& records = chain.records;
+  const Pose2& cur = chain.end;
+  const double& s = chain.length;
   std::vector<double> station(m, 0.0);
-  const auto append = [&](PlanGeometry g) {
-    g.s = s;
-    g.start = cur.position;
-    g.heading = cur.heading;
-    cur = evaluate(g, g.length);
-    s += g.length;
-    records.push_back(g);
-  };
+  const auto append = [&](const PlanGeometry& g) { chain.append(g); };
   for (std::size_t r = 0; r + 1 < corners.size(); ++r) {
     const std::size_t a = corners[r];
     const std::size_t b = corners[r + 1];
@@ -362,7 +374,6 @@ std::vector<PlanGeometry> corner_connector(const Pose2& from, const Pose2& to) {
   const Vec2 d0(std::cos(from.heading), std::sin(from.heading));
   const Vec2 d1(std::cos(to.heading), std::sin(to.heading));
   const Vec2 delta = to.position - from.position;
-  const auto cross = [](const Vec2& u, const Vec2& v) { return u.x() * v.y() - u.y() * v.x(); };
   // from + a d0 = to - b d1.
   const double det = cross(d0, d1);
   const double a = cross(delta, d1) / det;
@@ -371,26 +382,23 @@ std::vector<PlanGeometry> corner_connector(const Pose2& from, const Pose2& to) {
   if (!(a > 1e-6) || !(b > 1e-6)) return std::vector<PlanGeometry>{hermite_connector(from, to, 1.0)};
   const double tangent = std::min(a, b);
   const double radius = tangent / std::tan(0.5 * std::abs(turn));
-  std::vector<PlanGeometry> records;
-  double s = 0.0;
-  Pose2 at = from;
-  const auto push = [&](PlanGeometry g) {
-    g.s = s;
-    g.start = at.position;
-    g.heading = at.heading;
-    at = evaluate(g, g.length);
-    s += g.length;
-    records.push_back(g);
-  };
+  RecordChain chain(from);
   constexpr double kMinLine_m = 1e-6;
-  if (a - tangent > kMinLine_m) push({PlanGeometry::Kind::line, 0.0, {}, 0.0, a - tangent});
+  const auto line = [&](double length) {
+    if (!(length > kMinLine_m)) return;
+    PlanGeometry g;
+    g.kind = PlanGeometry::Kind::line;
+    g.length = length;
+    chain.append(g);
+  };
+  line(a - tangent);
   PlanGeometry arc;
   arc.kind = PlanGeometry::Kind::arc;
   arc.curvature = (turn > 0.0 ? 1.0 : -1.0) / radius;
   arc.length = radius * std::abs(turn);
-  push(arc);
-  if (b - tangent > kMinLine_m) push({PlanGeometry::Kind::line, 0.0, {}, 0.0, b - tangent});
-  return records;
+  chain.append(arc);
+  line(b - tangent);
+  return std::move(chain.records);
 }
 
 }  // namespace relief

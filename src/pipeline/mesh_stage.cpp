@@ -119,16 +119,20 @@ MeshSummary write_mesh_outputs(const MeshStageInput& in, OutputSet& files, Stage
     return c;
   });
 
-  // Files: every format asked for, then the report.
+  // Files: every format asked for (then the tiles, then the report).
+  const auto write_scene = [&](const MeshScene& s, MeshFormat format, const std::string& base,
+                               std::vector<std::string>& listed) {
+    for (EncodedFile& f : encode_mesh_scene(s, format, base)) {
+      const std::string bytes = std::move(f.bytes);
+      files.add(options.out_dir / f.filename, [&](std::ostream& out) { out << bytes; });
+      written.push_back(options.out_dir / f.filename);
+      names.push_back(f.filename);
+      listed.push_back(f.filename);
+    }
+  };
   for (const MeshFormat format : options.mesh_formats) {
     timer.run("write " + std::string(to_string(format)), [&] {
-      for (EncodedFile& f : encode_mesh_scene(scene, format, in.name)) {
-        const std::string bytes = std::move(f.bytes);
-        files.add(options.out_dir / f.filename, [&](std::ostream& out) { out << bytes; });
-        written.push_back(options.out_dir / f.filename);
-        names.push_back(f.filename);
-        summary.files.push_back(f.filename);
-      }
+      write_scene(scene, format, in.name, summary.files);
       return 0;
     });
   }
@@ -137,15 +141,7 @@ MeshSummary write_mesh_outputs(const MeshStageInput& in, OutputSet& files, Stage
     timer.run("write tiles", [&] {
       for (const SceneTile& tile : split_into_tiles(scene, options.mesh_tile_size_m)) {
         const std::string base = in.name + "_Tile_" + std::to_string(tile.x) + "_" + std::to_string(tile.y);
-        for (const MeshFormat format : options.mesh_formats) {
-          for (EncodedFile& f : encode_mesh_scene(tile.scene, format, base)) {
-            const std::string bytes = std::move(f.bytes);
-            files.add(options.out_dir / f.filename, [&](std::ostream& out) { out << bytes; });
-            written.push_back(options.out_dir / f.filename);
-            names.push_back(f.filename);
-            summary.tile_files.push_back(f.filename);
-          }
-        }
+        for (const MeshFormat format : options.mesh_formats) write_scene(tile.scene, format, base, summary.tile_files);
       }
       return 0;
     });
