@@ -54,8 +54,7 @@ class RoadProjector {
     for (int i = 0; i <= n; ++i) {
       const double s = length * i / n;
       stations_.push_back(s);
-      const Vec3 p = surface_point(road, s, 0.0);
-      points_.emplace_back(p.x(), p.y());
+      points_.push_back(road.plan.at(s).position);
     }
   }
 
@@ -75,22 +74,19 @@ class RoadProjector {
       // bend the plain tangent step (the derivative taken as -1) overshoots on the outside and
       // never settles.
       const Pose2 pose = road_.plan.at(s);
-      const Vec3 o = surface_point(road_, s, 0.0);
-      const double h = heading_at(road_, s);
-      const Vec2 d = p - Vec2(o.x(), o.y());
-      const double along = d.dot(Vec2(std::cos(h), std::sin(h)));
-      const double across = d.dot(Vec2(-std::sin(h), std::cos(h)));
+      const Vec2 d = p - pose.position;
+      const double along = d.dot(Vec2(std::cos(pose.heading), std::sin(pose.heading)));
+      const double across = d.dot(Vec2(-std::sin(pose.heading), std::cos(pose.heading)));
       const double scale = 1.0 - pose.curvature * across;
       const double ds = along / std::max(scale, 0.25);
       s = std::clamp(s + ds, 0.0, road_.length());
       if (std::abs(ds) < 1e-6) break;
     }
-    const Vec3 o = surface_point(road_, s, 0.0);
-    const double h = heading_at(road_, s);
-    const Vec2 d = p - Vec2(o.x(), o.y());
-    const double along = d.dot(Vec2(std::cos(h), std::sin(h)));
+    const Pose2 pose = road_.plan.at(s);
+    const Vec2 d = p - pose.position;
+    const double along = d.dot(Vec2(std::cos(pose.heading), std::sin(pose.heading)));
     const bool at_end = s <= 0.0 || s >= road_.length();
-    return {s, d.dot(Vec2(-std::sin(h), std::cos(h))), at_end ? along : 0.0};
+    return {s, d.dot(Vec2(-std::sin(pose.heading), std::cos(pose.heading))), at_end ? along : 0.0};
   }
 
  private:

@@ -1,6 +1,9 @@
 #include "support/test_data.h"
 
+#include <gtest/gtest.h>
+
 #include <cstdlib>
+#include <string>
 
 namespace relief::test {
 
@@ -18,7 +21,13 @@ std::filesystem::path fixture(const std::string& relative) {
 }
 
 std::filesystem::path scratch_dir(const std::string& name) {
-  const auto dir = std::filesystem::path(RELIEF_TEST_TMP_DIR) / name;
+  // Under the running test's own folder: ctest runs the tests of one binary side by side, and
+  // helpers shared by several tests ask for the same name.
+  std::filesystem::path dir = RELIEF_TEST_TMP_DIR;
+  if (const ::testing::TestInfo* info = ::testing::UnitTest::GetInstance()->current_test_info()) {
+    dir /= std::string(info->test_suite_name()) + "." + info->name();
+  }
+  dir /= name;
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   return dir;

@@ -13,7 +13,9 @@ namespace relief::test {
 [[nodiscard]] bool have_shared_data();
 /// <source>/fixtures/<relative>.
 [[nodiscard]] std::filesystem::path fixture(const std::string& relative);
-/// A fresh empty directory for the current test (removed and recreated on each call).
+/// A fresh empty directory for the current test (removed and recreated on each call), under a
+/// folder named for the running test (<tmp>/<Suite.Test>/<name>), so tests running side by side
+/// never share one.
 [[nodiscard]] std::filesystem::path scratch_dir(const std::string& name);
 
 }  // namespace relief::test
