@@ -24,9 +24,12 @@ Polyline3 simplify_3d(const Polyline3& line, double tolerance_m, const std::vect
   if (line.size() <= 2) return line;
   const std::vector<std::uint8_t> keep = douglas_peucker(
       line.size(), tolerance_m,
-      [&](std::size_t i, std::size_t k, std::size_t j) { return distance_to_segment(line[k], line[i], line[j]); },
+      [&](std::size_t i, std::size_t k, std::size_t j) {
+        return distance_to_segment(line[k], line[i], line[j]);
+      },
       [&](std::size_t i, std::size_t j) {
-        return !headings.empty() && std::abs(std::remainder(headings[j] - headings[i], 2.0 * M_PI)) > max_turn_rad;
+        return !headings.empty() &&
+               std::abs(std::remainder(headings[j] - headings[i], 2.0 * M_PI)) > max_turn_rad;
       });
   Polyline3 out;
   for (std::size_t k = 0; k < line.size(); ++k) {
@@ -44,9 +47,11 @@ Polyline3 sample_road_curve(const ModelRoad& road, const std::function<double(do
   constexpr double kMaxTurnRad = 2.0 * M_PI / 180.0;
   double turn = 0.0;
   const int fine = std::max(1, static_cast<int>(std::ceil(length / 0.25)));
-  for (int i = 0; i < fine; ++i) turn += std::abs(road.plan.at(s_begin + length * (i + 0.5) / fine).curvature);
+  for (int i = 0; i < fine; ++i)
+    turn += std::abs(road.plan.at(s_begin + length * (i + 0.5) / fine).curvature);
   turn *= length / fine;
-  const int n = std::max({1, static_cast<int>(std::ceil(length)), static_cast<int>(std::ceil(turn / kMaxTurnRad))});
+  const int n =
+      std::max({1, static_cast<int>(std::ceil(length)), static_cast<int>(std::ceil(turn / kMaxTurnRad))});
   Polyline3 line;
   std::vector<double> headings;
   line.reserve(static_cast<std::size_t>(n) + 1);

@@ -49,7 +49,8 @@ TriangleMesh extract(const TriangleMesh& mesh, const std::vector<std::uint32_t>&
 
 std::vector<SceneTile> split_into_tiles(const MeshScene& scene, double size_m) {
   if (!(size_m > 0.0) || !std::isfinite(size_m)) {
-    throw InvalidInput("tiles: the tile size must be positive and finite (got " + std::to_string(size_m) + ")");
+    throw InvalidInput("tiles: the tile size must be positive and finite (got " + std::to_string(size_m) +
+                       ")");
   }
   // Grid cell of every triangle, per mesh; the cells used, in row-major order.
   using Cell = std::pair<long long, long long>;  // (row, column): sorts row-major
@@ -77,21 +78,24 @@ std::vector<SceneTile> split_into_tiles(const MeshScene& scene, double size_m) {
   for (const auto& [cell, per_mesh] : cells) min_col = std::min(min_col, cell.second);
 
   std::vector<std::vector<std::uint32_t>> index(scene.meshes.size());
-  for (std::size_t m = 0; m < scene.meshes.size(); ++m) index[m].assign(scene.meshes[m].vertices.size(), kUnused);
+  for (std::size_t m = 0; m < scene.meshes.size(); ++m)
+    index[m].assign(scene.meshes[m].vertices.size(), kUnused);
   std::vector<SceneTile> tiles;
   tiles.reserve(cells.size());
   for (const auto& [cell, per_mesh] : cells) {
     SceneTile tile;
     tile.x = static_cast<int>(cell.second - min_col);
     tile.y = static_cast<int>(cell.first - min_row);
-    tile.bounds.extend(Vec2(static_cast<double>(cell.second) * size_m, static_cast<double>(cell.first) * size_m));
+    tile.bounds.extend(
+        Vec2(static_cast<double>(cell.second) * size_m, static_cast<double>(cell.first) * size_m));
     tile.bounds.extend(
         Vec2(static_cast<double>(cell.second + 1) * size_m, static_cast<double>(cell.first + 1) * size_m));
     tile.scene.frame = scene.frame;
     tile.scene.metadata = scene.metadata;
     tile.scene.metadata["relief:tile"] = std::to_string(tile.x) + " " + std::to_string(tile.y);
     std::string bounds;
-    for (const double v : {tile.bounds.min.x(), tile.bounds.min.y(), tile.bounds.max.x(), tile.bounds.max.y()}) {
+    for (const double v :
+         {tile.bounds.min.x(), tile.bounds.min.y(), tile.bounds.max.x(), tile.bounds.max.y()}) {
       if (!bounds.empty()) bounds += ' ';
       append_fixed(bounds, v, 3);
     }

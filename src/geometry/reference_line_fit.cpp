@@ -231,33 +231,30 @@ PlanView fit_reference_line(const Polyline2& polyline, const ReferenceLineOption
   // 4. Records: lines along the runs, arcs at the corners. Each record starts at the previous
   //    record's end (exact G1); each arc's sweep absorbs the heading drift of merged lines.
   RecordChain chain(Pose2{p[0], seg_heading[0], 0.0});
-  std::vector<PlanGeometry>& records = chain.records;
-  const Pose2& cur = chain.end;
-  const double& s = chain.length;
   std::vector<double> station(m, 0.0);
-  const auto append = [&](const PlanGeometry& g) { chain.append(g); };
   for (std::size_t r = 0; r + 1 < corners.size(); ++r) {
     const std::size_t a = corners[r];
     const std::size_t b = corners[r + 1];
     const double ell = run_length(r);
     const bool keep = ell > kVanish_m;
-    for (std::size_t i = a + 1; i < b; ++i) station[i] = s + (keep ? cum[i] - cum[a] - tangent[a] : 0.0);
+    for (std::size_t i = a + 1; i < b; ++i)
+      station[i] = chain.length + (keep ? cum[i] - cum[a] - tangent[a] : 0.0);
     if (keep) {
       PlanGeometry line;
       line.kind = PlanGeometry::Kind::line;
       line.length = ell;
-      append(line);
+      chain.append(line);
     }
     if (b + 1 == m) break;
-    const double sweep = theta[b] + wrap_angle(seg_heading[b] - (cur.heading + theta[b]));
+    const double sweep = theta[b] + wrap_angle(seg_heading[b] - (chain.end.heading + theta[b]));
     PlanGeometry arc;
     arc.kind = PlanGeometry::Kind::arc;
     arc.length = radius[b] * std::abs(sweep);
     arc.curvature = std::copysign(1.0 / radius[b], sweep);
-    station[b] = s + 0.5 * arc.length;
-    append(arc);
+    station[b] = chain.length + 0.5 * arc.length;
+    chain.append(arc);
   }
-  PlanView plan(std::move(records));
+  PlanView plan(std::move(chain.records));
 
   if (widened) {
     // Departure: each polyline vertex's distance to the reference line, sampled densely
@@ -368,7 +365,9 @@ PlanGeometry hermite_connector(const Pose2& from, const Pose2& to, double tangen
 
 std::vector<PlanGeometry> corner_connector(const Pose2& from, const Pose2& to) {
   const double turn = wrap_angle(to.heading - from.heading);
-  const auto fallback = [&] { return std::vector<PlanGeometry>{hermite_connector(from, to, arc_tangent_scale(turn))}; };
+  const auto fallback = [&] {
+    return std::vector<PlanGeometry>{hermite_connector(from, to, arc_tangent_scale(turn))};
+  };
   if (std::abs(turn) < 1e-3 || std::abs(turn) > 0.9 * std::numbers::pi) return fallback();
   if (!from.position.allFinite() || !to.position.allFinite()) return fallback();  // throws
   const Vec2 d0(std::cos(from.heading), std::sin(from.heading));

@@ -141,7 +141,8 @@ MeshSummary write_mesh_outputs(const MeshStageInput& in, OutputSet& files, Stage
     timer.run("write tiles", [&] {
       for (const SceneTile& tile : split_into_tiles(scene, options.mesh_tile_size_m)) {
         const std::string base = in.name + "_Tile_" + std::to_string(tile.x) + "_" + std::to_string(tile.y);
-        for (const MeshFormat format : options.mesh_formats) write_scene(tile.scene, format, base, summary.tile_files);
+        for (const MeshFormat format : options.mesh_formats)
+          write_scene(tile.scene, format, base, summary.tile_files);
       }
       return 0;
     });

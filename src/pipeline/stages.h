@@ -57,8 +57,8 @@ class BackgroundStage {
       : stage_(std::move(stage)), future_(std::async(std::launch::async, [f = std::forward<F>(f)]() mutable {
           const auto t0 = std::chrono::steady_clock::now();
           T value = f();
-          return std::pair<T, double>(std::move(value),
-                                      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+          return std::pair<T, double>(
+              std::move(value), std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
         })) {}
 
   T take(StageTimer& timer) {

@@ -4,7 +4,8 @@ namespace relief {
 
 int RoadModel::road_index(int id) const {
   // Models relief builds (and files it wrote, read back) number roads 1, 2, ... in order.
-  if (id >= 1 && static_cast<std::size_t>(id) <= roads.size() && roads[static_cast<std::size_t>(id) - 1].id == id) {
+  if (id >= 1 && static_cast<std::size_t>(id) <= roads.size() &&
+      roads[static_cast<std::size_t>(id) - 1].id == id) {
     return id - 1;
   }
   for (std::size_t i = 0; i < roads.size(); ++i) {

@@ -133,7 +133,8 @@ void simplify_chain(const GridSamples& grid, const std::vector<std::uint32_t>& c
       douglas_peucker(chain.size(), tolerance_m, [&](std::size_t a, std::size_t m, std::size_t b) {
         const double za = grid.z_target[chain[a]];
         const double zb = grid.z_target[chain[b]];
-        const double t = static_cast<double>(position[m] - position[a]) / static_cast<double>(position[b] - position[a]);
+        const double t =
+            static_cast<double>(position[m] - position[a]) / static_cast<double>(position[b] - position[a]);
         return std::abs(grid.z_target[chain[m]] - (za + t * (zb - za)));
       });
   for (std::size_t m = 0; m + 1 < chain.size(); ++m) {

@@ -53,8 +53,10 @@ TEST(DouglasPeucker, KeepsWhatLiesBeyondTheToleranceAndSplitsWhereAsked) {
     const double t = static_cast<double>(k - i) / static_cast<double>(j - i);
     return std::abs(z[k] - (z[i] + t * (z[j] - z[i])));
   };
-  EXPECT_EQ(douglas_peucker(z.size(), 0.1, deviation), (std::vector<std::uint8_t>{1, 0, 0, 1, 1, 1, 0, 0, 1}));
-  EXPECT_EQ(douglas_peucker(z.size(), 0.01, deviation), (std::vector<std::uint8_t>{1, 0, 0, 1, 1, 1, 1, 1, 1}));
+  EXPECT_EQ(douglas_peucker(z.size(), 0.1, deviation),
+            (std::vector<std::uint8_t>{1, 0, 0, 1, 1, 1, 0, 0, 1}));
+  EXPECT_EQ(douglas_peucker(z.size(), 0.01, deviation),
+            (std::vector<std::uint8_t>{1, 0, 0, 1, 1, 1, 1, 1, 1}));
   // Chords longer than 4 points are split even where straight enough (at their middle).
   const auto long_chord = [](std::size_t i, std::size_t j) { return j - i > 4; };
   EXPECT_EQ(douglas_peucker(z.size(), 2.0, deviation, long_chord),

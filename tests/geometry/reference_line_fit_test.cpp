@@ -421,7 +421,8 @@ TEST(CornerConnector, LineThenTheRoundestArc) {
   EXPECT_LT((end.position - to.position).norm(), 1e-9);
   EXPECT_LT(angle_gap(end.heading, to.heading), 1e-9);
   // Mirrored (the near end first): arc, then line.
-  const std::vector<PlanGeometry> back = corner_connector({{10.0, 4.0}, -kPi / 2.0, 0.0}, {{0.0, 0.0}, kPi, 0.0});
+  const std::vector<PlanGeometry> back =
+      corner_connector({{10.0, 4.0}, -kPi / 2.0, 0.0}, {{0.0, 0.0}, kPi, 0.0});
   ASSERT_EQ(back.size(), 2u);
   EXPECT_EQ(back[0].kind, PlanGeometry::Kind::arc);
   EXPECT_NEAR(back[0].curvature, -0.25, 1e-12);
@@ -433,7 +434,8 @@ TEST(CornerConnector, SBendsAndStraightsFallBackToHermite) {
   const std::vector<PlanGeometry> s_bend = corner_connector({{0.0, 0.0}, 0.0, 0.0}, {{10.0, 5.0}, 0.3, 0.0});
   ASSERT_EQ(s_bend.size(), 1u);
   EXPECT_EQ(s_bend[0].kind, PlanGeometry::Kind::param_poly3);
-  const std::vector<PlanGeometry> straight = corner_connector({{0.0, 0.0}, 0.0, 0.0}, {{10.0, 0.0}, 0.0, 0.0});
+  const std::vector<PlanGeometry> straight =
+      corner_connector({{0.0, 0.0}, 0.0, 0.0}, {{10.0, 0.0}, 0.0, 0.0});
   ASSERT_EQ(straight.size(), 1u);
   EXPECT_EQ(straight[0].kind, PlanGeometry::Kind::line);
   EXPECT_THROW((void)corner_connector({{0.0, 0.0}, 0.0, 0.0}, {{0.0, 0.0}, 1.0, 0.0}), InvalidInput);

@@ -259,7 +259,8 @@ TEST(MeshPipeline, PotreroTilesAddUpToTheScene) {
       }
     }
   }
-  for (const TriangleMesh& mesh : whole.meshes) EXPECT_EQ(triangles[mesh.name], mesh.triangles.size()) << mesh.name;
+  for (const TriangleMesh& mesh : whole.meshes)
+    EXPECT_EQ(triangles[mesh.name], mesh.triangles.size()) << mesh.name;
 }
 
 TEST(MeshPipeline, PotreroFbxImportsInBlender) {

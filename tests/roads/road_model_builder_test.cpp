@@ -65,7 +65,8 @@ TEST(RoadModelBuilder, TJunctionOnASlope) {
       const Pose2 pose = r.plan.at(s);
       const Vec2 ahead(std::cos(pose.heading), std::sin(pose.heading));
       // The joined street's reference line point beside this end: the plane's height there.
-      const ModelRoad& street = b.model.roads[b.model.road_index((at_start ? r.predecessor : r.successor)->id)];
+      const ModelRoad& street =
+          b.model.roads[b.model.road_index((at_start ? r.predecessor : r.successor)->id)];
       const Vec2 n(-std::sin(street.plan.at(0.0).heading), std::cos(street.plan.at(0.0).heading));
       const Vec2 on_street = pose.position - n * n.dot(pose.position - street.plan.at(0.0).position);
       EXPECT_NEAR(r.elevation.value(s), plane(on_street), 1e-6) << r.name;

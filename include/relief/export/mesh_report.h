@@ -24,9 +24,9 @@ struct MeshReportExtras {
 /// meshes[{name, vertices, triangles, unused_vertices, components, boundary_edges,
 /// boundary_loops, holes, non_manifold_edges, non_manifold_vertices,
 /// inconsistent_orientation_edges, upside_down_triangles, self_intersecting_pairs (null when
-/// not tested), self_intersection_sites [[x, y, z], ...] (the first 20, 1 cm), degenerate_triangles, sliver_triangles, min_angle_deg, max_aspect_ratio,
-/// area_m2, bounds{min_x, min_y, max_x, max_y} | null, z{min, max} | null}],
-/// seams{road_junction_max_gap_m, road_terrain_max_gap_m}, xodr_surface_max_distance_m.
+/// not tested), self_intersection_sites [[x, y, z], ...] (the first 20, 1 cm), degenerate_triangles,
+/// sliver_triangles, min_angle_deg, max_aspect_ratio, area_m2, bounds{min_x, min_y, max_x, max_y} | null,
+/// z{min, max} | null}], seams{road_junction_max_gap_m, road_terrain_max_gap_m}, xodr_surface_max_distance_m.
 /// Lengths are rounded to 0.1 mm, angles and ratios to 1e-3, areas to 1e-4 m^2.
 [[nodiscard]] std::string mesh_report_json(const std::vector<MeshQuality>& meshes,
                                            const MeshReportExtras& extras);

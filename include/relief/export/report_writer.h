@@ -159,11 +159,12 @@ struct RunReport {
 /// max_percent, p99_percent}}}, junctions{max_gap_m, worst_junction, over_bound, bound_m,
 /// checked}, sumo{file, nodes, edges, connections, junctions, traffic_lights, lanes,
 /// internal_lanes, internal_lanes_by_netconvert, signals_mid_road, restricted_edges{class: n},
-/// max_grade_percent{class: %}, points_checked, z_max_m, z_p99_m, z_max_lane, netconvert_lanes_z_max_m, xy_max_m, xy_max_lane, max_handover_step_m,
-/// max_lane_grade_percent, max_internal_lane_grade_percent, max_profile_grade_percent, netconvert_warnings,
-/// routes, step_length_s} | null, profiles{method, fit{...}, paper{...}}, methods{raw|paper|relief: {vs_dem,
-/// vs_dem_ground, vs_dem_structures, vs_reference, gradient, junctions, cut_fill, clearance}},
-/// diagnostics{total, counts{code: n}, messages[]}, timings_s{stage: s}, outputs[].
+/// max_grade_percent{class: %}, points_checked, z_max_m, z_p99_m, z_max_lane, netconvert_lanes_z_max_m,
+/// xy_max_m, xy_max_lane, max_handover_step_m, max_lane_grade_percent, max_internal_lane_grade_percent,
+/// max_profile_grade_percent, netconvert_warnings, routes, step_length_s} | null, profiles{method, fit{...},
+/// paper{...}}, methods{raw|paper|relief: {vs_dem, vs_dem_ground, vs_dem_structures, vs_reference, gradient,
+/// junctions, cut_fill, clearance}}, diagnostics{total, counts{code: n}, messages[]}, timings_s{stage: s},
+/// outputs[].
 [[nodiscard]] std::string report_json(const RunReport& report);
 
 /// relief's version string ("0.1.0").

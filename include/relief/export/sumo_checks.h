@@ -30,9 +30,9 @@ struct SumoNetCheck {
   /// where the OpenDRIVE lane centre folds): not in the figures below, but measured apart.
   std::size_t points_netconvert_shape = 0;
   double netconvert_shape_z_max_m = 0.0;  ///< largest |z_sumo - z_odr(x, y)| of those points
-  double z_max_m = 0.0;  ///< largest |z_sumo - z_odr(x, y)|
+  double z_max_m = 0.0;                   ///< largest |z_sumo - z_odr(x, y)|
   double z_p99_m = 0.0;
-  std::string z_max_lane;  ///< SUMO lane holding the point of z_max_m (empty when no point)
+  std::string z_max_lane;           ///< SUMO lane holding the point of z_max_m (empty when no point)
   Vec3 z_max_point = Vec3::Zero();  ///< that point, in the network frame
   double xy_max_m = 0.0;  ///< largest horizontal distance of a lane centre point to its OpenDRIVE lane centre
   std::string xy_max_lane;  ///< SUMO lane holding that point

@@ -38,8 +38,8 @@ namespace relief {
 /// middle one when none lies beyond tolerance). Returns one flag per point, the first and last
 /// set. Iterative: no recursion depth limit on long sequences.
 template <typename Deviation, typename MustSplit>
-[[nodiscard]] std::vector<std::uint8_t> douglas_peucker(std::size_t n, double tolerance, Deviation&& deviation,
-                                                        MustSplit&& must_split) {
+[[nodiscard]] std::vector<std::uint8_t> douglas_peucker(std::size_t n, double tolerance,
+                                                        Deviation&& deviation, MustSplit&& must_split) {
   std::vector<std::uint8_t> keep(n, 0);
   if (n == 0) return keep;
   keep.front() = keep.back() = 1;
@@ -70,8 +70,10 @@ template <typename Deviation, typename MustSplit>
 
 /// douglas_peucker with the tolerance as the only reason to split.
 template <typename Deviation>
-[[nodiscard]] std::vector<std::uint8_t> douglas_peucker(std::size_t n, double tolerance, Deviation&& deviation) {
-  return douglas_peucker(n, tolerance, std::forward<Deviation>(deviation), [](std::size_t, std::size_t) { return false; });
+[[nodiscard]] std::vector<std::uint8_t> douglas_peucker(std::size_t n, double tolerance,
+                                                        Deviation&& deviation) {
+  return douglas_peucker(n, tolerance, std::forward<Deviation>(deviation),
+                         [](std::size_t, std::size_t) { return false; });
 }
 
 }  // namespace relief
