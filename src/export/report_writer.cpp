@@ -181,6 +181,8 @@ std::string report_json(const RunReport& r) {
                       {"connecting_roads", o.connecting_roads},
                       {"junctions", o.junctions},
                       {"junctions_without_movements", o.junctions_without_movements},
+                      {"junctions_joined", o.junctions_joined},
+                      {"roads_absorbed", o.roads_absorbed},
                       {"direct_links", o.direct_links},
                       {"transition_roads", o.transition_roads},
                       {"roads_skipped", o.roads_skipped},

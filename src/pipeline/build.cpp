@@ -268,6 +268,8 @@ BuildResult build(const BuildOptions& options, Diagnostics& diagnostics, const P
       o.connecting_roads = built->stats.connecting_roads;
       o.junctions = built->stats.junctions;
       o.junctions_without_movements = built->stats.junctions_without_movements;
+      o.junctions_joined = built->stats.junctions_joined;
+      o.roads_absorbed = built->stats.roads_absorbed;
       o.direct_links = built->stats.direct_links;
       o.transition_roads = built->stats.transition_roads;
       o.roads_skipped = built->stats.roads_skipped;

@@ -19,8 +19,9 @@ std::set<int> signalled_junctions(const LoadedNetwork& loaded, const RoadModel& 
   const RoadNetwork& network = loaded.network;
   std::vector<int> odr_junction(network.junctions.size(), -1);
   for (const JunctionModel& j : model.junctions) {
-    if (j.source_junction >= 0 && static_cast<std::size_t>(j.source_junction) < odr_junction.size()) {
-      odr_junction[static_cast<std::size_t>(j.source_junction)] = j.id;
+    for (const int source : j.source_junctions) {
+      if (source >= 0 && static_cast<std::size_t>(source) < odr_junction.size())
+        odr_junction[static_cast<std::size_t>(source)] = j.id;
     }
   }
   std::set<int> out;

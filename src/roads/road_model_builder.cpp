@@ -11,6 +11,7 @@
 #include "relief/core/errors.h"
 #include "relief/geometry/polyline.h"
 #include "relief/roads/road_surface.h"
+#include "roads/junction_clusters.h"
 
 namespace relief {
 namespace {
@@ -421,8 +422,12 @@ RoadModelBuild build_road_model(const RoadNetwork& network, const std::vector<Ro
   // junction overlap.
   std::vector<std::array<double, 2>> trim(network.roads.size(), {0.0, 0.0});
   std::vector<std::vector<double>> cumulative_of(network.roads.size());
+  std::vector<double> road_length(network.roads.size());
+  std::vector<std::uint8_t> has_height(network.roads.size());
   for (const Road& road : network.roads) {
     cumulative_of[road.id] = cumulative_length(road.points);
+    road_length[road.id] = cumulative_of[road.id].back();
+    has_height[road.id] = profiles[road.id].has_height ? 1 : 0;
     const double cap = options.max_trim_fraction * cumulative_of[road.id].back();
     trim[road.id] = {std::min(radius[road.start_junction], cap), std::min(radius[road.end_junction], cap)};
   }
@@ -440,12 +445,51 @@ RoadModelBuild build_road_model(const RoadNetwork& network, const std::vector<Ro
     return profiles[road.id].has_height &&
            cumulative_of[road.id].back() - trim[road.id][0] - trim[road.id][1] >= kMinRoadLength;
   };
+  // Intersections too close for the road between them to hold both become one junction.
+  const detail::JunctionClusters clusters =
+      detail::join_junctions(network, radius, road_length, has_height, options.min_kept_length_m);
+  // The road ends at a junction; for a joined one, at any of its members but the absorbed roads'.
+  const auto ends_of = [&](const Junction& j) {
+    std::vector<const RoadEnd*> ends;
+    for (const int m : clusters.members[j.id]) {
+      for (const RoadEnd& e : network.junctions[m].ends) {
+        if (!clusters.absorbed[e.road]) ends.push_back(&e);
+      }
+    }
+    return ends;
+  };
+  for (const Junction& j : network.junctions) {
+    const std::vector<int>& members = clusters.members[j.id];
+    if (members.size() < 2) continue;
+    std::string nodes, roads;
+    for (const int m : members)
+      nodes += (nodes.empty() ? "" : ", ") + std::to_string(network.junctions[m].osm_node_id);
+    for (const int m : members) {
+      for (const RoadEnd& e : network.junctions[m].ends) {
+        if (!clusters.absorbed[e.road] || !e.at_start) continue;
+        std::ostringstream len;
+        len.precision(1);
+        len << std::fixed << road_length[e.road];
+        roads += (roads.empty() ? "" : ", ") + std::to_string(e.road) + " (" + len.str() + " m)";
+      }
+    }
+    Diagnostic d;
+    d.severity = Severity::info;
+    d.code = "model.junctions_joined";
+    d.message = "the intersections of OSM nodes " + nodes + " are one junction: network road(s) " + roads +
+                " between them are too short to hold both";
+    d.osm_node_id = j.osm_node_id;
+    diagnostics.report(std::move(d));
+    out.stats.junctions_joined += members.size() - 1;
+  }
+  for (const std::uint8_t a : clusters.absorbed) out.stats.roads_absorbed += a;
+
   std::vector<std::pair<int, std::vector<int>>> overlaps;  // junction OSM node, network roads
   for (const Junction& j : network.junctions) {
-    if (!(radius[j.id] > 0.0)) continue;
+    if (!(radius[j.id] > 0.0) || clusters.members[j.id].empty()) continue;
     std::vector<const RoadEnd*> ends;
-    for (const RoadEnd& e : j.ends) {
-      if (usable(network.roads[e.road])) ends.push_back(&e);
+    for (const RoadEnd* e : ends_of(j)) {
+      if (usable(network.roads[e->road])) ends.push_back(e);
     }
     if (ends.size() < 2) continue;
     std::vector<std::optional<EndShape>> shape(ends.size());
@@ -479,7 +523,13 @@ RoadModelBuild build_road_model(const RoadNetwork& network, const std::vector<Ro
         const Road& road = network.roads[ends[k]->road];
         const double length = cumulative_of[road.id].back();
         double& t = trim[road.id][ends[k]->at_start ? 0 : 1];
-        const double next = std::min(t + kTrimStep, options.max_trim_fraction * length);
+        // Both ends of a road draw on its length, leaving it min_kept_length_m; a loop's two
+        // ends overlap each other whatever is cut, so it keeps the per-end share.
+        const double cap =
+            road.start_junction == road.end_junction
+                ? options.max_trim_fraction * length
+                : length - trim[road.id][ends[k]->at_start ? 1 : 0] - options.min_kept_length_m;
+        const double next = std::min(t + kTrimStep, cap);
         if (next - t < 1e-9) continue;
         t = next;
         shape[k].reset();
@@ -503,6 +553,7 @@ RoadModelBuild build_road_model(const RoadNetwork& network, const std::vector<Ro
       ++out.stats.roads_skipped;
       continue;
     }
+    if (clusters.absorbed[road.id]) continue;  // inside a joined junction
     const std::vector<double>& cumulative = cumulative_of[road.id];
     const double length = cumulative.back();
     const double s0 = trim[road.id][0];
@@ -596,9 +647,10 @@ RoadModelBuild build_road_model(const RoadNetwork& network, const std::vector<Ro
 
   // Junctions.
   for (const Junction& j : network.junctions) {
+    if (clusters.members[j.id].empty()) continue;  // joined into another
     std::vector<EndRef> ends;
-    for (const RoadEnd& e : j.ends) {
-      if (out.model_road_of[e.road] >= 0) ends.push_back({e.road, e.at_start});
+    for (const RoadEnd* e : ends_of(j)) {
+      if (out.model_road_of[e->road] >= 0) ends.push_back({e->road, e->at_start});
     }
     const auto model_of = [&](const EndRef& e) -> ModelRoad& {
       return model.roads[out.model_road_of[e.network_road]];
@@ -644,8 +696,16 @@ RoadModelBuild build_road_model(const RoadNetwork& network, const std::vector<Ro
 
     JunctionModel jm;
     jm.id = static_cast<int>(model.junctions.size()) + 1;
-    jm.source_junction = j.id;
+    jm.source_junctions = clusters.members[j.id];
     jm.name = "junction " + std::to_string(j.osm_node_id);
+    if (jm.source_junctions.size() > 1)
+      jm.name += " (+" + std::to_string(jm.source_junctions.size() - 1) + " joined)";
+    // The member junction a road end touches: a movement between two members follows the
+    // absorbed roads between them, one-ways only forward.
+    const auto member_of = [&](const EndRef& e) {
+      const Road& road = network.roads[e.network_road];
+      return e.at_start ? road.start_junction : road.end_junction;
+    };
     for (const EndRef& e : ends) {
       ModelRoad& m = model_of(e);
       (e.at_start ? m.predecessor : m.successor) =
@@ -656,6 +716,7 @@ RoadModelBuild build_road_model(const RoadNetwork& network, const std::vector<Ro
         if (ia == ib) continue;
         const EndRef& in = ends[ia];
         const EndRef& to = ends[ib];
+        if (!clusters.reachable(network, member_of(in), member_of(to))) continue;
         // Copies: adding connecting roads may reallocate model.roads.
         const ModelRoad a = model_of(in);
         const ModelRoad b = model_of(to);

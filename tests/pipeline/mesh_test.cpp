@@ -194,14 +194,13 @@ TEST(MeshPipeline, PotreroSceneFigures) {
   RELIEF_REQUIRE_SHARED_DATA();
   const MeshSummary& m = summary(potrero());
   print("potrero", m);
-  // Known defects (measured): the outlines of junctions 2, 25 and 43 are not simple (CGAL splits
-  // a constraint at a crossing; 2 has road ends that overlap, 43 a loop road), so their areas are
-  // left open; one pair of Road_Road triangles intersects; the ground (roads on the ground +
-  // terrain, welded) has 16 holes (those open junctions and thin 1 m x 4-8 m slits between road
-  // edges and terrain).
+  // Known defects (measured): the outlines of junctions 25 and 42 are not simple (CGAL splits
+  // a constraint at a crossing; 42 has a loop road), so their areas are left open; the ground
+  // (roads on the ground + terrain, welded) has 8 holes (those open junctions and thin slits
+  // between road edges and terrain).
   expect_scene_figures(
       m,
-      {.junctions_failed = 3, .self_intersecting_pairs = 1, .upside_down_triangles = 0, .ground_holes = 16});
+      {.junctions_failed = 2, .self_intersecting_pairs = 0, .upside_down_triangles = 0, .ground_holes = 8});
 }
 
 TEST(MeshPipeline, NorthEastSceneFiguresAndReimport) {
@@ -209,14 +208,15 @@ TEST(MeshPipeline, NorthEastSceneFiguresAndReimport) {
   const SceneBuild b = build_scene(scene_options(test::ne_options("mesh_ne")));
   const MeshSummary& m = summary(b);
   print("sf-ne", m);
-  // Known defects (measured): 6 junctions left open (outlines that are not simple), 16
-  // intersecting Road_Road triangle pairs (roads overlapping beyond their trimmed ends), and 85
-  // upside-down triangles all on one transition road that folds over itself; the welded ground
-  // has 58 holes.
-  expect_scene_figures(m, {.junctions_failed = 6,
-                           .self_intersecting_pairs = 16,
+  // Known defects (measured): 1 junction left open (an outline that is not simple), 10
+  // intersecting Road_Road triangle pairs (roads crossing without a shared node, and one
+  // hairpin transition road folding over itself, which also has the 85 upside-down
+  // triangles); the welded ground has 38 holes. Before forks could trim from the whole road and
+  // close intersections were joined: 6 open, 16 pairs, 58 holes.
+  expect_scene_figures(m, {.junctions_failed = 1,
+                           .self_intersecting_pairs = 10,
                            .upside_down_triangles = 85,
-                           .ground_holes = 58});
+                           .ground_holes = 38});
   expect_files_reimport(b);
 }
 

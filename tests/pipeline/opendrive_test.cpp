@@ -48,8 +48,10 @@ void check_set(const Built& b) {
             << o.elevation_max_deviation_m << " m\n";
   // One OpenDRIVE junction per intersection of the network, but for intersections where no
   // movement is possible (the NE extract has one: three one-ways leaving a node whose feeder
-  // is outside it), which are reported.
-  EXPECT_EQ(o.junctions + o.junctions_without_movements, b.report.network.intersections);
+  // is outside it), which are reported, and intersections joined into a neighbour's junction
+  // (one per road absorbed at least: a cluster of k intersections holds k - 1 roads or more).
+  EXPECT_EQ(o.junctions + o.junctions_without_movements + o.junctions_joined, b.report.network.intersections);
+  EXPECT_GE(o.roads_absorbed, o.junctions_joined);
   EXPECT_LE(o.junctions_without_movements, 1u);
   EXPECT_GT(o.connecting_roads, 2 * o.junctions);
   EXPECT_LT(o.max_link_gap_m, 0.01);

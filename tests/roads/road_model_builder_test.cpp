@@ -123,6 +123,99 @@ TEST(RoadModelBuilder, AForkAtTenDegreesGetsDisjointRoadEnds) {
   EXPECT_LT(c.max_vertical_m, 1e-6);
 }
 
+TEST(RoadModelBuilder, ShortForkBranchesGiveUpMoreThanTheRadiusShare) {
+  // The fork above with 50 m branches: clearing the ends takes about 37 m, more than the 40 %
+  // the junction radius may take; the branch draws on its whole length but min_kept_length_m.
+  // With 30 m branches the ends cannot clear: reported, and the road keeps its least length.
+  const double a = 5.0 * std::numbers::pi / 180.0;
+  for (const double length : {50.0, 30.0}) {
+    const Vec2 up(length * std::cos(a), length * std::sin(a)),
+        down(length * std::cos(a), -length * std::sin(a));
+    const RoadNetwork net = test::make_network({{{-100, 0}, {0, 0}}, {{0, 0}, up}, {{0, 0}, down}},
+                                               {street(1, 1), street(1, 1), street(1, 1)});
+    Diagnostics d;
+    RoadModelOptions options;
+    const RoadModelBuild b = build_road_model(net, drape(net), options, d);
+    const ModelRoad& upper = b.model.roads[b.model_road_of[1]];
+    if (length == 50.0) {
+      EXPECT_EQ(b.stats.junction_ends_overlap, 0u);
+      EXPECT_LT(upper.length(), (1.0 - options.max_trim_fraction) * length);
+      EXPECT_NEAR(upper.length(), 50.0 - 37.5, 1.0);  // trimmed in 0.5 m steps
+      const auto [r1, l1] = end_section(upper, true);
+      const auto [r2, l2] = end_section(b.model.roads[b.model_road_of[2]], true);
+      EXPECT_GE(std::min({point_segment_distance(r1, r2, l2), point_segment_distance(l1, r2, l2)}), 0.5);
+    } else {
+      EXPECT_EQ(b.stats.junction_ends_overlap, 1u);
+      EXPECT_EQ(d.count("model.junction_ends_overlap"), 1u);
+      EXPECT_NEAR(upper.length(), options.min_kept_length_m, 0.5 + 1e-9);
+      EXPECT_GE(upper.length(), options.min_kept_length_m - 1e-9);
+    }
+  }
+}
+
+// A two-way street crossing a divided one whose carriageways (one-way, southbound on the west,
+// northbound on the east) lie 8 m apart: the two crossings are one junction.
+RoadNetwork divided_crossing(const WayAttributes& middle) {
+  return test::make_network({{{-100, 0}, {-4, 0}},
+                             {{-4, 0}, {4, 0}},
+                             {{4, 0}, {100, 0}},
+                             {{-4, 100}, {-4, 0}},
+                             {{-4, 0}, {-4, -100}},
+                             {{4, -100}, {4, 0}},
+                             {{4, 0}, {4, 100}}},
+                            {street(1, 1), middle, street(1, 1), street(1, 0, true), street(1, 0, true),
+                             street(1, 0, true), street(1, 0, true)});
+}
+
+TEST(RoadModelBuilder, CrossingsOfADividedStreetAreOneJunction) {
+  // Radii 3 + 2 m at both nodes: the 8 m road between them cannot hold both (5 + 5 + 1 m).
+  const RoadNetwork net = divided_crossing(street(1, 1));
+  Diagnostics d;
+  const RoadModelBuild b = build_road_model(net, drape(net), {}, d);
+  EXPECT_EQ(b.stats.junctions, 1u);
+  EXPECT_EQ(b.stats.junctions_joined, 1u);
+  EXPECT_EQ(b.stats.roads_absorbed, 1u);
+  EXPECT_EQ(d.count("model.junctions_joined"), 1u);
+  EXPECT_EQ(b.stats.roads, 6u);
+  EXPECT_EQ(b.model_road_of[1], -1);
+  ASSERT_EQ(b.model.junctions.size(), 1u);
+  EXPECT_EQ(b.model.junctions[0].source_junctions.size(), 2u);
+  // Each of the four arriving lanes goes straight, right and left; none turns back (from the
+  // west street back west, from one carriageway into the other: U-turns).
+  EXPECT_EQ(b.stats.connecting_roads, 12u);
+  for (const int r : {0, 2, 3, 4, 5, 6}) {
+    const ModelRoad& m = b.model.roads[b.model_road_of[r]];
+    const std::optional<RoadLink>& link = r == 0 || r == 3 || r == 5 ? m.successor : m.predecessor;
+    ASSERT_TRUE(link) << r;
+    EXPECT_EQ(link->element, RoadLink::Element::junction);
+  }
+  EXPECT_EQ(b.stats.junction_ends_overlap, 0u);
+  const LinkContinuity c = check_link_continuity(b.model);
+  EXPECT_EQ(c.borders_checked, 12u * 2u * 2u);
+  EXPECT_LT(c.max_horizontal_m, 1e-6);
+  EXPECT_LT(c.max_vertical_m, 1e-6);
+}
+
+TEST(RoadModelBuilder, MovementsThroughAJoinedJunctionFollowItsOneWays) {
+  // The road between the crossings one-way eastwards: nothing that arrives at the east node
+  // can reach the west one. From the east street only the right turn north is left, from the
+  // northbound carriageway through and right; the 6 movements from the west are unchanged.
+  const RoadNetwork net = divided_crossing(street(1, 0, true));
+  Diagnostics d;
+  const RoadModelBuild b = build_road_model(net, drape(net), {}, d);
+  EXPECT_EQ(b.stats.junctions, 1u);
+  EXPECT_EQ(b.stats.roads_absorbed, 1u);
+  EXPECT_EQ(b.stats.connecting_roads, 9u);
+  std::map<int, int> from;  // incoming network road -> movements
+  for (const JunctionConnection& c : b.model.junctions[0].connections) {
+    ++from[b.model.roads[b.model.road_index(c.incoming_road)].source_road];
+  }
+  EXPECT_EQ(from[0], 3);
+  EXPECT_EQ(from[3], 3);
+  EXPECT_EQ(from[2], 1);
+  EXPECT_EQ(from[5], 2);
+}
+
 TEST(RoadModelBuilder, OneWaysHaveRightLanesOnlyAndAreCentred) {
   const RoadNetwork net = test::make_network({{{0, 0}, {50, 0}}}, {street(2, 0, true)});
   Diagnostics d;

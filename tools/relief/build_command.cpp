@@ -89,6 +89,9 @@ void print_summary(const BuildResult& result) {
         << " junctions";
     if (o.junctions_without_movements)
       out << " (+" << o.junctions_without_movements << " with no possible movement)";
+    if (o.junctions_joined)
+      out << " (" << o.junctions_joined << " more intersections joined into them over " << o.roads_absorbed
+          << " short roads)";
     out << ", " << o.connecting_roads << " connecting roads, " << o.transition_roads
         << " transition roads; largest lane-border gap at links " << fixed(o.max_link_gap_m, 4)
         << " m horizontal, " << fixed(o.max_link_step_m, 4) << " m vertical; read back within "

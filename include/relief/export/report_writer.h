@@ -59,6 +59,8 @@ struct OpenDriveSummary {
   std::size_t connecting_roads = 0;
   std::size_t junctions = 0;
   std::size_t junctions_without_movements = 0;  ///< intersections left out: no movement possible
+  std::size_t junctions_joined = 0;             ///< intersections joined into a neighbour's junction
+  std::size_t roads_absorbed = 0;               ///< network roads inside joined junctions
   std::size_t direct_links = 0;
   std::size_t transition_roads = 0;
   std::size_t roads_skipped = 0;

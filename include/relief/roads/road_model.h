@@ -82,7 +82,7 @@ struct JunctionModel {
   int id = -1;
   std::string name;
   std::vector<JunctionConnection> connections;
-  int source_junction = -1;  ///< RoadNetwork junction it came from
+  std::vector<int> source_junctions;  ///< RoadNetwork junctions it came from (several where joined)
 };
 
 struct RoadModel {

@@ -8,6 +8,10 @@
 //   the arriving lane's inner border to the departing lane's inner border (paramPoly3, position
 //   and heading exact at both ends) and whose elevation is the cubic with the incoming road's
 //   height and slope at its start and the outgoing road's at its end.
+// - Intersections joined by a road shorter than their two radii plus min_kept_length_m (the
+//   nodes where divided streets cross) are one junction, the road inside it
+//   ("model.junctions_joined"); a movement between two of its members follows the absorbed
+//   roads, one-ways only forward.
 // - Roads meeting at an attribute change (2 ends) are linked directly, lane to lane, when one
 //   continues the other (straight within 3 degrees, same lanes, same width); otherwise both are
 //   trimmed and joined by a short transition road that bends and widens from one to the other
@@ -15,8 +19,9 @@
 // - Where roads leave a junction at a small angle (forks), their ends are trimmed further, in
 //   steps, until at each junction the end cross-sections (outermost left to outermost right
 //   lane border) of any two roads lie at least junction_end_gap_m apart and clear of each
-//   other's lanes (within max_trim_fraction; "model.junction_ends_overlap" where that is not
-//   possible).
+//   other's lanes, as long as the road keeps min_kept_length_m between its two trims (a loop
+//   road, both ends at one junction: max_trim_fraction per end); "model.junction_ends_overlap"
+//   where that is not possible.
 // - Reference lines: OSM centrelines rounded at their vertices within plan_tolerance_m, but with
 //   arcs no tighter than the road's outermost lane border plus min_radius_margin_m (lane
 //   borders fold back inside a tighter arc): a sharp corner then departs from the polyline by
@@ -36,10 +41,11 @@ struct RoadModelOptions {
   double plan_tolerance_m = 0.05;       ///< reference line vs OSM polyline
   double elevation_tolerance_m = 0.01;  ///< elevation records vs fitted profile
   double junction_margin_m = 2.0;       ///< junction radius beyond the widest half-width
-  double max_trim_fraction = 0.4;       ///< a road loses at most this share of its length per end
-  double min_radius_margin_m = 0.5;     ///< smallest arc radius beyond the outermost lane border
-  double junction_end_gap_m = 0.5;      ///< least distance between road ends at a junction
-  bool u_turns = false;  ///< U-turns: back into the arriving road, or any turn over 150 degrees
+  double max_trim_fraction = 0.4;    ///< share of a road's length per end the junction radius takes at most
+  double min_kept_length_m = 1.0;    ///< least length a road keeps when its ends are trimmed further
+  double min_radius_margin_m = 0.5;  ///< smallest arc radius beyond the outermost lane border
+  double junction_end_gap_m = 0.5;   ///< least distance between road ends at a junction
+  bool u_turns = false;              ///< U-turns: back into the arriving road, or any turn over 150 degrees
 };
 
 struct RoadModelStats {
@@ -59,6 +65,8 @@ struct RoadModelStats {
   double max_corner_departure_m = 0.0;
   std::size_t junction_ends_trimmed = 0;  ///< road ends trimmed further to clear the other ends
   std::size_t junction_ends_overlap = 0;  ///< junctions whose road ends still overlap
+  std::size_t junctions_joined = 0;       ///< intersections joined into a neighbour's junction
+  std::size_t roads_absorbed = 0;         ///< roads inside joined junctions (no OpenDRIVE road)
 };
 
 struct RoadModelBuild {

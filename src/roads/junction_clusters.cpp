@@ -1,0 +1,68 @@
+#include "roads/junction_clusters.h"
+
+#include <algorithm>
+#include <numeric>
+
+namespace relief::detail {
+namespace {
+
+int find(std::vector<int>& parent, int j) {
+  while (parent[j] != j) {
+    parent[j] = parent[parent[j]];
+    j = parent[j];
+  }
+  return j;
+}
+
+}  // namespace
+
+JunctionClusters join_junctions(const RoadNetwork& network, const std::vector<double>& radius,
+                                const std::vector<double>& length,
+                                const std::vector<std::uint8_t>& has_height, double min_kept_length_m) {
+  const std::size_t n = network.junctions.size();
+  JunctionClusters out;
+  out.absorbed.assign(network.roads.size(), 0);
+  std::vector<int> parent(n);
+  std::iota(parent.begin(), parent.end(), 0);
+  for (const Road& road : network.roads) {
+    const int a = road.start_junction, b = road.end_junction;
+    if (a < 0 || b < 0 || a == b || !has_height[road.id]) continue;
+    if (network.junctions[a].kind != JunctionKind::intersection ||
+        network.junctions[b].kind != JunctionKind::intersection)
+      continue;
+    if (length[road.id] >= radius[a] + radius[b] + min_kept_length_m) continue;
+    out.absorbed[road.id] = 1;
+    const int ra = find(parent, a), rb = find(parent, b);
+    if (ra != rb) parent[std::max(ra, rb)] = std::min(ra, rb);
+  }
+  out.representative.resize(n);
+  out.members.assign(n, {});
+  for (std::size_t j = 0; j < n; ++j) {
+    const int r = find(parent, static_cast<int>(j));
+    out.representative[j] = r;
+    out.members[r].push_back(static_cast<int>(j));  // ascending: the representative comes first
+  }
+  return out;
+}
+
+bool JunctionClusters::reachable(const RoadNetwork& network, int from, int to) const {
+  if (from == to) return true;
+  const std::vector<int>& cluster = members[representative[from]];
+  std::vector<int> reached{from};
+  for (std::size_t k = 0; k < reached.size(); ++k) {
+    for (const RoadEnd& e : network.junctions[reached[k]].ends) {
+      if (!absorbed[e.road]) continue;
+      const Road& road = network.roads[e.road];
+      const WayAttributes& a = road.attributes;
+      // Leaving from the road's start drives along it, from its end against it.
+      const bool can = e.at_start ? a.lanes_forward > 0 : !a.oneway && a.lanes_backward > 0;
+      const int next = e.at_start ? road.end_junction : road.start_junction;
+      if (!can || std::find(reached.begin(), reached.end(), next) != reached.end()) continue;
+      if (next == to) return true;
+      if (std::find(cluster.begin(), cluster.end(), next) != cluster.end()) reached.push_back(next);
+    }
+  }
+  return false;
+}
+
+}  // namespace relief::detail

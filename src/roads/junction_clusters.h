@@ -1,0 +1,37 @@
+#pragma once
+// Private to the roads module: intersections joined into one junction where the road between
+// them is too short to hold both (netconvert's --junctions.join for OSM data). Divided streets
+// crossing each other give such clusters: four nodes a few metres apart joined by one-way
+// stubs that no lane can be fitted on once both junctions have taken their room.
+
+#include <cstdint>
+#include <vector>
+
+#include "relief/roads/road_network.h"
+
+namespace relief::detail {
+
+struct JunctionClusters {
+  /// Per network junction: the junction that stands for its cluster (the lowest id); itself
+  /// when it was not joined.
+  std::vector<int> representative;
+  /// Per network junction: the members of the cluster it represents (itself first); empty for
+  /// junctions represented by another.
+  std::vector<std::vector<int>> members;
+  /// Per network road: 1 where the road lies inside a joined junction.
+  std::vector<std::uint8_t> absorbed;
+
+  /// Whether traffic can drive from member junction `from` to member junction `to` of one
+  /// cluster over its absorbed roads, each in its direction of travel.
+  [[nodiscard]] bool reachable(const RoadNetwork& network, int from, int to) const;
+};
+
+/// Joins the two intersections at the ends of every road (not a loop, with height) that is
+/// shorter than the two junctions' radii plus `min_kept_length_m`. `radius` is per network
+/// junction (0 where a junction takes no room); `length` and `has_height` per network road.
+[[nodiscard]] JunctionClusters join_junctions(const RoadNetwork& network, const std::vector<double>& radius,
+                                              const std::vector<double>& length,
+                                              const std::vector<std::uint8_t>& has_height,
+                                              double min_kept_length_m);
+
+}  // namespace relief::detail
