@@ -26,6 +26,13 @@ Json mesh_json(const MeshQuality& m) {
   for (const Vec3& p : m.self_intersection_sites) {
     sites.push_back(Json::array({round_to(p.x(), 1e-2), round_to(p.y(), 1e-2), round_to(p.z(), 1e-2)}));
   }
+  Json holes = Json::array();
+  for (std::size_t k = 0; k < m.hole_sites.size(); ++k) {
+    const Vec3& p = m.hole_sites[k];
+    holes.push_back(
+        {{"at", Json::array({round_to(p.x(), 1e-2), round_to(p.y(), 1e-2), round_to(p.z(), 1e-2)})},
+         {"length_m", round_to(m.hole_lengths_m[k], 1e-2)}});
+  }
   return {{"name", m.name},
           {"vertices", m.vertices},
           {"triangles", m.triangles},
@@ -34,6 +41,7 @@ Json mesh_json(const MeshQuality& m) {
           {"boundary_edges", m.boundary_edges},
           {"boundary_loops", m.boundary_loops},
           {"holes", m.holes},
+          {"hole_sites", holes},
           {"non_manifold_edges", m.non_manifold_edges},
           {"non_manifold_vertices", m.non_manifold_vertices},
           {"inconsistent_orientation_edges", m.inconsistent_orientation_edges},

@@ -350,6 +350,13 @@ MeshQuality analyse_mesh(const TriangleMesh& mesh, const MeshQualityOptions& opt
   q.boundary_loops = loops.size();
   std::unordered_map<std::uint32_t, std::pair<double, double>> outer;  // component -> (area, length)
   outer.reserve(loops.size());
+  struct LoopFigures {
+    std::uint32_t component;
+    std::pair<double, double> score;  // (area, length)
+    Vec3 centre;
+  };
+  std::vector<LoopFigures> figures;
+  figures.reserve(loops.size());
   for (const auto& loop : loops) {
     const Vec3& o = mesh.vertices[loop[0]];
     Vec3 twice_area = Vec3::Zero();
@@ -370,6 +377,15 @@ MeshQuality analyse_mesh(const TriangleMesh& mesh, const MeshQualityOptions& opt
       ++q.holes;
       it->second = std::max(it->second, score);
     }
+    Vec3 centre = Vec3::Zero();
+    for (const std::uint32_t v : loop) centre += mesh.vertices[v];
+    figures.push_back({component, score, centre / static_cast<double>(loop.size())});
+  }
+  for (const LoopFigures& f : figures) {
+    if (q.hole_sites.size() == kMaxSelfIntersectionSites) break;
+    if (f.score == outer.at(f.component)) continue;  // the component's outer loop
+    q.hole_sites.push_back(f.centre);
+    q.hole_lengths_m.push_back(f.score.second);
   }
 
   // Per-triangle shape: area, orientation, angles, aspect ratio.

@@ -83,6 +83,9 @@ TEST(MeshQuality, GridWithoutItsCentreCellHasOneHole) {
   EXPECT_EQ(q.boundary_edges, 16u);
   EXPECT_EQ(q.boundary_loops, 2u);
   EXPECT_EQ(q.holes, 1u);
+  ASSERT_EQ(q.hole_sites.size(), 1u);  // the cell's centre, its loop 4 m long
+  EXPECT_LT((q.hole_sites[0] - Vec3(1.5, 1.5, 0.0)).norm(), 1e-12);
+  EXPECT_NEAR(q.hole_lengths_m[0], 4.0, 1e-12);
   EXPECT_EQ(q.non_manifold_vertices, 0u);
   EXPECT_EQ(q.bounds.max, Vec2(3, 3));  // the stray vertex is not part of the mesh
   EXPECT_EQ(q.max_z, 0.0);

@@ -22,7 +22,8 @@ struct MeshReportExtras {
 
 /// The report as pretty-printed JSON. Keys (stable): relief_version, file,
 /// meshes[{name, vertices, triangles, unused_vertices, components, boundary_edges,
-/// boundary_loops, holes, non_manifold_edges, non_manifold_vertices,
+/// boundary_loops, holes, hole_sites [{at [x, y, z], length_m}, ...] (the first 20: a loop's mean vertex
+/// and its length), non_manifold_edges, non_manifold_vertices,
 /// inconsistent_orientation_edges, upside_down_triangles, self_intersecting_pairs (null when
 /// not tested), self_intersection_sites [[x, y, z], ...] (the first 20, 1 cm), degenerate_triangles,
 /// sliver_triangles, min_angle_deg, max_aspect_ratio, area_m2, bounds{min_x, min_y, max_x, max_y} | null,

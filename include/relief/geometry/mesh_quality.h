@@ -37,6 +37,10 @@ struct MeshQuality {
   /// component is its loop of largest vector area |sum p_i x p_i+1| / 2 (the projected area
   /// for a 2.5-D surface), ties broken by length.
   std::size_t holes = 0;
+  /// Where the first kMaxSelfIntersectionSites holes are (the mean of a loop's vertices) and
+  /// how long their loops are, in the order the loops are found.
+  std::vector<Vec3> hole_sites;
+  std::vector<double> hole_lengths_m;
   std::size_t non_manifold_edges = 0;  ///< edges with three or more triangles
   /// Vertices whose triangles, joined through the edges with exactly two triangles, form more
   /// than one fan (a vertex where two sheets touch, and both ends of a non-manifold edge).
