@@ -282,11 +282,20 @@ std::pair<int, int> arriving_departing(const WayAttributes& a, bool at_start) {
   return at_start ? std::pair{backward, forward} : std::pair{forward, backward};
 }
 
+// Whether traffic can pass between the two roads of an attribute change: not where two one-ways
+// both arrive or both leave (an extract's edge cutting through a merge leaves such nodes).
+bool has_passage(const RoadNetwork& network, const Junction& j) {
+  const auto [a_in, a_out] = arriving_departing(network.roads[j.ends[0].road].attributes, j.ends[0].at_start);
+  const auto [b_in, b_out] = arriving_departing(network.roads[j.ends[1].road].attributes, j.ends[1].at_start);
+  return (a_in > 0 && b_out > 0) || (b_in > 0 && a_out > 0);
+}
+
 // Two roads meeting end to end link directly when one continues the other: straight enough that
 // their outermost lane borders meet within 2 mm, with the same lanes each way and the same lane
 // width. Otherwise a short transition road bends and widens from one to the other.
 bool needs_transition(const RoadNetwork& network, const Junction& j) {
-  if (j.kind != JunctionKind::attribute_change || j.ends.size() != 2) return false;
+  if (j.kind != JunctionKind::attribute_change || j.ends.size() != 2 || !has_passage(network, j))
+    return false;
   const Road& a = network.roads[j.ends[0].road];
   const Road& b = network.roads[j.ends[1].road];
   const Vec2 da = leaving_direction(a, j.ends[0].at_start), db = leaving_direction(b, j.ends[1].at_start);
@@ -391,7 +400,10 @@ RoadModelBuild build_road_model(const RoadNetwork& network, const std::vector<Ro
   for (const Junction& j : network.junctions) transition[j.id] = needs_transition(network, j) ? 1 : 0;
   std::vector<double> radius(network.junctions.size(), 0.0);
   for (const Junction& j : network.junctions) {
-    if (j.kind != JunctionKind::intersection && !transition[j.id]) continue;
+    // Two one-ways without passage between them end apart, clear of each other as at a fork.
+    const bool apart =
+        j.kind == JunctionKind::attribute_change && j.ends.size() == 2 && !has_passage(network, j);
+    if (j.kind != JunctionKind::intersection && !transition[j.id] && !apart) continue;
     double widest = 0.0;
     for (const RoadEnd& e : j.ends) widest = std::max(widest, half_width(network.roads[e.road]));
     radius[j.id] = widest + options.junction_margin_m;
@@ -656,6 +668,20 @@ RoadModelBuild build_road_model(const RoadNetwork& network, const std::vector<Ro
       return model.roads[out.model_road_of[e.network_road]];
     };
 
+    if (j.kind == JunctionKind::attribute_change && ends.size() == 2 && !has_passage(network, j)) {
+      Diagnostic d;
+      d.severity = Severity::warning;
+      d.code = "model.no_passage";
+      d.message = "roads " + std::to_string(model_of(ends[0]).id) + " and " +
+                  std::to_string(model_of(ends[1]).id) + " meet at OSM node " +
+                  std::to_string(j.osm_node_id) +
+                  " but no lane leads from one into the other (one-ways both arriving or both leaving); "
+                  "both end there";
+      d.osm_node_id = j.osm_node_id;
+      diagnostics.report(std::move(d));
+      ++out.stats.ends_without_passage;
+      continue;
+    }
     if (transition[j.id] && ends.size() == 2) {
       add_transition_road(model, model_of(ends[0]), ends[0].at_start, model_of(ends[1]).id, ends[1].at_start);
       ++out.stats.transition_roads;

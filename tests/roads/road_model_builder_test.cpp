@@ -278,6 +278,32 @@ TEST(RoadModelBuilder, ACornerGetsATransitionRoad) {
   EXPECT_LT(cont.max_vertical_m, 1e-6);
 }
 
+TEST(RoadModelBuilder, TwoOneWaysArrivingAtOneNodeEndApart) {
+  // A one-way freeway and a one-way ramp both ending at one node, 10 degrees apart (an extract's
+  // edge cutting through their merge): no lane leads from one into the other, so neither is
+  // linked, and their ends are trimmed clear of each other as at a fork.
+  const double a = 5.0 * std::numbers::pi / 180.0;
+  const Vec2 from_up(-100.0 * std::cos(a), 100.0 * std::sin(a)),
+      from_down(-100.0 * std::cos(a), -100.0 * std::sin(a));
+  const RoadNetwork net =
+      test::make_network({{from_up, {0, 0}}, {from_down, {0, 0}}}, {street(2, 0, true), street(1, 0, true)});
+  Diagnostics d;
+  const RoadModelBuild b = build_road_model(net, drape(net), {}, d);
+  EXPECT_EQ(b.stats.ends_without_passage, 1u);
+  EXPECT_EQ(d.count("model.no_passage"), 1u);
+  EXPECT_EQ(b.stats.transition_roads, 0u);
+  EXPECT_EQ(b.stats.direct_links, 0u);
+  ASSERT_EQ(b.model.roads.size(), 2u);
+  EXPECT_FALSE(b.model.roads[0].successor);
+  EXPECT_FALSE(b.model.roads[1].successor);
+  EXPECT_EQ(b.stats.junction_ends_overlap, 0u);
+  const auto [r1, l1] = end_section(b.model.roads[0], false);
+  const auto [r2, l2] = end_section(b.model.roads[1], false);
+  EXPECT_GE(std::min({point_segment_distance(r1, r2, l2), point_segment_distance(l1, r2, l2),
+                      point_segment_distance(r2, r1, l1), point_segment_distance(l2, r1, l1)}),
+            0.5);
+}
+
 }  // namespace
 }  // namespace relief
 

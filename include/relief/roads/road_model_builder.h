@@ -15,7 +15,8 @@
 // - Roads meeting at an attribute change (2 ends) are linked directly, lane to lane, when one
 //   continues the other (straight within 3 degrees, same lanes, same width); otherwise both are
 //   trimmed and joined by a short transition road that bends and widens from one to the other
-//   (lanes present on one side only taper to width 0).
+//   (lanes present on one side only taper to width 0). Where two one-ways both arrive (or both
+//   leave), neither is linked: both end there ("model.no_passage").
 // - Where roads leave a junction at a small angle (forks), their ends are trimmed further, in
 //   steps, until at each junction the end cross-sections (outermost left to outermost right
 //   lane border) of any two roads lie at least junction_end_gap_m apart and clear of each
@@ -67,6 +68,7 @@ struct RoadModelStats {
   std::size_t junction_ends_overlap = 0;  ///< junctions whose road ends still overlap
   std::size_t junctions_joined = 0;       ///< intersections joined into a neighbour's junction
   std::size_t roads_absorbed = 0;         ///< roads inside joined junctions (no OpenDRIVE road)
+  std::size_t ends_without_passage = 0;   ///< attribute changes between two arriving (leaving) one-ways
 };
 
 struct RoadModelBuild {
