@@ -27,20 +27,31 @@ JunctionClusters join_junctions(const RoadNetwork& network, const std::vector<do
   for (const Road& road : network.roads) {
     const int a = road.start_junction, b = road.end_junction;
     if (a < 0 || b < 0 || a == b || !has_height[road.id]) continue;
-    if (network.junctions[a].kind != JunctionKind::intersection ||
-        network.junctions[b].kind != JunctionKind::intersection)
-      continue;
+    // Two intersections, or an intersection and a bend or lane change that takes room.
+    const bool ia = network.junctions[a].kind == JunctionKind::intersection;
+    const bool ib = network.junctions[b].kind == JunctionKind::intersection;
+    if (!(ia || ib) || !(radius[a] > 0.0) || !(radius[b] > 0.0)) continue;
     if (length[road.id] >= radius[a] + radius[b] + min_kept_length_m) continue;
     out.absorbed[road.id] = 1;
     const int ra = find(parent, a), rb = find(parent, b);
     if (ra != rb) parent[std::max(ra, rb)] = std::min(ra, rb);
   }
+  // The representative: the cluster's first intersection (a joined cluster has one).
+  std::vector<int> first(n, -1);
+  for (std::size_t j = 0; j < n; ++j) {
+    int& f = first[find(parent, static_cast<int>(j))];
+    if (f < 0 || (network.junctions[f].kind != JunctionKind::intersection &&
+                  network.junctions[j].kind == JunctionKind::intersection))
+      f = static_cast<int>(j);
+  }
   out.representative.resize(n);
   out.members.assign(n, {});
+  for (std::size_t j = 0; j < n; ++j) out.representative[j] = first[find(parent, static_cast<int>(j))];
   for (std::size_t j = 0; j < n; ++j) {
-    const int r = find(parent, static_cast<int>(j));
-    out.representative[j] = r;
-    out.members[r].push_back(static_cast<int>(j));  // ascending: the representative comes first
+    const int r = out.representative[j];
+    std::vector<int>& m = out.members[r];
+    m.push_back(static_cast<int>(j));
+    if (static_cast<int>(j) == r) std::swap(m.front(), m.back());  // the representative first
   }
   return out;
 }

@@ -12,8 +12,8 @@
 namespace relief::detail {
 
 struct JunctionClusters {
-  /// Per network junction: the junction that stands for its cluster (the lowest id); itself
-  /// when it was not joined.
+  /// Per network junction: the junction that stands for its cluster (its first intersection);
+  /// itself when it was not joined.
   std::vector<int> representative;
   /// Per network junction: the members of the cluster it represents (itself first); empty for
   /// junctions represented by another.
@@ -26,9 +26,11 @@ struct JunctionClusters {
   [[nodiscard]] bool reachable(const RoadNetwork& network, int from, int to) const;
 };
 
-/// Joins the two intersections at the ends of every road (not a loop, with height) that is
-/// shorter than the two junctions' radii plus `min_kept_length_m`. `radius` is per network
-/// junction (0 where a junction takes no room); `length` and `has_height` per network road.
+/// Joins the two junctions at the ends of every road (not a loop, with height) that is shorter
+/// than the two junctions' radii plus `min_kept_length_m`, where one is an intersection and the
+/// other an intersection or an attribute change that takes room (a bend or lane change, which
+/// then needs no transition road). `radius` is per network junction (0 where a junction takes no
+/// room); `length` and `has_height` per network road.
 [[nodiscard]] JunctionClusters join_junctions(const RoadNetwork& network, const std::vector<double>& radius,
                                               const std::vector<double>& length,
                                               const std::vector<std::uint8_t>& has_height,

@@ -488,11 +488,13 @@ RoadModelBuild build_road_model(const RoadNetwork& network, const std::vector<Ro
     Diagnostic d;
     d.severity = Severity::info;
     d.code = "model.junctions_joined";
-    d.message = "the intersections of OSM nodes " + nodes + " are one junction: network road(s) " + roads +
+    d.message = "the junctions of OSM nodes " + nodes + " are one junction: network road(s) " + roads +
                 " between them are too short to hold both";
     d.osm_node_id = j.osm_node_id;
     diagnostics.report(std::move(d));
-    out.stats.junctions_joined += members.size() - 1;
+    for (const int m : members) {
+      if (m != j.id && network.junctions[m].kind == JunctionKind::intersection) ++out.stats.junctions_joined;
+    }
   }
   for (const std::uint8_t a : clusters.absorbed) out.stats.roads_absorbed += a;
 

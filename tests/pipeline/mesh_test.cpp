@@ -208,15 +208,14 @@ TEST(MeshPipeline, NorthEastSceneFiguresAndReimport) {
   const SceneBuild b = build_scene(scene_options(test::ne_options("mesh_ne")));
   const MeshSummary& m = summary(b);
   print("sf-ne", m);
-  // Known defects (measured): 1 junction left open (an outline that is not simple), 6
-  // intersecting Road_Road triangle pairs at two places where roads cross without a shared
-  // node; the welded ground has 36 holes (tunnel portals, slits where road edges meet). Before
-  // forks could trim from the whole road, close intersections were joined and two arriving
-  // one-ways stopped getting a hairpin transition road: 6 open, 16 pairs, 85 upside-down
-  // triangles, 58 holes.
+  // Known defects (measured): 3 intersecting Road_Road triangle pairs where two parallel roads
+  // lie closer than their widths (around (1690, -908)); the welded ground has 34 holes (tunnel
+  // portals, slits where road edges meet). Before forks could trim from the whole road, close
+  // junctions were joined and two arriving one-ways stopped getting a hairpin transition road:
+  // 6 junctions open, 16 pairs, 85 upside-down triangles, 58 holes.
   expect_scene_figures(
       m,
-      {.junctions_failed = 1, .self_intersecting_pairs = 6, .upside_down_triangles = 0, .ground_holes = 36});
+      {.junctions_failed = 0, .self_intersecting_pairs = 3, .upside_down_triangles = 0, .ground_holes = 34});
   expect_files_reimport(b);
 }
 

@@ -196,6 +196,31 @@ TEST(RoadModelBuilder, CrossingsOfADividedStreetAreOneJunction) {
   EXPECT_LT(c.max_vertical_m, 1e-6);
 }
 
+TEST(RoadModelBuilder, ALaneChangeNextToAnIntersectionJoinsIt) {
+  // A T junction whose west arm changes from one lane each way to two, 6 m from the node: that
+  // 6 m stub cannot hold the junction (radius 5 m) and a transition road (5 m), so the lane
+  // change joins the junction and the wide road arrives at it directly.
+  const RoadNetwork net =
+      test::make_network({{{-100, 0}, {-6, 0}}, {{-6, 0}, {0, 0}}, {{0, 0}, {100, 0}}, {{0, 0}, {0, -100}}},
+                         {street(2, 2), street(1, 1), street(1, 1), street(1, 1)});
+  Diagnostics d;
+  const RoadModelBuild b = build_road_model(net, drape(net), {}, d);
+  EXPECT_EQ(b.stats.transition_roads, 0u);
+  EXPECT_EQ(b.stats.roads_absorbed, 1u);
+  EXPECT_EQ(b.stats.junctions_joined, 0u);  // no second intersection
+  EXPECT_EQ(b.stats.junctions, 1u);
+  EXPECT_EQ(b.model_road_of[1], -1);
+  const ModelRoad& wide = b.model.roads[b.model_road_of[0]];
+  ASSERT_TRUE(wide.successor);
+  EXPECT_EQ(wide.successor->element, RoadLink::Element::junction);
+  // Two lanes arrive from the west: through pairs them with the one lane east, right and left
+  // turns take one each; every other arm 2 movements of one lane.
+  EXPECT_EQ(b.stats.connecting_roads, 2u + 2u * 2u);
+  const LinkContinuity c = check_link_continuity(b.model);
+  EXPECT_LT(c.max_horizontal_m, 1e-6);
+  EXPECT_LT(c.max_vertical_m, 1e-6);
+}
+
 TEST(RoadModelBuilder, MovementsThroughAJoinedJunctionFollowItsOneWays) {
   // The road between the crossings one-way eastwards: nothing that arrives at the east node
   // can reach the west one. From the east street only the right turn north is left, from the
