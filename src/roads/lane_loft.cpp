@@ -234,10 +234,13 @@ class Loft {
 
 /// Mark strips of one section: each painted interval is sampled at its ends and at the loft
 /// stations inside it; double lines are two strips one width apart.
+// Marks of one lane section into `marking`; the vertices of marks that reach the road's start
+// (s = 0) or end go to `start` / `end`, to be welded to the linked road's.
 void emit_marks(const ModelRoad& road, const SectionSampler& sampler, const std::vector<Station>& stations,
-                const RoadMeshOptions& options, MeshBuilder& marking) {
+                const RoadMeshOptions& options, MeshBuilder& marking, RoadEnd& start, RoadEnd& end) {
   const double s0 = stations.front().s;
   const double s1 = stations.back().s;
+  const double length = road.length();
   struct Line {
     double offset;
     bool broken;
@@ -291,6 +294,8 @@ void emit_marks(const ModelRoad& road, const SectionSampler& sampler, const std:
             marking.add_triangle(prev_r, r, l, road.id);
             marking.add_triangle(prev_r, l, prev_l, road.id);
           }
+          if (s <= 1e-9) start.marking_vertices.insert(start.marking_vertices.end(), {l, r});
+          if (s >= length - 1e-9) end.marking_vertices.insert(end.marking_vertices.end(), {l, r});
           prev_l = l;
           prev_r = r;
         }
@@ -354,7 +359,7 @@ LoftedRoad loft_road(const ModelRoad& road, const RoadMeshOptions& options, Mesh
     }
     result.end.road_vertices = loft.end_vertices(sampler, ids.back(), 0);
     result.end.sidewalk_vertices = loft.end_vertices(sampler, ids.back(), 1);
-    if (marking != nullptr) emit_marks(road, sampler, stations, options, *marking);
+    if (marking != nullptr) emit_marks(road, sampler, stations, options, *marking, result.start, result.end);
     result.stations += stations.size();
     previous = stations.back();
     previous_ids = ids.back();

@@ -15,6 +15,7 @@ namespace relief::detail {
 struct RoadEnd {
   std::vector<std::uint32_t> road_vertices;      ///< in the road mesh
   std::vector<std::uint32_t> sidewalk_vertices;  ///< in the sidewalk mesh
+  std::vector<std::uint32_t> marking_vertices;   ///< in the marking mesh: the marks' end edges
 };
 
 struct LoftedRoad {

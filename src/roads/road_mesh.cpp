@@ -140,20 +140,22 @@ void remap_list(std::vector<std::uint32_t>& list, const std::vector<std::uint32_
   list = std::move(out);
 }
 
-/// Ends of lofted roads linked directly to another lofted road, welded in each mesh.
+/// Ends of lofted roads linked directly to another lofted road, welded in each mesh. Returns the
+/// road and sidewalk vertices left without partner (marks may end where the next road's do not
+/// start: a solid line that becomes broken).
 std::size_t weld_linked_ends(const RoadModel& model, std::vector<std::optional<LoftedRoad>>& lofted,
-                             MeshBuilder& road, MeshBuilder& sidewalk) {
+                             MeshBuilder& road, MeshBuilder& sidewalk, MeshBuilder& marking) {
   const auto linked_to_road = [&](const std::optional<RoadLink>& link) {
     if (!link || link->element != RoadLink::Element::road) return false;
     const int other = model.road_index(link->id);
     return other >= 0 && lofted[static_cast<std::size_t>(other)].has_value();
   };
   std::size_t unmatched = 0;
-  for (int mesh = 0; mesh < 2; ++mesh) {
-    MeshBuilder& builder = mesh == 0 ? road : sidewalk;
+  for (int mesh = 0; mesh < 3; ++mesh) {
+    MeshBuilder& builder = mesh == 0 ? road : mesh == 1 ? sidewalk : marking;
     EndWelder welder(builder.mesh, kWeldTolerance);
     const auto list = [mesh](detail::RoadEnd& end) -> std::vector<std::uint32_t>& {
-      return mesh == 0 ? end.road_vertices : end.sidewalk_vertices;
+      return mesh == 0 ? end.road_vertices : mesh == 1 ? end.sidewalk_vertices : end.marking_vertices;
     };
     for (std::size_t i = 0; i < lofted.size(); ++i) {
       if (!lofted[i]) continue;
@@ -161,7 +163,7 @@ std::size_t weld_linked_ends(const RoadModel& model, std::vector<std::optional<L
       if (linked_to_road(r.predecessor)) welder.add(list(lofted[i]->start), r.id);
       if (linked_to_road(r.successor)) welder.add(list(lofted[i]->end), r.id);
     }
-    unmatched += welder.unmatched();
+    if (mesh < 2) unmatched += welder.unmatched();
     apply_remap(builder, welder.remap());
     for (auto& l : lofted) {
       if (!l) continue;
@@ -214,7 +216,7 @@ RoadMeshes build_road_meshes(const RoadModel& model, const RoadMeshOptions& opti
   }
 
   // 2. Roads linked end to end share their end vertices.
-  const std::size_t unmatched = weld_linked_ends(model, lofted, road, sidewalk);
+  const std::size_t unmatched = weld_linked_ends(model, lofted, road, sidewalk, marking);
   if (unmatched > 0) {
     diagnostics.report(Severity::info, "mesh.weld_unmatched",
                        std::to_string(unmatched) +

@@ -239,6 +239,27 @@ TEST(RoadMesh, GoldenBridgeRoadsAreWeldedIntoOneSurface) {
   EXPECT_FALSE(meshes.marking.empty());
 }
 
+TEST(RoadMesh, MarksOfLinkedRoadsContinueOnSharedVertices) {
+  // Road b starts 0.5 mm before a ends (a link within the weld tolerance): unwelded, the two
+  // roads' mark strips would overlap there by 0.5 mm.
+  ModelRoad a = straight_road(1, Vec2::Zero(), 0.0, 50.0, 2.0, 0.02);
+  ModelRoad b = straight_road(2, Vec2(50.0 - 5e-4, 0.0), 0.0, 50.0, 3.0 - 1e-5, 0.02);
+  for (ModelRoad* r : {&a, &b}) {
+    r->sections[0].left[0].mark.type = RoadMark::Type::solid;
+    r->sections[0].right[0].mark.type = RoadMark::Type::solid;
+  }
+  a.successor = RoadLink{RoadLink::Element::road, 2, RoadLink::Contact::start};
+  b.predecessor = RoadLink{RoadLink::Element::road, 1, RoadLink::Contact::end};
+  RoadModel model;
+  model.roads = {a, b};
+  Diagnostics diagnostics;
+  const RoadMeshes meshes = build_road_meshes(model, {}, diagnostics);
+  const MeshQuality marks = analyse_mesh(meshes.marking);
+  EXPECT_EQ(marks.components, 2u);  // one strip per border, over both roads
+  EXPECT_EQ(marks.self_intersecting_pairs, 0u);
+  EXPECT_EQ(marks.non_manifold_edges, 0u);
+}
+
 TEST(RoadMesh, BridgeOverARoadDoesNotIntersectIt) {
   // Road 1 along x at z = 0, road 2 along y over it at z = 6: two separate surfaces.
   RoadModel model;
