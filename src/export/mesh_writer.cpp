@@ -4,7 +4,6 @@
 #include <assimp/metadata.h>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
-#include <assimp/Exporter.hpp>
 #include <assimp/Importer.hpp>
 #include <nlohmann/json.hpp>
 
@@ -19,6 +18,7 @@
 #include <sstream>
 
 #include "export/fbx_scene_writer.h"
+#include "export/glb_writer.h"
 #include "export/obj_writer.h"
 #include "relief/core/errors.h"
 
@@ -111,89 +111,6 @@ fbx::SceneDesc prepare_scene(const MeshScene& scene) {
   return out;
 }
 
-// --- assimp encoding (glb) -------------------------------------------------------------------
-
-aiMetadata* make_metadata(const fbx::SceneDesc& desc) {
-  aiMetadata* meta = aiMetadata::Alloc(static_cast<unsigned>(desc.user_properties.size()));
-  for (unsigned i = 0; i < meta->mNumProperties; ++i) {
-    const auto& [key, value] = desc.user_properties[i];
-    meta->Set(i, key, aiString(value));
-  }
-  return meta;
-}
-
-// The aiScene: a root node with one child node per mesh (named like the mesh, so that no
-// exporter merges meshes), metadata on the scene and on the root node.
-std::unique_ptr<aiScene> make_ai_scene(const fbx::SceneDesc& desc) {
-  auto scene = std::make_unique<aiScene>();
-  scene->mNumMaterials = static_cast<unsigned>(desc.materials.size());
-  scene->mMaterials = new aiMaterial*[scene->mNumMaterials];
-  for (unsigned i = 0; i < scene->mNumMaterials; ++i) {
-    auto* mat = new aiMaterial();
-    scene->mMaterials[i] = mat;
-    const aiString name(desc.materials[i].name);
-    mat->AddProperty(&name, AI_MATKEY_NAME);
-    const auto& c = desc.materials[i].diffuse_rgb;
-    const aiColor4D diffuse(c[0], c[1], c[2], 1.0f);
-    mat->AddProperty(&diffuse, 1, AI_MATKEY_COLOR_DIFFUSE);
-    mat->AddProperty(&diffuse, 1, AI_MATKEY_BASE_COLOR);
-  }
-
-  scene->mNumMeshes = static_cast<unsigned>(desc.meshes.size());
-  scene->mMeshes = new aiMesh*[scene->mNumMeshes];
-  for (unsigned m = 0; m < scene->mNumMeshes; ++m) {
-    const fbx::MeshDesc& src = desc.meshes[m];
-    auto* mesh = new aiMesh();
-    scene->mMeshes[m] = mesh;
-    mesh->mName = aiString(src.name);
-    mesh->mMaterialIndex = static_cast<unsigned>(src.material);
-    mesh->mPrimitiveTypes = aiPrimitiveType_TRIANGLE;
-    mesh->mNumVertices = static_cast<unsigned>(src.positions.size());
-    mesh->mVertices = new aiVector3D[mesh->mNumVertices];
-    for (unsigned i = 0; i < mesh->mNumVertices; ++i) {
-      const auto& p = src.positions[i];
-      mesh->mVertices[i] = aiVector3D(p[0], p[1], p[2]);
-    }
-    if (!src.normals.empty()) {
-      mesh->mNormals = new aiVector3D[mesh->mNumVertices];
-      for (unsigned i = 0; i < mesh->mNumVertices; ++i) {
-        const auto& v = src.normals[i];
-        mesh->mNormals[i] = aiVector3D(v[0], v[1], v[2]);
-      }
-    }
-    if (!src.uvs.empty()) {
-      mesh->mTextureCoords[0] = new aiVector3D[mesh->mNumVertices];
-      mesh->mNumUVComponents[0] = 2;
-      for (unsigned i = 0; i < mesh->mNumVertices; ++i) {
-        mesh->mTextureCoords[0][i] = aiVector3D(src.uvs[i][0], src.uvs[i][1], 0.0f);
-      }
-    }
-    mesh->mNumFaces = static_cast<unsigned>(src.triangles.size());
-    mesh->mFaces = new aiFace[mesh->mNumFaces];
-    for (unsigned f = 0; f < mesh->mNumFaces; ++f) {
-      aiFace& face = mesh->mFaces[f];
-      face.mNumIndices = 3;
-      face.mIndices = new unsigned[3];
-      std::copy(src.triangles[f].begin(), src.triangles[f].end(), face.mIndices);
-    }
-  }
-
-  scene->mRootNode = new aiNode("relief");
-  aiNode* root = scene->mRootNode;
-  root->mNumChildren = scene->mNumMeshes;
-  root->mChildren = new aiNode*[root->mNumChildren];
-  for (unsigned m = 0; m < scene->mNumMeshes; ++m) {
-    auto* node = new aiNode(desc.meshes[m].name);
-    node->mParent = root;
-    node->mNumMeshes = 1;
-    node->mMeshes = new unsigned[1]{m};
-    root->mChildren[m] = node;
-  }
-  scene->mMetaData = make_metadata(desc);
-  root->mMetaData = make_metadata(desc);
-  return scene;
-}
-
 std::string escape_obj_comment(const std::string& text) {
   std::string out;
   for (const char c : text) {
@@ -238,90 +155,6 @@ std::string obj_metadata_lines(const fbx::SceneDesc& desc) {
     out += escape_obj_comment(key) + '\t' + escape_obj_comment(value) + '\n';
   }
   return out;
-}
-
-// Collects the names of the extensions a glTF document uses (keys of every "extensions" object).
-void used_gltf_extensions(const nlohmann::json& j, std::set<std::string>& out) {
-  if (j.is_object()) {
-    for (const auto& [key, value] : j.items()) {
-      if (key == "extensions" && value.is_object()) {
-        for (const auto& [name, unused] : value.items()) out.insert(name);
-      }
-      used_gltf_extensions(value, out);
-    }
-  } else if (j.is_array()) {
-    for (const auto& value : j) used_gltf_extensions(value, out);
-  }
-}
-
-std::uint32_t glb_u32(const std::string& glb, std::size_t at) {
-  std::uint32_t v = 0;
-  std::memcpy(&v, glb.data() + at, sizeof v);
-  return v;
-}
-
-void put_glb_u32(std::string& out, std::size_t value) {
-  const auto v = static_cast<std::uint32_t>(value);
-  out.append(reinterpret_cast<const char*>(&v), sizeof v);
-}
-
-// assimp 5.2's glTF exporter writes no extras and lists extensions it does not use
-// (KHR_materials_volume, FB_ngon_encoding). Rewrites the JSON chunk of the .glb: metadata into
-// asset.extras (the document's place) and the root node's extras (which assimp and Blender read
-// back as node metadata / custom properties), extensionsUsed reduced to the used ones.
-std::string add_glb_metadata(const std::string& glb, const fbx::SceneDesc& desc,
-                             const std::string& filename) {
-  constexpr std::uint32_t kJsonChunk = 0x4E4F534A;  // "JSON"
-  if (glb.size() < 20 || glb.compare(0, 4, "glTF") != 0 || glb_u32(glb, 16) != kJsonChunk) {
-    throw IoError("assimp wrote an unexpected .glb layout for '" + filename + "'");
-  }
-  const std::size_t json_bytes = glb_u32(glb, 12);
-  if (20 + json_bytes > glb.size()) throw IoError("assimp wrote a truncated .glb for '" + filename + "'");
-  nlohmann::json j = nlohmann::json::parse(glb.substr(20, json_bytes));
-  nlohmann::json extras = nlohmann::json::object();
-  for (const auto& [key, value] : desc.user_properties) extras[key] = value;
-  j["asset"]["extras"] = extras;
-  if (j.contains("scenes") && !j["scenes"].empty() && j["scenes"][0].contains("nodes")) {
-    for (const auto& root : j["scenes"][0]["nodes"]) j["nodes"][root.get<std::size_t>()]["extras"] = extras;
-  }
-  std::set<std::string> used;
-  used_gltf_extensions(j, used);
-  if (used.empty()) {
-    j.erase("extensionsUsed");
-  } else {
-    j["extensionsUsed"] = used;
-  }
-  std::string text = j.dump();
-  text.append((4 - text.size() % 4) % 4, ' ');  // chunks are 4-byte aligned, JSON padded with spaces
-  const std::string rest = glb.substr(20 + json_bytes);
-  std::string out = "glTF";
-  put_glb_u32(out, 2);
-  put_glb_u32(out, 12 + 8 + text.size() + rest.size());
-  put_glb_u32(out, text.size());
-  put_glb_u32(out, kJsonChunk);
-  out += text;
-  out += rest;
-  return out;
-}
-
-std::vector<EncodedFile> encode_with_assimp(const fbx::SceneDesc& desc, MeshFormat format,
-                                            const std::string& base_name) {
-  const std::unique_ptr<aiScene> scene = make_ai_scene(desc);
-  Assimp::Exporter exporter;
-  const char* format_id = "glb2";
-  const aiExportDataBlob* blob = exporter.ExportToBlob(scene.get(), format_id);
-  if (blob == nullptr) {
-    throw IoError("assimp could not encode '" + base_name + std::string(extension(format)) +
-                  "': " + exporter.GetErrorString());
-  }
-  const auto bytes_of = [](const aiExportDataBlob* b) {
-    return std::string(static_cast<const char*>(b->data), b->size);
-  };
-  std::vector<EncodedFile> files;
-  files.push_back({base_name + std::string(extension(format)), bytes_of(blob)});
-  if (format == MeshFormat::glb)
-    files.front().bytes = add_glb_metadata(files.front().bytes, desc, files.front().filename);
-  return files;
 }
 
 // --- reading ---------------------------------------------------------------------------------
@@ -468,7 +301,7 @@ std::vector<EncodedFile> encode_mesh_scene(const MeshScene& scene, MeshFormat fo
     ObjText text = encode_obj(desc, mtl_name, obj_metadata_lines(desc));
     return {{base_name + ".obj", std::move(text.obj)}, {mtl_name, std::move(text.mtl)}};
   }
-  return encode_with_assimp(desc, format, base_name);
+  return {{base_name + ".glb", encode_glb(desc)}};
 }
 
 MeshScene read_mesh_file(const std::filesystem::path& path) {

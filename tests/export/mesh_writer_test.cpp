@@ -187,6 +187,63 @@ TEST(MeshWriter, GlbRoundTripKeepsCountsPositionsAndMetadata) {
   expect_round_trip(MeshFormat::glb, [](const TriangleMesh& m) { return m.vertices.size(); });
 }
 
+// The .glb's own layout, as the glTF 2.0 spec has it: header and two 4-byte aligned chunks,
+// POSITION accessors with min/max, one material per surface type, the metadata as extras of
+// the asset and of the root node, no extensions.
+TEST(MeshWriter, GlbLayoutFollowsTheSpec) {
+  const std::string glb = encode_mesh_scene(test_scene(), MeshFormat::glb, "layout").front().bytes;
+  const auto u32 = [&](std::size_t at) {
+    std::uint32_t v = 0;
+    std::memcpy(&v, glb.data() + at, sizeof v);
+    return v;
+  };
+  ASSERT_GE(glb.size(), 28u);
+  EXPECT_EQ(glb.substr(0, 4), "glTF");
+  EXPECT_EQ(u32(4), 2u);
+  EXPECT_EQ(u32(8), glb.size());
+  const std::uint32_t json_bytes = u32(12);
+  EXPECT_EQ(json_bytes % 4, 0u);
+  EXPECT_EQ(glb.substr(16, 4), "JSON");
+  const std::uint32_t bin_bytes = u32(20 + json_bytes);
+  EXPECT_EQ(glb.substr(24 + json_bytes, 3), "BIN");
+  EXPECT_EQ(bin_bytes % 4, 0u);
+  EXPECT_EQ(20u + json_bytes + 8u + bin_bytes, glb.size());
+  const nlohmann::json j = nlohmann::json::parse(glb.substr(20, json_bytes));
+  EXPECT_EQ(j["asset"]["version"], "2.0");
+  EXPECT_EQ(j["asset"]["extras"]["relief:source"], "unit test");
+  EXPECT_EQ(j["nodes"][0]["extras"]["relief:crs"], "EPSG:32610");
+  EXPECT_FALSE(j.contains("extensionsUsed"));
+  EXPECT_EQ(j["buffers"][0]["byteLength"], bin_bytes);
+  ASSERT_EQ(j["meshes"].size(), 3u);
+  std::set<std::string> materials;
+  for (const auto& m : j["materials"]) materials.insert(m["name"].get<std::string>());
+  EXPECT_EQ(materials.size(), j["materials"].size());
+  for (const auto& mesh : j["meshes"]) {
+    const auto& prim = mesh["primitives"][0];
+    const auto& position = j["accessors"][prim["attributes"]["POSITION"].get<std::size_t>()];
+    ASSERT_TRUE(position.contains("min") && position.contains("max")) << mesh["name"];
+    EXPECT_EQ(position["min"].size(), 3u);
+    EXPECT_EQ(j["accessors"][prim["indices"].get<std::size_t>()]["count"].get<std::size_t>() % 3, 0u);
+    for (const auto& [attribute, index] : prim["attributes"].items()) {
+      const auto& view =
+          j["bufferViews"][j["accessors"][index.get<std::size_t>()]["bufferView"].get<std::size_t>()];
+      EXPECT_LE(view["byteOffset"].get<std::size_t>() + view["byteLength"].get<std::size_t>(), bin_bytes)
+          << attribute;
+    }
+  }
+  // The terrain grid: 11 x 11 vertices over x 4500.37..4600.37, y -3200.61..-3100.61, z 30..34;
+  // in the file's axes (y up, z = -y) its bounds are these.
+  const auto& terrain = j["meshes"][2];
+  EXPECT_EQ(terrain["name"], "Terrain");
+  const auto& bounds = j["accessors"][terrain["primitives"][0]["attributes"]["POSITION"].get<std::size_t>()];
+  EXPECT_EQ(bounds["count"], 121);
+  const std::array<double, 3> lo{4500.37, 30.0, 3100.61}, hi{4600.37, 34.0, 3200.61};
+  for (std::size_t k = 0; k < 3; ++k) {
+    EXPECT_NEAR(bounds["min"][k].get<double>(), lo[k], 1e-3) << k;
+    EXPECT_NEAR(bounds["max"][k].get<double>(), hi[k], 1e-3) << k;
+  }
+}
+
 // assimp's OBJ and FBX importers make one vertex per triangle corner.
 TEST(MeshWriter, ObjRoundTripKeepsTrianglesPositionsAndMetadata) {
   expect_round_trip(MeshFormat::obj, [](const TriangleMesh& m) { return 3 * m.triangles.size(); });
