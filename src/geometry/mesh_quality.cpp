@@ -225,6 +225,28 @@ PairCount soup_self_intersections(const TriangleMesh& mesh) {
   return pairs;
 }
 
+// Pairs of a flagged and an unflagged triangle only: box_intersection_d between the two sets.
+PairCount soup_cross_intersections(const TriangleMesh& mesh, const std::vector<std::uint8_t>& flagged) {
+  using Box = CGAL::Box_intersection_d::Box_with_info_d<double, 3, std::uint32_t,
+                                                        CGAL::Box_intersection_d::ID_FROM_BOX_ADDRESS>;
+  const std::vector<Point3> p = cgal_points(mesh);
+  std::array<std::vector<Box>, 2> boxes;
+  for (std::uint32_t i = 0; i < mesh.triangles.size(); ++i) {
+    const Triangle& t = mesh.triangles[i];
+    if (repeats_index(t) || CGAL::collinear(p[t[0]], p[t[1]], p[t[2]])) continue;
+    boxes[flagged[i] ? 1 : 0].emplace_back(p[t[0]].bbox() + p[t[1]].bbox() + p[t[2]].bbox(), i);
+  }
+  PairCount pairs;
+  const auto on_overlap = [&](const Box& x, const Box& y) {
+    if (triangles_intersect(p, mesh.triangles[x.info()], mesh.triangles[y.info()])) {
+      pairs.add(mesh, x.info(), y.info());
+    }
+  };
+  CGAL::box_intersection_d<CGAL::Sequential_tag>(boxes[0].begin(), boxes[0].end(), boxes[1].begin(),
+                                                 boxes[1].end(), on_overlap, std::ptrdiff_t{2000});
+  return pairs;
+}
+
 // Manifold, consistently oriented mesh: CGAL::Surface_mesh and PMP::self_intersections.
 // Returns nothing if CGAL refuses a face (then the soup test is used).
 std::optional<PairCount> pmp_self_intersections(const TriangleMesh& mesh) {
@@ -428,7 +450,12 @@ MeshQuality analyse_mesh(const TriangleMesh& mesh, const MeshQualityOptions& opt
                           q.inconsistent_orientation_edges == 0 &&
                           std::none_of(mesh.triangles.begin(), mesh.triangles.end(), repeats_index);
     std::optional<PairCount> pairs;
-    if (manifold) pairs = pmp_self_intersections(mesh);
+    if (!options.intersections_across.empty()) {
+      if (options.intersections_across.size() != mesh.triangles.size())
+        throw InvalidInput("analyse_mesh: intersections_across needs one flag per triangle");
+      pairs = soup_cross_intersections(mesh, options.intersections_across);
+    }
+    if (!pairs && manifold) pairs = pmp_self_intersections(mesh);
     if (!pairs) pairs = soup_self_intersections(mesh);
     q.self_intersecting_pairs = pairs->pairs;
     q.self_intersection_sites = std::move(pairs->sites);

@@ -91,6 +91,23 @@ TEST(MeshQuality, GridWithoutItsCentreCellHasOneHole) {
   EXPECT_EQ(q.max_z, 0.0);
 }
 
+TEST(MeshQuality, IntersectionsAcrossTwoSetsLeavePairsWithinEachOut) {
+  // T0 lies in z = 0; T1 (plane x = 0.5) and T2 (plane y = 0.25) both pierce it, not each other.
+  TriangleMesh m;
+  m.vertices = {{0, 0, 0},     {2, 0, 0},       {0, 2, 0},      {0.5, 0.5, -1}, {0.5, 0.5, 1},
+                {0.5, 1.0, 0}, {0.2, 0.25, -1}, {0.2, 0.25, 1}, {1.0, 0.25, 0}};
+  m.triangles = {{0, 1, 2}, {3, 4, 5}, {6, 7, 8}};
+  EXPECT_EQ(analyse_mesh(m).self_intersecting_pairs, 2u);
+  MeshQualityOptions across;
+  across.intersections_across = {1, 1, 0};  // T0 and T1 one set, T2 the other
+  const MeshQuality q = analyse_mesh(m, across);
+  EXPECT_EQ(q.self_intersecting_pairs, 1u);
+  ASSERT_EQ(q.self_intersection_sites.size(), 1u);
+  EXPECT_NEAR(q.self_intersection_sites[0].y(), (2.0 / 3.0 + 0.25) / 2.0, 1e-12);  // T0 and T2
+  across.intersections_across = {1, 0};
+  EXPECT_THROW((void)analyse_mesh(m, across), InvalidInput);
+}
+
 TEST(MeshQuality, ThreeTrianglesOnOneEdge) {
   // p-q carries a flat triangle on each side and a vertical one.
   const MeshQuality q = analyse_mesh(soup({{0, 0, 0}, {1, 0, 0}, {0.5, 1, 0}, {0.5, -1, 0}, {0.5, 0, 1}},

@@ -5,6 +5,7 @@
 // seam between two meshes. CGAL stays in src/geometry/.
 
 #include <cstddef>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -19,6 +20,9 @@ struct MeshQualityOptions {
   double sliver_max_aspect_ratio = 20;  ///< ... or with a larger longest-edge / shortest-altitude
   double degenerate_area_m2 = 1e-8;     ///< a triangle with area <= this is degenerate
   bool self_intersections = true;       ///< the costly test; off for a quick look
+  /// When not empty (one flag per triangle): only pairs of a flagged and an unflagged triangle
+  /// are tested, for a mesh joined from two whose own pairs are known (roads + terrain).
+  std::vector<std::uint8_t> intersections_across;
 };
 
 /// Figures of one mesh. Edges and vertices are identified by index. Degenerate triangles
@@ -50,6 +54,7 @@ struct MeshQuality {
   /// Triangle pairs that intersect other than at shared vertices/edges (exact predicates).
   /// Vertices are compared by index: two triangles that touch at distinct vertices with equal
   /// positions intersect. Triangles with collinear corners are left out (they are degenerate).
+  /// With MeshQualityOptions::intersections_across, only pairs across the two sets.
   std::size_t self_intersecting_pairs = 0;
   /// Where the first kMaxSelfIntersectionSites pairs are (the midpoint of the two triangles'
   /// centroids), to find them in a viewer.
