@@ -226,24 +226,28 @@ PairCount soup_self_intersections(const TriangleMesh& mesh) {
 }
 
 // Pairs of a flagged and an unflagged triangle only: box_intersection_d between the two sets.
+// The boxes are sorted through pointers: their ids are their addresses, which must not move.
 PairCount soup_cross_intersections(const TriangleMesh& mesh, const std::vector<std::uint8_t>& flagged) {
   using Box = CGAL::Box_intersection_d::Box_with_info_d<double, 3, std::uint32_t,
                                                         CGAL::Box_intersection_d::ID_FROM_BOX_ADDRESS>;
   const std::vector<Point3> p = cgal_points(mesh);
-  std::array<std::vector<Box>, 2> boxes;
+  std::vector<Box> boxes;
+  boxes.reserve(mesh.triangles.size());
   for (std::uint32_t i = 0; i < mesh.triangles.size(); ++i) {
     const Triangle& t = mesh.triangles[i];
     if (repeats_index(t) || CGAL::collinear(p[t[0]], p[t[1]], p[t[2]])) continue;
-    boxes[flagged[i] ? 1 : 0].emplace_back(p[t[0]].bbox() + p[t[1]].bbox() + p[t[2]].bbox(), i);
+    boxes.emplace_back(p[t[0]].bbox() + p[t[1]].bbox() + p[t[2]].bbox(), i);
   }
+  std::array<std::vector<const Box*>, 2> sets;
+  for (const Box& b : boxes) sets[flagged[b.info()] ? 1 : 0].push_back(&b);
   PairCount pairs;
-  const auto on_overlap = [&](const Box& x, const Box& y) {
-    if (triangles_intersect(p, mesh.triangles[x.info()], mesh.triangles[y.info()])) {
-      pairs.add(mesh, x.info(), y.info());
+  const auto on_overlap = [&](const Box* x, const Box* y) {
+    if (triangles_intersect(p, mesh.triangles[x->info()], mesh.triangles[y->info()])) {
+      pairs.add(mesh, x->info(), y->info());
     }
   };
-  CGAL::box_intersection_d<CGAL::Sequential_tag>(boxes[0].begin(), boxes[0].end(), boxes[1].begin(),
-                                                 boxes[1].end(), on_overlap, std::ptrdiff_t{2000});
+  CGAL::box_intersection_d<CGAL::Sequential_tag>(sets[0].begin(), sets[0].end(), sets[1].begin(),
+                                                 sets[1].end(), on_overlap, std::ptrdiff_t{2000});
   return pairs;
 }
 
