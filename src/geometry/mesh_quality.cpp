@@ -178,8 +178,6 @@ bool triangles_intersect(const std::vector<Point3>& p, const Triangle& s, const 
          CGAL::do_intersect(tri(s), Kernel::Segment_3(c, d));
 }
 
-// Triangle soup: boxes around the non-degenerate triangles, box_intersection_d for candidate
-// pairs, then the exact test above.
 // Where a pair of triangles intersects: the midpoint of their centroids.
 Vec3 pair_site(const TriangleMesh& mesh, std::size_t s, std::size_t t) {
   Vec3 c = Vec3::Zero();
@@ -199,7 +197,11 @@ struct PairCount {
   }
 };
 
-PairCount soup_self_intersections(const TriangleMesh& mesh) {
+// Triangle soup: boxes around the non-degenerate triangles, box_intersection_d for candidate
+// pairs, then the exact test above; all pairs, or with `across` (a flag per triangle) only the
+// pairs of a flagged and an unflagged triangle. The boxes are sorted through pointers: their ids
+// are their addresses, which must not move.
+PairCount soup_intersections(const TriangleMesh& mesh, const std::vector<std::uint8_t>* across = nullptr) {
   using Box = CGAL::Box_intersection_d::Box_with_info_d<double, 3, std::uint32_t,
                                                         CGAL::Box_intersection_d::ID_FROM_BOX_ADDRESS>;
   const std::vector<Point3> p = cgal_points(mesh);
@@ -210,9 +212,8 @@ PairCount soup_self_intersections(const TriangleMesh& mesh) {
     if (repeats_index(t) || CGAL::collinear(p[t[0]], p[t[1]], p[t[2]])) continue;
     boxes.emplace_back(p[t[0]].bbox() + p[t[1]].bbox() + p[t[2]].bbox(), i);
   }
-  std::vector<const Box*> pointers;
-  pointers.reserve(boxes.size());
-  for (const Box& b : boxes) pointers.push_back(&b);
+  std::array<std::vector<const Box*>, 2> sets;  // unflagged, flagged
+  for (const Box& b : boxes) sets[across != nullptr && (*across)[b.info()] ? 1 : 0].push_back(&b);
   PairCount pairs;
   const auto on_overlap = [&](const Box* x, const Box* y) {
     if (triangles_intersect(p, mesh.triangles[x->info()], mesh.triangles[y->info()])) {
@@ -220,34 +221,13 @@ PairCount soup_self_intersections(const TriangleMesh& mesh) {
     }
   };
   // A cutoff of 2000 boxes (scan below it, as PMP does) is several times faster than the default 10.
-  CGAL::box_self_intersection_d<CGAL::Sequential_tag>(pointers.begin(), pointers.end(), on_overlap,
-                                                      std::ptrdiff_t{2000});
-  return pairs;
-}
-
-// Pairs of a flagged and an unflagged triangle only: box_intersection_d between the two sets.
-// The boxes are sorted through pointers: their ids are their addresses, which must not move.
-PairCount soup_cross_intersections(const TriangleMesh& mesh, const std::vector<std::uint8_t>& flagged) {
-  using Box = CGAL::Box_intersection_d::Box_with_info_d<double, 3, std::uint32_t,
-                                                        CGAL::Box_intersection_d::ID_FROM_BOX_ADDRESS>;
-  const std::vector<Point3> p = cgal_points(mesh);
-  std::vector<Box> boxes;
-  boxes.reserve(mesh.triangles.size());
-  for (std::uint32_t i = 0; i < mesh.triangles.size(); ++i) {
-    const Triangle& t = mesh.triangles[i];
-    if (repeats_index(t) || CGAL::collinear(p[t[0]], p[t[1]], p[t[2]])) continue;
-    boxes.emplace_back(p[t[0]].bbox() + p[t[1]].bbox() + p[t[2]].bbox(), i);
+  constexpr std::ptrdiff_t kCutoff = 2000;
+  if (across == nullptr) {
+    CGAL::box_self_intersection_d<CGAL::Sequential_tag>(sets[0].begin(), sets[0].end(), on_overlap, kCutoff);
+  } else {
+    CGAL::box_intersection_d<CGAL::Sequential_tag>(sets[0].begin(), sets[0].end(), sets[1].begin(),
+                                                   sets[1].end(), on_overlap, kCutoff);
   }
-  std::array<std::vector<const Box*>, 2> sets;
-  for (const Box& b : boxes) sets[flagged[b.info()] ? 1 : 0].push_back(&b);
-  PairCount pairs;
-  const auto on_overlap = [&](const Box* x, const Box* y) {
-    if (triangles_intersect(p, mesh.triangles[x->info()], mesh.triangles[y->info()])) {
-      pairs.add(mesh, x->info(), y->info());
-    }
-  };
-  CGAL::box_intersection_d<CGAL::Sequential_tag>(sets[0].begin(), sets[0].end(), sets[1].begin(),
-                                                 sets[1].end(), on_overlap, std::ptrdiff_t{2000});
   return pairs;
 }
 
@@ -457,10 +437,10 @@ MeshQuality analyse_mesh(const TriangleMesh& mesh, const MeshQualityOptions& opt
     if (!options.intersections_across.empty()) {
       if (options.intersections_across.size() != mesh.triangles.size())
         throw InvalidInput("analyse_mesh: intersections_across needs one flag per triangle");
-      pairs = soup_cross_intersections(mesh, options.intersections_across);
+      pairs = soup_intersections(mesh, &options.intersections_across);
     }
     if (!pairs && manifold) pairs = pmp_self_intersections(mesh);
-    if (!pairs) pairs = soup_self_intersections(mesh);
+    if (!pairs) pairs = soup_intersections(mesh);
     q.self_intersecting_pairs = pairs->pairs;
     q.self_intersection_sites = std::move(pairs->sites);
   }
