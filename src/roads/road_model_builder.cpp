@@ -482,13 +482,15 @@ RoadModelBuild build_road_model(const RoadNetwork& network, const std::vector<Ro
         std::ostringstream len;
         len.precision(1);
         len << std::fixed << road_length[e.road];
-        roads += (roads.empty() ? "" : ", ") + std::to_string(e.road) + " (" + len.str() + " m)";
+        const Road& road = network.roads[e.road];
+        const std::string way = road.osm_way_ids.empty() ? "?" : std::to_string(road.osm_way_ids.front());
+        roads += (roads.empty() ? "" : ", ") + way + " (" + len.str() + " m)";
       }
     }
     Diagnostic d;
     d.severity = Severity::info;
     d.code = "model.junctions_joined";
-    d.message = "the junctions of OSM nodes " + nodes + " are one junction: network road(s) " + roads +
+    d.message = "the junctions of OSM nodes " + nodes + " are one junction: the OSM way(s) " + roads +
                 " between them are too short to hold both";
     d.osm_node_id = j.osm_node_id;
     diagnostics.report(std::move(d));

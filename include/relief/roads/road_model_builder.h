@@ -8,10 +8,11 @@
 //   the arriving lane's inner border to the departing lane's inner border (paramPoly3, position
 //   and heading exact at both ends) and whose elevation is the cubic with the incoming road's
 //   height and slope at its start and the outgoing road's at its end.
-// - Intersections joined by a road shorter than their two radii plus min_kept_length_m (the
-//   nodes where divided streets cross) are one junction, the road inside it
-//   ("model.junctions_joined"); a movement between two of its members follows the absorbed
-//   roads, one-ways only forward.
+// - Two junctions joined by a road shorter than their two radii plus min_kept_length_m, one an
+//   intersection and the other an intersection or an attribute change that takes room (the
+//   nodes where divided streets cross; a bend or lane change next to an intersection), are one
+//   junction, the road inside it ("model.junctions_joined"); a movement between two of its
+//   members follows the absorbed roads, one-ways only forward.
 // - Roads meeting at an attribute change (2 ends) are linked directly, lane to lane, when one
 //   continues the other (straight within 3 degrees, same lanes, same width); otherwise both are
 //   trimmed and joined by a short transition road that bends and widens from one to the other
