@@ -5,16 +5,12 @@
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 #include <assimp/Importer.hpp>
-#include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <array>
 #include <cctype>
-#include <cstring>
 #include <fstream>
 #include <map>
-#include <memory>
-#include <set>
 #include <sstream>
 
 #include "export/fbx_scene_writer.h"

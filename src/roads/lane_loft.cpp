@@ -233,9 +233,8 @@ class Loft {
 };
 
 /// Mark strips of one section: each painted interval is sampled at its ends and at the loft
-/// stations inside it; double lines are two strips one width apart.
-// Marks of one lane section into `marking`; the vertices of marks that reach the road's start
-// (s = 0) or end go to `start` / `end`, to be welded to the linked road's.
+/// stations inside it; double lines are two strips one width apart. The vertices of strips that
+/// reach the road's start (s = 0) or end go to `start` / `end`, to be welded to the linked road's.
 void emit_marks(const ModelRoad& road, const SectionSampler& sampler, const std::vector<Station>& stations,
                 const RoadMeshOptions& options, MeshBuilder& marking, RoadEnd& start, RoadEnd& end) {
   const double s0 = stations.front().s;
