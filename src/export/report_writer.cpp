@@ -255,6 +255,7 @@ std::string report_json(const RunReport& r) {
                  {"road", quality(m.road)},
                  {"terrain", quality(m.terrain)},
                  {"ground_holes", m.ground_holes},
+                 {"ground_triangles_under_roads", m.ground_triangles_under_roads},
                  {"ground_components", m.ground_components},
                  {"terrain_tin_vertices", m.terrain_tin_vertices},
                  {"terrain_max_vertical_error_m", round_to(m.terrain_max_vertical_error_m, 1e-4)},

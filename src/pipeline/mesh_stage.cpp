@@ -8,6 +8,8 @@
 #include "relief/export/mesh_writer.h"
 #include "relief/geometry/mesh_quality.h"
 #include "relief/geometry/mesh_tiles.h"
+#include "relief/geometry/plan_overlap.h"
+#include "relief/core/number_format.h"
 #include "relief/roads/road_mesh.h"
 #include "relief/terrain/terrain_tin.h"
 
@@ -34,6 +36,22 @@ std::vector<std::uint8_t> ground_triangles(const RoadMeshes& roads, const RoadMo
   return keep;
 }
 
+void report_plan_overlaps(const PlanOverlaps& overlaps, std::size_t under, Diagnostics& diagnostics) {
+  std::string sites;
+  for (std::size_t i = 0; i < overlaps.sites.size() && i < 5; ++i) {
+    sites += i == 0 ? " at (" : ", (";
+    append_fixed(sites, overlaps.sites[i].x(), 1);
+    sites += ", ";
+    append_fixed(sites, overlaps.sites[i].y(), 1);
+    sites += ")";
+  }
+  diagnostics.report(Severity::info, "mesh.roads_overlap_in_plan",
+                     std::to_string(under) + " road triangle(s) on the ground lie under another road seen from above (" +
+                         std::to_string(overlaps.pairs) + " overlapping pairs" + sites +
+                         "): a tunnel approach under the street over its portal, or ways closer than their widths; "
+                         "the terrain meets the upper road and closes the step to the lower one");
+}
+
 }  // namespace
 
 MeshSummary write_mesh_outputs(const MeshStageInput& in, OutputSet& files, StageTimer& timer,
@@ -57,7 +75,19 @@ MeshSummary write_mesh_outputs(const MeshStageInput& in, OutputSet& files, Stage
   summary.seam_road_junction_m =
       seam_gap(submesh(roads.road, lanes), submesh(roads.road, junction), kSeamReachM).max_gap_m;
 
-  const std::vector<std::uint8_t> ground = ground_triangles(roads, in.model, in.network);
+  // Roads on the ground, less the triangles that lie under another road seen from above (a
+  // tunnel's approach running on under the street over its portal, OSM ways closer than their
+  // widths): a 2.5-D ground holds one surface per point, and the terrain closes the step between
+  // the lower road's edge and the upper one (the portal face).
+  std::vector<std::uint8_t> ground = ground_triangles(roads, in.model, in.network);
+  const PlanOverlaps overlaps = plan_overlaps(roads.road, ground);
+  for (std::size_t i = 0; i < ground.size(); ++i) {
+    if (overlaps.under[i]) {
+      ground[i] = 0;
+      ++summary.ground_triangles_under_roads;
+    }
+  }
+  if (overlaps.pairs > 0) report_plan_overlaps(overlaps, summary.ground_triangles_under_roads, in.diagnostics);
   const TriangleMesh ground_road = submesh(roads.road, ground);
 
   std::optional<TerrainBuild> terrain;

@@ -113,6 +113,9 @@ struct MeshSummary {
   std::optional<MeshQuality> terrain;  ///< Terrain
   std::size_t ground_holes = 0;        ///< holes of roads on the ground + terrain, welded
   std::size_t ground_components = 0;
+  /// Road triangles on the ground left out of the ground because another road lies over them
+  /// in plan (plan_overlaps); the terrain closes the step between the two.
+  std::size_t ground_triangles_under_roads = 0;
   std::size_t terrain_tin_vertices = 0;
   double terrain_max_vertical_error_m = 0.0;
   double terrain_max_cut_m = 0.0, terrain_max_fill_m = 0.0;
