@@ -98,6 +98,7 @@ Json method_json(const MethodReport& m) {
             {"worst_s_m", round_to(m.cut_fill.worst_s_m, 1e-2)}}},
           {"clearance",
            {{"separations", m.separations},
+            {"alongside", m.separations_alongside},
             {"min_m", round_to(m.min_clearance_m, 1e-3)},
             {"below_required", m.below_clearance}}},
           {"seconds", round_to(m.seconds, 1e-4)}};

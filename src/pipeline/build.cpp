@@ -45,6 +45,7 @@ MethodReport evaluate(std::string method, const RoadNetwork& network,
   m.cut_fill = cut_fill(profiles, raw, ground);
   update_clearances(separations, profiles);
   m.separations = separations.size();
+  for (const GradeSeparation& s : separations) m.separations_alongside += s.alongside ? 1 : 0;
   for (std::size_t k = 0; k < separations.size(); ++k) {
     const double c = separations[k].clearance_m;
     m.min_clearance_m = k == 0 ? c : std::min(m.min_clearance_m, c);

@@ -1,5 +1,6 @@
 #include "relief/roads/grade_separation.h"
 
+#include <algorithm>
 #include <cmath>
 #include <unordered_map>
 
@@ -9,6 +10,11 @@ namespace relief {
 namespace {
 
 constexpr double kCell = 25.0;  // m, grid cell for the segment index
+// Alongside separations: segments within 25 degrees of parallel, checked every 5 m, at least
+// 20 m from every end of the two roads.
+const double kAlongsideCos = std::cos(25.0 * 3.14159265358979323846 / 180.0);
+constexpr double kAlongsideSpacing = 5.0;
+constexpr double kAlongsideEndClearance = 20.0;
 
 struct Segment {
   int road;
@@ -30,6 +36,12 @@ std::optional<std::pair<double, double>> intersect(const Vec2& p0, const Vec2& p
   const double u = (d.x() * r.y() - d.y() * r.x()) / denom;
   if (t < 0.0 || t > 1.0 || u < 0.0 || u > 1.0) return std::nullopt;
   return std::make_pair(t, u);
+}
+
+// Half the paved width of a road (its lanes; shoulders and sidewalks not counted).
+double half_width(const Road& road) {
+  const WayAttributes& a = road.attributes;
+  return 0.5 * a.lane_width_m * static_cast<double>(std::max(1, a.lanes_forward + a.lanes_backward));
 }
 
 }  // namespace
@@ -69,36 +81,67 @@ std::vector<GradeSeparation> find_grade_separations(const RoadNetwork& network,
         const int la = effective_layer(ra.attributes), lb = effective_layer(rb.attributes);
         if (la == lb) continue;
         const std::size_t ia = segments[a].index, ib = segments[b].index;
-        const auto hit = intersect(ra.points[ia], ra.points[ia + 1], rb.points[ib], rb.points[ib + 1]);
-        if (!hit) continue;
-        const Vec2 xy = ra.points[ia] + hit->first * (ra.points[ia + 1] - ra.points[ia]);
-        // Roads that meet at a junction there are connected, not separated.
-        const auto near_junction = [&](const Road& r) {
-          return (xy - network.junctions[r.start_junction].position).norm() < 0.5 ||
-                 (xy - network.junctions[r.end_junction].position).norm() < 0.5;
-        };
-        if (near_junction(ra) && near_junction(rb)) continue;
         const bool a_up = la > lb;
         const Road& up = a_up ? ra : rb;
         const Road& down = a_up ? rb : ra;
+        const std::size_t iu = a_up ? ia : ib, id = a_up ? ib : ia;
         const auto s_on = [&](const Road& r, std::size_t i, double t) {
           const auto& c = cumulative[r.id];
           return c[i] + t * (c[i + 1] - c[i]);
         };
-        GradeSeparation sep;
-        sep.upper_road = up.id;
-        sep.lower_road = down.id;
-        sep.s_upper = a_up ? s_on(ra, ia, hit->first) : s_on(rb, ib, hit->second);
-        sep.s_lower = a_up ? s_on(rb, ib, hit->second) : s_on(ra, ia, hit->first);
-        sep.xy = xy;
-        // The same crossing is seen from every cell both segments touch: keep it once.
+        // The same place is seen from every cell both segments touch: keep it once.
         const std::int64_t pair =
             (static_cast<std::int64_t>(up.id) << 32) | static_cast<std::uint32_t>(down.id);
-        bool duplicate = false;
-        for (std::size_t k : by_pair[pair]) duplicate |= (found[k].xy - xy).norm() < 1.0;
-        if (duplicate) continue;
-        by_pair[pair].push_back(found.size());
-        found.push_back(sep);
+        const auto add = [&](double t_up, double t_down, const Vec2& xy, double spacing, bool alongside) {
+          for (std::size_t k : by_pair[pair]) {
+            if ((found[k].xy - xy).norm() < spacing) return;
+          }
+          GradeSeparation sep;
+          sep.upper_road = up.id;
+          sep.lower_road = down.id;
+          sep.s_upper = s_on(up, iu, t_up);
+          sep.s_lower = s_on(down, id, t_down);
+          sep.xy = xy;
+          sep.alongside = alongside;
+          by_pair[pair].push_back(found.size());
+          found.push_back(sep);
+        };
+        const Vec2& u0 = up.points[iu];
+        const Vec2& u1 = up.points[iu + 1];
+        const Vec2& d0 = down.points[id];
+        const Vec2& d1 = down.points[id + 1];
+        if (const auto hit = intersect(u0, u1, d0, d1)) {
+          const Vec2 xy = u0 + hit->first * (u1 - u0);
+          // Roads that meet at a junction there are connected, not separated.
+          const auto near_junction = [&](const Road& r) {
+            return (xy - network.junctions[r.start_junction].position).norm() < 0.5 ||
+                   (xy - network.junctions[r.end_junction].position).norm() < 0.5;
+          };
+          if (!(near_junction(ra) && near_junction(rb))) add(hit->first, hit->second, xy, 1.0, false);
+        }
+        // Alongside: the upper road runs over the lower one, their paved widths overlapping (a
+        // viaduct over the street below it, a street over a tunnel), away from the roads' ends
+        // (where a road leaving a structure runs beside it) and from roads joined at a junction.
+        const Vec2 du = u1 - u0, dd = d1 - d0;
+        const double lu = du.norm(), ld = dd.norm();
+        if (!(lu > 0.0 && ld > 0.0) || std::abs(du.dot(dd)) < kAlongsideCos * lu * ld) continue;
+        if (up.start_junction == down.start_junction || up.start_junction == down.end_junction ||
+            up.end_junction == down.start_junction || up.end_junction == down.end_junction)
+          continue;
+        const double reach = half_width(up) + half_width(down);
+        const auto steps = static_cast<int>(std::ceil(lu / kAlongsideSpacing));
+        for (int k = 0; k < steps; ++k) {
+          const double t_up = (k + 0.5) / steps;
+          const Vec2 xy = u0 + t_up * du;
+          const double t_down = (xy - d0).dot(dd) / (ld * ld);
+          if (!(t_down > 0.0 && t_down < 1.0) || (d0 + t_down * dd - xy).norm() >= reach) continue;
+          bool near_end = false;
+          for (const Road* r : {&up, &down}) {
+            for (const int j : {r->start_junction, r->end_junction})
+              near_end = near_end || (xy - network.junctions[j].position).norm() < kAlongsideEndClearance;
+          }
+          if (!near_end) add(t_up, t_down, xy, 0.5 * kAlongsideSpacing, true);
+        }
       }
     }
   }

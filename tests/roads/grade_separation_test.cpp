@@ -56,5 +56,30 @@ TEST(GradeSeparation, ConnectedRoadsAreNotSeparations) {
   EXPECT_TRUE(find_grade_separations(net, flat(net, 0.0)).empty());
 }
 
+// A viaduct (road 0, 6 m wide) running 4 m beside a street (road 1, 6 m wide) for 200 m: their
+// paved widths overlap, so a clearance is due every 5 m away from the ends (x in 22.5 .. 177.5);
+// a street 10 m off (road 2) and one leaving the viaduct's end junction (road 3) are not under it.
+TEST(GradeSeparation, AViaductAlongAStreetIsSeparatedEveryFiveMetres) {
+  WayAttributes bridge;
+  bridge.bridge = true;
+  const RoadNetwork net = test::make_network({{{0, 0}, {200, 0}},
+                                              {{0, 4}, {200, 4}},
+                                              {{0, 10}, {200, 10}},
+                                              {{200, 0}, {190, -3}, {0, -3}}},
+                                             {bridge});
+  auto profiles = flat(net, 10.0);
+  for (double& z : profiles[0].z) z = 15.0;
+  const auto seps = find_grade_separations(net, profiles);
+  ASSERT_EQ(seps.size(), 32u);
+  for (std::size_t k = 0; k < seps.size(); ++k) {
+    EXPECT_TRUE(seps[k].alongside);
+    EXPECT_EQ(seps[k].upper_road, 0);
+    EXPECT_EQ(seps[k].lower_road, 1);
+    EXPECT_NEAR(seps[k].s_upper, 22.5 + 5.0 * static_cast<double>(k), 1e-9);
+    EXPECT_NEAR(seps[k].s_lower, seps[k].s_upper, 1e-9);
+    EXPECT_NEAR(seps[k].clearance_m, 5.0, 1e-9);
+  }
+}
+
 }  // namespace
 }  // namespace relief

@@ -71,7 +71,8 @@ void print_summary(const BuildResult& result) {
         << " ground vs DEM RMSE " << fixed(m.ground.vs_dem.rmse_m, 3) << " m, max grade "
         << fixed(m.gradient.max_percent, 1) << " %, p99 " << fixed(m.gradient.p99_percent, 1)
         << " %, compliance " << fixed(m.gradient.compliance_percent, 1) << " %, clearance ok at "
-        << (m.separations - m.below_clearance) << "/" << m.separations << " crossings\n";
+        << (m.separations - m.below_clearance) << "/" << m.separations << " grade separations ("
+        << m.separations_alongside << " alongside)\n";
   }
   if (r.fit) {
     out << "  fit        " << r.fit->policy << " policy, " << r.fit->variables << " heights, "

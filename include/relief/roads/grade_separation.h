@@ -1,7 +1,8 @@
 #pragma once
 // Grade separations: places where two roads on different layers cross without a junction
-// (a bridge over a street, a tunnel under one). Found with a uniform grid over the segments,
-// so the cost is linear in the network size.
+// (a bridge over a street, a tunnel under one) or run one over the other (a viaduct along the
+// street beneath it). Found with a uniform grid over the segments, so the cost is linear in the
+// network size.
 
 #include <vector>
 
@@ -18,6 +19,9 @@ struct GradeSeparation {
   Vec2 xy = Vec2::Zero();
   double clearance_m = 0.0;      ///< z_upper - z_lower of the profiles given last
   double raw_clearance_m = 0.0;  ///< the same on the profiles the crossing was found with
+  /// Not a crossing: the upper road runs along over the lower one, their paved widths
+  /// overlapping in plan (a viaduct over the street beneath it); one every 5 m of the overlap.
+  bool alongside = false;
 };
 
 /// The layer used to order crossings: the `layer` tag, else +1 for a bridge and -1 for a
@@ -25,8 +29,10 @@ struct GradeSeparation {
 [[nodiscard]] int effective_layer(const WayAttributes& attributes);
 
 /// Crossings of roads whose effective layers differ; one per crossing point (crossings of the
-/// same two roads closer than 1 m are merged). Heights (raw_clearance_m, clearance_m) from
-/// `profiles`.
+/// same two roads closer than 1 m are merged). Also, every 5 m, the places where such roads run
+/// within 25 degrees of parallel with their paved widths (lanes x lane width) overlapping, at
+/// least 20 m from the two roads' ends and not between roads that share a junction (`alongside`).
+/// Heights (raw_clearance_m, clearance_m) from `profiles`.
 [[nodiscard]] std::vector<GradeSeparation> find_grade_separations(const RoadNetwork& network,
                                                                   const std::vector<RoadProfile>& profiles);
 
