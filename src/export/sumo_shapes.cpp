@@ -39,7 +39,7 @@ Polyline3 simplify_3d(const Polyline3& line, double tolerance_m, const std::vect
 }
 
 Polyline3 sample_road_curve(const ModelRoad& road, const std::function<double(double)>& t_of,
-                            double tolerance_m, double s_begin, double s_end) {
+                            double tolerance_m, double s_begin, double s_end, bool lanes_offset_from_it) {
   if (s_end < 0.0) s_end = road.length();
   const double length = s_end - s_begin;
   // Every metre, and closer where the road turns: at most kMaxTurnRad between samples, or an
@@ -67,6 +67,7 @@ Polyline3 sample_road_curve(const ModelRoad& road, const std::function<double(do
     line.push_back(p);
     headings.push_back(h);
   }
+  if (!lanes_offset_from_it) return simplify_3d(line, tolerance_m);
   return simplify_3d(line, tolerance_m, headings, kMaxTurnRad);
 }
 

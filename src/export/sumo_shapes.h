@@ -9,9 +9,12 @@ namespace relief {
 
 /// The curve s -> surface_point(road, s, t_of(s)) for s in [s_begin, s_end] (s_end < 0: the road's
 /// end), as a 3D polyline whose chords stay within `tolerance_m` of samples taken every metre
-/// (Douglas-Peucker in 3D, chords turning at most 2 degrees).
+/// (Douglas-Peucker in 3D). With `lanes_offset_from_it` (an edge's shape, its lanes offset from
+/// the chords by SUMO) the chords also turn at most 2 degrees; a lane's own shape (an internal
+/// lane) needs only the tolerance, and has about half the points.
 [[nodiscard]] Polyline3 sample_road_curve(const ModelRoad& road, const std::function<double(double)>& t_of,
-                                          double tolerance_m, double s_begin = 0.0, double s_end = -1.0);
+                                          double tolerance_m, double s_begin = 0.0, double s_end = -1.0,
+                                          bool lanes_offset_from_it = true);
 
 /// Douglas-Peucker in 3D: the kept points of `line` (both ends always kept). With `headings`
 /// (one per point, radians), a chord is also split while the headings at its ends differ by more
