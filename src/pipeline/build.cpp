@@ -228,6 +228,21 @@ BuildResult build(const BuildOptions& options, Diagnostics& diagnostics, const P
   }
   OutputSet files;
   const auto path_of = [&](const std::string& suffix) { return options.out_dir / (report.name + suffix); };
+  std::optional<RoadModelBuild> built;
+  if (options.outputs.count(Output::xodr) || options.outputs.count(Output::sumo) ||
+      options.outputs.count(Output::mesh)) {
+    built = timer.run("build road model",
+                      [&] { return build_road_model(network, profiles, options.road_model, diagnostics); });
+    built->model.name = report.name;
+  }
+  // netconvert is the longest chain of the build (SUMO network, netconvert, its check): it
+  // starts first and runs in the background while the other outputs are written.
+  std::optional<SumoStageInput> sumo_in;
+  std::optional<SumoJob> sumo;
+  if (options.outputs.count(Output::sumo)) {
+    sumo_in.emplace(SumoStageInput{options, loaded, built->model, report.name, diagnostics});
+    sumo = start_sumo(*sumo_in, timer);
+  }
   if (options.outputs.count(Output::geojson)) {
     timer.run("write GeoJSON", [&] {
       files.add(path_of(".geojson"), [&](std::ostream& out) { write_geojson(out, network, profiles); });
@@ -235,13 +250,6 @@ BuildResult build(const BuildOptions& options, Diagnostics& diagnostics, const P
     });
     report.outputs.push_back(report.name + ".geojson");
     result.written.push_back(path_of(".geojson"));
-  }
-  std::optional<RoadModelBuild> built;
-  if (options.outputs.count(Output::xodr) || options.outputs.count(Output::sumo) ||
-      options.outputs.count(Output::mesh)) {
-    built = timer.run("build road model",
-                      [&] { return build_road_model(network, profiles, options.road_model, diagnostics); });
-    built->model.name = report.name;
   }
   std::optional<BackgroundStage<OpenDriveSummary>> xodr_check;
   if (options.outputs.count(Output::xodr)) {
@@ -285,13 +293,6 @@ BuildResult build(const BuildOptions& options, Diagnostics& diagnostics, const P
     });
     report.outputs.push_back(report.name + ".xodr");
     result.written.push_back(path_of(".xodr"));
-  }
-  // netconvert runs in the background while the meshes are built.
-  std::optional<SumoStageInput> sumo_in;
-  std::optional<SumoJob> sumo;
-  if (options.outputs.count(Output::sumo)) {
-    sumo_in.emplace(SumoStageInput{options, loaded, built->model, report.name, diagnostics});
-    sumo = start_sumo(*sumo_in, timer);
   }
   if (options.outputs.count(Output::mesh)) {
     MeshStageInput in{options, network, built->model, dem, report.name, diagnostics};
