@@ -209,7 +209,11 @@ std::string build_junction_surface(const RoadModel& model, const JunctionModel& 
                                   end_key(b.road_index, b.at_start), centre, vertices[a.vertices.back()],
                                   vertices[b.vertices.front()], options);
   }
-  return triangulate_junction(sorted, gaps, junction.id, mesh);
+  const std::string failed = triangulate_junction(sorted, gaps, junction.id, mesh);
+  if (failed.empty()) return failed;
+  // A kerb line that cuts across a neighbouring road end (a sharp fork): straight gaps instead.
+  for (OutlineGap& gap : gaps) gap.points.clear();
+  return triangulate_junction(sorted, gaps, junction.id, mesh).empty() ? std::string() : failed;
 }
 
 std::string triangulate_junction(const std::vector<JunctionEnd>& ends, const std::vector<OutlineGap>& gaps,

@@ -28,8 +28,9 @@ struct OutlineGap {
 /// Orders the ends counter-clockwise around the centroid of their midpoints, closes the gap
 /// between consecutive ends with the outermost lane border of a connecting road (of
 /// `connecting_roads`, indices into model.roads) that joins those two road ends, else a straight
-/// segment, and triangulates the outline (triangulate_junction). Returns an empty string on
-/// success, else what is wrong.
+/// segment, and triangulates the outline (triangulate_junction); when that outline is not simple
+/// (a kerb line cutting across a neighbouring road end at a sharp fork), straight gaps instead.
+/// Returns an empty string on success, else what is wrong (with the kerb lines).
 [[nodiscard]] std::string build_junction_surface(const RoadModel& model, const JunctionModel& junction,
                                                  std::vector<JunctionEnd> ends,
                                                  const std::vector<int>& connecting_roads,
