@@ -256,6 +256,7 @@ std::string report_json(const RunReport& r) {
                  {"road", quality(m.road)},
                  {"terrain", quality(m.terrain)},
                  {"ground_holes", m.ground_holes},
+                 {"ground_portals", m.ground_portals},
                  {"ground_triangles_under_roads", m.ground_triangles_under_roads},
                  {"ground_components", m.ground_components},
                  {"terrain_tin_vertices", m.terrain_tin_vertices},

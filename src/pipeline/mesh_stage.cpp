@@ -1,5 +1,7 @@
 #include "pipeline/mesh_stage.h"
 
+#include "pipeline/tunnel_portals.h"
+
 #include <algorithm>
 #include <optional>
 #include <unordered_map>
@@ -16,24 +18,27 @@
 namespace relief {
 namespace {
 
-// Per road triangle: 1 when it lies on the ground (not on a bridge deck or in a tunnel).
-std::vector<std::uint8_t> ground_triangles(const RoadMeshes& roads, const RoadModel& model,
-                                           const RoadNetwork& network) {
-  std::unordered_map<int, bool> structure;  // OpenDRIVE road id -> on a structure
+// Per road triangle: 1 when it lies on the ground (not on a bridge deck or in a tunnel), and
+// 1 when it lies in a tunnel.
+struct Support {
+  std::vector<std::uint8_t> ground, tunnel;
+};
+
+Support triangle_support(const RoadMeshes& roads, const RoadModel& model, const RoadNetwork& network) {
+  std::unordered_map<int, WayAttributes> attributes;  // OpenDRIVE road id -> its OSM way's
   for (const ModelRoad& road : model.roads) {
-    bool on_structure = false;
-    if (road.source_road >= 0) {
-      const WayAttributes& a = network.roads[static_cast<std::size_t>(road.source_road)].attributes;
-      on_structure = a.bridge || a.tunnel;
-    }
-    structure[road.id] = on_structure;
+    if (road.source_road >= 0) attributes[road.id] = network.roads[static_cast<std::size_t>(road.source_road)].attributes;
   }
-  std::vector<std::uint8_t> keep(roads.road.triangles.size(), 1);
-  for (std::size_t i = 0; i < keep.size(); ++i) {
-    const int owner = roads.road_triangle_owner[i];
-    if (owner >= 0 && structure[owner]) keep[i] = 0;
+  Support s;
+  s.ground.assign(roads.road.triangles.size(), 1);
+  s.tunnel.assign(roads.road.triangles.size(), 0);
+  for (std::size_t i = 0; i < s.ground.size(); ++i) {
+    const auto it = attributes.find(roads.road_triangle_owner[i]);
+    if (it == attributes.end()) continue;  // a junction patch
+    s.ground[i] = !(it->second.bridge || it->second.tunnel);
+    s.tunnel[i] = it->second.tunnel;
   }
-  return keep;
+  return s;
 }
 
 void report_plan_overlaps(const PlanOverlaps& overlaps, std::size_t under, Diagnostics& diagnostics) {
@@ -79,7 +84,8 @@ MeshSummary write_mesh_outputs(const MeshStageInput& in, OutputSet& files, Stage
   // tunnel's approach running on under the street over its portal, OSM ways closer than their
   // widths): a 2.5-D ground holds one surface per point, and the terrain closes the step between
   // the lower road's edge and the upper one (the portal face).
-  std::vector<std::uint8_t> ground = ground_triangles(roads, in.model, in.network);
+  Support support = triangle_support(roads, in.model, in.network);
+  std::vector<std::uint8_t>& ground = support.ground;
   const PlanOverlaps overlaps = plan_overlaps(roads.road, ground);
   for (std::size_t i = 0; i < ground.size(); ++i) {
     if (overlaps.under[i]) {
@@ -89,6 +95,9 @@ MeshSummary write_mesh_outputs(const MeshStageInput& in, OutputSet& files, Stage
   }
   if (overlaps.pairs > 0) report_plan_overlaps(overlaps, summary.ground_triangles_under_roads, in.diagnostics);
   const TriangleMesh ground_road = submesh(roads.road, ground);
+  const std::vector<Vec3> portals = portal_vertices(roads.road, ground, support.tunnel, overlaps.under);
+  std::vector<Vec3> raised_portals;  // sorted as `portals` (same x, y order; z shifted alike)
+  for (const Vec3& p : portals) raised_portals.push_back(p + Vec3(0.0, 0.0, options.tunnel_portal_height_m));
 
   std::optional<TerrainBuild> terrain;
   if (options.terrain) {
@@ -96,7 +105,11 @@ MeshSummary write_mesh_outputs(const MeshStageInput& in, OutputSet& files, Stage
       std::vector<Polyline3> outline;
       for (const auto& loop : boundary_loops(ground_road)) {
         Polyline3 points;
-        for (const std::uint32_t v : loop) points.push_back(ground_road.vertices[v]);
+        for (const std::uint32_t v : loop) {
+          // The terrain takes a tunnel mouth's top edge, not the road's end edge under it.
+          const Vec3& p = ground_road.vertices[v];
+          points.push_back(is_portal(portals, p) ? Vec3(p + Vec3(0.0, 0.0, options.tunnel_portal_height_m)) : p);
+        }
         if (points.size() >= 3) outline.push_back(std::move(points));
       }
       Aabb2 area;
@@ -128,7 +141,7 @@ MeshSummary write_mesh_outputs(const MeshStageInput& in, OutputSet& files, Stage
   // it only reads the scene, so it runs beside the file writers.
   struct Checked {
     std::vector<MeshQuality> quality;
-    std::size_t ground_holes = 0, ground_components = 0;
+    std::size_t ground_holes = 0, ground_components = 0, ground_portals = 0;
     std::optional<double> seam_road_terrain_m;
   };
   BackgroundStage<Checked> check("check meshes (beside the files)", [&] {
@@ -148,7 +161,9 @@ MeshSummary write_mesh_outputs(const MeshStageInput& in, OutputSet& files, Stage
       across.intersections_across.assign(ground_all.triangles.size(), 0);
       std::fill_n(across.intersections_across.begin(), ground_road.triangles.size(), 1);
       q.push_back(analyse_mesh(ground_all, across));
-      c.ground_holes = q.back().holes;
+      // A portal's mouth is an opening by design (the tunnel's road goes on beyond it).
+      c.ground_portals = loops_through(ground_all, raised_portals);
+      c.ground_holes = q.back().holes - std::min(q.back().holes, c.ground_portals);
       c.ground_components = q.back().components;
       c.seam_road_terrain_m = seam_gap(ground_road, terrain->terrain, kSeamReachM).max_gap_m;
     }
@@ -187,6 +202,7 @@ MeshSummary write_mesh_outputs(const MeshStageInput& in, OutputSet& files, Stage
   const std::vector<MeshQuality>& quality = checked.quality;
   if (terrain) {
     summary.ground_holes = checked.ground_holes;
+    summary.ground_portals = checked.ground_portals;
     summary.ground_components = checked.ground_components;
     summary.seam_road_terrain_m = checked.seam_road_terrain_m;
   }

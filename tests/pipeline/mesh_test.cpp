@@ -72,7 +72,8 @@ void print(const std::string& name, const MeshSummary& m) {
             << m.road->non_manifold_edges << ", self-intersecting pairs " << m.road->self_intersecting_pairs
             << ", upside down " << m.road->upside_down_triangles << "; Terrain " << m.terrain->triangles
             << " triangles, max vertical error " << m.terrain_max_vertical_error_m << " m; ground holes "
-            << m.ground_holes << ", components " << m.ground_components << ", road triangles under roads "
+            << m.ground_holes << ", tunnel mouths " << m.ground_portals << ", components " << m.ground_components
+            << ", road triangles under roads "
             << m.ground_triangles_under_roads << "\n";
 }
 
@@ -82,6 +83,7 @@ struct KnownDefects {
   std::size_t self_intersecting_pairs = 0;
   std::size_t upside_down_triangles = 0;
   std::size_t ground_triangles_under_roads = 0;  ///< left out of the ground (plan_overlaps)
+  std::size_t ground_portals = 0;                ///< tunnel mouths (exact: two per tunnel)
 };
 
 void expect_scene_figures(const MeshSummary& m, const KnownDefects& known) {
@@ -100,6 +102,7 @@ void expect_scene_figures(const MeshSummary& m, const KnownDefects& known) {
   EXPECT_EQ(m.ground_holes, 0u);
   EXPECT_EQ(m.ground_components, 1u);
   EXPECT_LE(m.ground_triangles_under_roads, known.ground_triangles_under_roads);
+  EXPECT_EQ(m.ground_portals, known.ground_portals);
 }
 
 struct Box {
@@ -225,7 +228,8 @@ TEST(MeshPipeline, NorthEastSceneFiguresAndReimport) {
   expect_scene_figures(m, {.junctions_failed = 0,
                            .self_intersecting_pairs = 0,
                            .upside_down_triangles = 0,
-                           .ground_triangles_under_roads = 140});
+                           .ground_triangles_under_roads = 140,
+                           .ground_portals = 8});  // Broadway (two bores), Stockton, a 50 m one at (1625, -195)
   expect_files_reimport(b);
 }
 
@@ -460,6 +464,49 @@ TEST(MeshPipeline, BridgeOverARoadClearsIt) {
   // ground road right at the crossing, so 3 m away (the edge of the other road) the surfaces
   // are closer. Known defect, measured 4.868 m; a regression goes lower.
   EXPECT_GE(*least_m, 4.86);
+}
+
+// A street through a hill in a tunnel (BC): the terrain over the tunnel meets each mouth's top
+// edge, the road's end edge raised by the portal height, so the way in stays open; the ground
+// (roads on the ground + terrain) keeps exactly those two openings and no hole.
+TEST(MeshPipeline, TunnelMouthsStayOpen) {
+  const test::OsmSketch sketch =
+      test::OsmSketch(R"(
+      A-----B-----C-----D
+  )",
+                      10.0, synthetic_origin_lonlat())
+          .way("AB", {{"highway", "residential"}})
+          .way("BC", {{"highway", "residential"}, {"tunnel", "yes"}, {"layer", "-1"}})
+          .way("CD", {{"highway", "residential"}});
+  const Vec2 b = synthetic_local(sketch, 'B');
+  const Vec2 c = synthetic_local(sketch, 'C');
+  const Vec2 mid = 0.5 * (b + c);
+  const auto hill = [&](double x, double y) {
+    const double d = (Vec2(x, y) - mid).norm();
+    return 20.0 + 15.0 * std::exp(-d * d / (2.0 * 12.0 * 12.0));
+  };
+  BuildOptions o = synthetic_options("tunnel", sketch, hill);
+  const SceneBuild built = build_scene(o);
+  const MeshSummary& m = summary(built);
+  print("tunnel", m);
+  EXPECT_EQ(m.ground_portals, 2u);
+  EXPECT_EQ(m.ground_holes, 0u);
+  EXPECT_EQ(m.ground_components, 1u);
+  EXPECT_EQ(m.seam_road_terrain_m.value_or(1.0), 0.0);
+
+  // Terrain vertices straight above road vertices, the portal height up: the mouths' top edges.
+  const MeshScene scene = read_mesh_file(o.out_dir / "tunnel.glb");
+  const TriangleMesh* road = find_mesh(scene, "Road_Road");
+  const TriangleMesh* terrain = find_mesh(scene, "Terrain");
+  ASSERT_TRUE(road && terrain);
+  std::size_t top_edge = 0;
+  for (const Vec3& t : terrain->vertices) {
+    for (const Vec3& r : road->vertices) {
+      if ((t.head<2>() - r.head<2>()).norm() < 1e-3 && std::abs(t.z() - r.z() - o.tunnel_portal_height_m) < 1e-3)
+        ++top_edge;
+    }
+  }
+  EXPECT_EQ(top_edge, 6u);  // 3 per mouth: the two corners and the centre line of a two-lane street
 }
 
 }  // namespace

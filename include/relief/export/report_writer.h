@@ -114,6 +114,7 @@ struct MeshSummary {
   std::optional<MeshQuality> terrain;  ///< Terrain
   std::size_t ground_holes = 0;        ///< holes of roads on the ground + terrain, welded
   std::size_t ground_components = 0;
+  std::size_t ground_portals = 0;  ///< tunnel mouths: openings of the ground by design, not holes
   /// Road triangles on the ground left out of the ground because another road lies over them
   /// in plan (plan_overlaps); the terrain closes the step between the two.
   std::size_t ground_triangles_under_roads = 0;

@@ -68,6 +68,9 @@ struct BuildOptions {
   RoadMeshOptions road_mesh;
   bool terrain = true;  ///< the Terrain mesh under and around the roads
   TerrainOptions terrain_options;
+  /// Height of a tunnel mouth: the terrain meets the top edge of the mouth, this far above the
+  /// road's end edge where it enters a tunnel, so that the way in stays open.
+  double tunnel_portal_height_m = 5.0;
   std::set<MeshFormat> mesh_formats = {MeshFormat::glb, MeshFormat::obj, MeshFormat::fbx};
   /// Besides the whole scene, the scene cut into tiles of this size (m) in every format, as
   /// NAME_Tile_X_Y (see split_into_tiles); 0: no tiles.
