@@ -368,8 +368,8 @@ SumoPlainNetwork build_sumo_network(const RoadModel& model, const std::vector<Su
         } else {
           // The internal lane's own centre line: no lanes are offset from it.
           sc.shape = sample_road_curve(
-              conn, [&](double s) { return lane_centre_t(conn, s, conn_lane); }, options.shape_tolerance_m, 0.0,
-              -1.0, /*lanes_offset_from_it=*/false);
+              conn, [&](double s) { return lane_centre_t(conn, s, conn_lane); }, options.shape_tolerance_m,
+              0.0, -1.0, /*lanes_offset_from_it=*/false);
           if (!conn_along_s) std::reverse(sc.shape.begin(), sc.shape.end());
         }
         net.connections.push_back(std::move(sc));

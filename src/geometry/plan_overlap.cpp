@@ -56,7 +56,8 @@ PlanOverlaps plan_overlaps(const TriangleMesh& mesh, const std::vector<std::uint
   }
   for (const Triangle& t : mesh.triangles) {
     for (const std::uint32_t v : t) {
-      if (v >= mesh.vertices.size()) throw InvalidInput("plan_overlaps: a triangle refers to a missing vertex");
+      if (v >= mesh.vertices.size())
+        throw InvalidInput("plan_overlaps: a triangle refers to a missing vertex");
     }
   }
   using Box = CGAL::Box_intersection_d::Box_with_info_d<double, 2, std::uint32_t,

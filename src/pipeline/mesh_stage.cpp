@@ -1,17 +1,16 @@
 #include "pipeline/mesh_stage.h"
 
-#include "pipeline/tunnel_portals.h"
-
 #include <algorithm>
 #include <optional>
 #include <unordered_map>
 
+#include "pipeline/tunnel_portals.h"
+#include "relief/core/number_format.h"
 #include "relief/export/mesh_report.h"
 #include "relief/export/mesh_writer.h"
 #include "relief/geometry/mesh_quality.h"
 #include "relief/geometry/mesh_tiles.h"
 #include "relief/geometry/plan_overlap.h"
-#include "relief/core/number_format.h"
 #include "relief/roads/road_mesh.h"
 #include "relief/terrain/terrain_tin.h"
 
@@ -27,7 +26,8 @@ struct Support {
 Support triangle_support(const RoadMeshes& roads, const RoadModel& model, const RoadNetwork& network) {
   std::unordered_map<int, WayAttributes> attributes;  // OpenDRIVE road id -> its OSM way's
   for (const ModelRoad& road : model.roads) {
-    if (road.source_road >= 0) attributes[road.id] = network.roads[static_cast<std::size_t>(road.source_road)].attributes;
+    if (road.source_road >= 0)
+      attributes[road.id] = network.roads[static_cast<std::size_t>(road.source_road)].attributes;
   }
   Support s;
   s.ground.assign(roads.road.triangles.size(), 1);
@@ -50,11 +50,12 @@ void report_plan_overlaps(const PlanOverlaps& overlaps, std::size_t under, Diagn
     append_fixed(sites, overlaps.sites[i].y(), 1);
     sites += ")";
   }
-  diagnostics.report(Severity::info, "mesh.roads_overlap_in_plan",
-                     std::to_string(under) + " road triangle(s) on the ground lie under another road seen from above (" +
-                         std::to_string(overlaps.pairs) + " overlapping pairs" + sites +
-                         "): a tunnel approach under the street over its portal, or ways closer than their widths; "
-                         "the terrain meets the upper road and closes the step to the lower one");
+  diagnostics.report(
+      Severity::info, "mesh.roads_overlap_in_plan",
+      std::to_string(under) + " road triangle(s) on the ground lie under another road seen from above (" +
+          std::to_string(overlaps.pairs) + " overlapping pairs" + sites +
+          "): a tunnel approach under the street over its portal, or ways closer than their widths; "
+          "the terrain meets the upper road and closes the step to the lower one");
 }
 
 }  // namespace
@@ -93,11 +94,13 @@ MeshSummary write_mesh_outputs(const MeshStageInput& in, OutputSet& files, Stage
       ++summary.ground_triangles_under_roads;
     }
   }
-  if (overlaps.pairs > 0) report_plan_overlaps(overlaps, summary.ground_triangles_under_roads, in.diagnostics);
+  if (overlaps.pairs > 0)
+    report_plan_overlaps(overlaps, summary.ground_triangles_under_roads, in.diagnostics);
   const TriangleMesh ground_road = submesh(roads.road, ground);
   const std::vector<Vec3> portals = portal_vertices(roads.road, ground, support.tunnel, overlaps.under);
+  const auto raised = [&](const Vec3& p) { return Vec3(p + Vec3(0.0, 0.0, options.tunnel_portal_height_m)); };
   std::vector<Vec3> raised_portals;  // sorted as `portals` (same x, y order; z shifted alike)
-  for (const Vec3& p : portals) raised_portals.push_back(p + Vec3(0.0, 0.0, options.tunnel_portal_height_m));
+  for (const Vec3& p : portals) raised_portals.push_back(raised(p));
 
   std::optional<TerrainBuild> terrain;
   if (options.terrain) {
@@ -108,7 +111,7 @@ MeshSummary write_mesh_outputs(const MeshStageInput& in, OutputSet& files, Stage
         for (const std::uint32_t v : loop) {
           // The terrain takes a tunnel mouth's top edge, not the road's end edge under it.
           const Vec3& p = ground_road.vertices[v];
-          points.push_back(is_portal(portals, p) ? Vec3(p + Vec3(0.0, 0.0, options.tunnel_portal_height_m)) : p);
+          points.push_back(is_portal(portals, p) ? raised(p) : p);
         }
         if (points.size() >= 3) outline.push_back(std::move(points));
       }

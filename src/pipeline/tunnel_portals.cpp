@@ -13,7 +13,8 @@ bool less(const Vec3& a, const Vec3& b) {
 }  // namespace
 
 std::vector<Vec3> portal_vertices(const TriangleMesh& road, const std::vector<std::uint8_t>& ground,
-                                  const std::vector<std::uint8_t>& tunnel, const std::vector<std::uint8_t>& under) {
+                                  const std::vector<std::uint8_t>& tunnel,
+                                  const std::vector<std::uint8_t>& under) {
   // Vertices of the tunnels, grown through the triangles under other roads that touch them
   // (few: a fixed point over that short list).
   std::vector<std::uint8_t> inside(road.vertices.size(), 0);
@@ -54,7 +55,8 @@ bool is_portal(const std::vector<Vec3>& portals, const Vec3& p) {
 std::size_t loops_through(const TriangleMesh& mesh, const std::vector<Vec3>& points) {
   std::size_t n = 0;
   for (const auto& loop : boundary_loops(mesh)) {
-    n += std::any_of(loop.begin(), loop.end(), [&](std::uint32_t v) { return is_portal(points, mesh.vertices[v]); })
+    n += std::any_of(loop.begin(), loop.end(),
+                     [&](std::uint32_t v) { return is_portal(points, mesh.vertices[v]); })
              ? 1
              : 0;
   }

@@ -17,7 +17,8 @@ namespace relief {
 /// triangle on the ground and a tunnel triangle, or a triangle left out of the ground as lying
 /// under another road (`under`) that joins a tunnel through such triangles (the approach that
 /// runs on under the street over the portal). One flag per triangle of `road` in each vector.
-[[nodiscard]] std::vector<Vec3> portal_vertices(const TriangleMesh& road, const std::vector<std::uint8_t>& ground,
+[[nodiscard]] std::vector<Vec3> portal_vertices(const TriangleMesh& road,
+                                                const std::vector<std::uint8_t>& ground,
                                                 const std::vector<std::uint8_t>& tunnel,
                                                 const std::vector<std::uint8_t>& under);
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <unordered_map>
 
 #include "relief/geometry/polyline.h"
@@ -12,7 +13,7 @@ namespace {
 constexpr double kCell = 25.0;  // m, grid cell for the segment index
 // Alongside separations: segments within 25 degrees of parallel, checked every 5 m, at least
 // 20 m from every end of the two roads.
-const double kAlongsideCos = std::cos(25.0 * 3.14159265358979323846 / 180.0);
+const double kAlongsideCos = std::cos(25.0 * std::numbers::pi / 180.0);
 constexpr double kAlongsideSpacing = 5.0;
 constexpr double kAlongsideEndClearance = 20.0;
 

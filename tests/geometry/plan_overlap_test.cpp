@@ -70,7 +70,7 @@ TEST(PlanOverlap, TheLowerOfTwoCrossingStripsIsFlaggedWhereTheyOverlap) {
     sloped.vertices[v].z() = sloped.vertices[v].y();  // street z = y, road z = 0
   }
   const PlanOverlaps s = plan_overlaps(sloped);
-  EXPECT_EQ(flagged(s.under, 0, road), 4u);                         // under the street's y > 0 half
+  EXPECT_EQ(flagged(s.under, 0, road), 4u);                        // under the street's y > 0 half
   EXPECT_EQ(flagged(s.under, road, sloped.triangles.size()), 4u);  // the street's y < 0 half
 }
 

@@ -72,9 +72,9 @@ void print(const std::string& name, const MeshSummary& m) {
             << m.road->non_manifold_edges << ", self-intersecting pairs " << m.road->self_intersecting_pairs
             << ", upside down " << m.road->upside_down_triangles << "; Terrain " << m.terrain->triangles
             << " triangles, max vertical error " << m.terrain_max_vertical_error_m << " m; ground holes "
-            << m.ground_holes << ", tunnel mouths " << m.ground_portals << ", components " << m.ground_components
-            << ", road triangles under roads "
-            << m.ground_triangles_under_roads << "\n";
+            << m.ground_holes << ", tunnel mouths " << m.ground_portals << ", components "
+            << m.ground_components << ", road triangles under roads " << m.ground_triangles_under_roads
+            << "\n";
 }
 
 // Upper bounds of the known defects of a data set (measured; a regression goes above them).
@@ -225,11 +225,12 @@ TEST(MeshPipeline, NorthEastSceneFiguresAndReimport) {
   // data's edge, it followed the DEM); alongside separations now lift it. Before forks could trim
   // from the whole road, close junctions were joined and two arriving one-ways stopped getting a
   // hairpin transition road: 6 junctions open, 16 pairs, 85 upside-down triangles, 58 holes.
-  expect_scene_figures(m, {.junctions_failed = 0,
-                           .self_intersecting_pairs = 0,
-                           .upside_down_triangles = 0,
-                           .ground_triangles_under_roads = 140,
-                           .ground_portals = 8});  // Broadway (two bores), Stockton, a 50 m one at (1625, -195)
+  expect_scene_figures(m,
+                       {.junctions_failed = 0,
+                        .self_intersecting_pairs = 0,
+                        .upside_down_triangles = 0,
+                        .ground_triangles_under_roads = 140,
+                        .ground_portals = 8});  // Broadway (two bores), Stockton, a 50 m one at (1625, -195)
   expect_files_reimport(b);
 }
 
@@ -502,7 +503,8 @@ TEST(MeshPipeline, TunnelMouthsStayOpen) {
   std::size_t top_edge = 0;
   for (const Vec3& t : terrain->vertices) {
     for (const Vec3& r : road->vertices) {
-      if ((t.head<2>() - r.head<2>()).norm() < 1e-3 && std::abs(t.z() - r.z() - o.tunnel_portal_height_m) < 1e-3)
+      if ((t.head<2>() - r.head<2>()).norm() < 1e-3 &&
+          std::abs(t.z() - r.z() - o.tunnel_portal_height_m) < 1e-3)
         ++top_edge;
     }
   }

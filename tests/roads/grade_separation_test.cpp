@@ -62,11 +62,9 @@ TEST(GradeSeparation, ConnectedRoadsAreNotSeparations) {
 TEST(GradeSeparation, AViaductAlongAStreetIsSeparatedEveryFiveMetres) {
   WayAttributes bridge;
   bridge.bridge = true;
-  const RoadNetwork net = test::make_network({{{0, 0}, {200, 0}},
-                                              {{0, 4}, {200, 4}},
-                                              {{0, 10}, {200, 10}},
-                                              {{200, 0}, {190, -3}, {0, -3}}},
-                                             {bridge});
+  const RoadNetwork net = test::make_network(
+      {{{0, 0}, {200, 0}}, {{0, 4}, {200, 4}}, {{0, 10}, {200, 10}}, {{200, 0}, {190, -3}, {0, -3}}},
+      {bridge});
   auto profiles = flat(net, 10.0);
   for (double& z : profiles[0].z) z = 15.0;
   const auto seps = find_grade_separations(net, profiles);

@@ -134,8 +134,9 @@ void print_summary(const BuildResult& result) {
       out << "  mesh       Terrain " << m.terrain->triangles << " triangles, within "
           << fixed(m.terrain_max_vertical_error_m, 2) << " m of the DEM; ground (roads + terrain) "
           << m.ground_holes << " holes, " << m.ground_portals << " tunnel mouths open ("
-          << m.ground_triangles_under_roads << " road triangles under other roads left to the terrain); seam road/terrain " << fixed(m.seam_road_terrain_m.value_or(0.0), 4)
-          << " m\n";
+          << m.ground_triangles_under_roads
+          << " road triangles under other roads left to the terrain); seam road/terrain "
+          << fixed(m.seam_road_terrain_m.value_or(0.0), 4) << " m\n";
     }
   }
   out << "  gradient   max " << fixed(r.gradient.max_percent, 1) << " %, p99 "

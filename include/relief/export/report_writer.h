@@ -24,10 +24,10 @@ struct MethodReport {
   HeightValidation structures;  ///< bridges and tunnels
   GradeStats gradient;
   JunctionGapStats junctions;
-  CutFillStats cut_fill;         ///< departure from the DEM drape, roads on the ground
-  std::size_t separations = 0;   ///< grade separations: crossings of roads on different layers ...
+  CutFillStats cut_fill;                  ///< departure from the DEM drape, roads on the ground
+  std::size_t separations = 0;            ///< grade separations: crossings of roads on different layers ...
   std::size_t separations_alongside = 0;  ///< ... of which places where one runs over the other
-  double min_clearance_m = 0.0;  ///< smallest upper-minus-lower height at those places
+  double min_clearance_m = 0.0;           ///< smallest upper-minus-lower height at those places
   std::size_t below_clearance = 0;
   double seconds = 0.0;  ///< time to make the profiles
 };

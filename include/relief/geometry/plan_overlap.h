@@ -27,6 +27,7 @@ inline constexpr std::size_t kMaxPlanOverlapSites = 20;
 /// on the two triangles' planes at the midpoint of their centroids) is flagged `under`. Leaving
 /// the flagged ones out leaves candidates no two of which overlap in plan. Linear in the
 /// triangles plus the overlapping box pairs (CGAL box_intersection_d).
-[[nodiscard]] PlanOverlaps plan_overlaps(const TriangleMesh& mesh, const std::vector<std::uint8_t>& candidates = {});
+[[nodiscard]] PlanOverlaps plan_overlaps(const TriangleMesh& mesh,
+                                         const std::vector<std::uint8_t>& candidates = {});
 
 }  // namespace relief
