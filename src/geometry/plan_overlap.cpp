@@ -90,6 +90,7 @@ PlanOverlaps plan_overlaps(const TriangleMesh& mesh, const std::vector<std::uint
     const double zj = plane_height(mesh, tj, mid.head<2>());
     const std::uint32_t lower = zi < zj ? i : zj < zi ? j : std::max(i, j);
     ++out.pairs;
+    out.lower_upper.emplace_back(lower, lower == i ? j : i);
     if (out.under[lower]) return;
     out.under[lower] = 1;
     if (out.sites.size() < kMaxPlanOverlapSites) out.sites.push_back(centroid(mesh, mesh.triangles[lower]));

@@ -4,7 +4,7 @@
 #include <optional>
 #include <unordered_map>
 
-#include "pipeline/tunnel_portals.h"
+#include "pipeline/ground_openings.h"
 #include "relief/core/number_format.h"
 #include "relief/export/mesh_report.h"
 #include "relief/export/mesh_writer.h"
@@ -21,7 +21,65 @@ namespace {
 // 1 when it lies in a tunnel.
 struct Support {
   std::vector<std::uint8_t> ground, tunnel;
+  std::vector<std::uint8_t> counted_as_ground;        ///< 1: a deck, 2: a tunnel triangle
+  std::size_t decks_on_ground = 0, tunnels_open = 0;  ///< structure triangles counted as ground
 };
+
+constexpr double kDeckOnGroundM = 1.0;  // a deck triangle this close above the DEM lies on it
+
+// Structure triangles the terrain would cut through count as ground (the terrain then meets
+// them): a deck within kDeckOnGroundM above the DEM or below it (a deck cut off by the data's
+// edge follows the DEM; nothing passes under it, or the fit would have lifted it), and a tunnel
+// triangle with less than the mouth's height of DEM over it (the tunnel runs in a cutting there,
+// and its mouth moves to where the cover is enough).
+void structures_on_the_ground(const TriangleMesh& road, const DemSampler& dem, double mouth_height_m,
+                              Support& s) {
+  std::vector<std::uint32_t> used;
+  for (std::size_t i = 0; i < road.triangles.size(); ++i) {
+    if (!s.ground[i]) used.insert(used.end(), road.triangles[i].begin(), road.triangles[i].end());
+  }
+  std::sort(used.begin(), used.end());
+  used.erase(std::unique(used.begin(), used.end()), used.end());
+  std::vector<Vec2> xy;
+  xy.reserve(used.size());
+  for (const std::uint32_t v : used) xy.push_back(road.vertices[v].head<2>());
+  std::vector<std::optional<double>> z_dem(used.size());
+  dem.heights_at(xy, z_dem);
+  const auto dem_at = [&](std::uint32_t v) {
+    return z_dem[static_cast<std::size_t>(std::lower_bound(used.begin(), used.end(), v) - used.begin())];
+  };
+  for (std::size_t i = 0; i < road.triangles.size(); ++i) {
+    if (s.ground[i]) continue;
+    bool deck_on_dem = true, shallow = false;
+    for (const std::uint32_t v : road.triangles[i]) {
+      const std::optional<double> z = dem_at(v);
+      deck_on_dem = deck_on_dem && z && road.vertices[v].z() - *z <= kDeckOnGroundM;
+      shallow = shallow || (z && *z - road.vertices[v].z() < mouth_height_m);
+    }
+    if (s.tunnel[i] ? shallow : deck_on_dem) {
+      s.ground[i] = 1;
+      s.counted_as_ground[i] = s.tunnel[i] ? 2 : 1;
+      ++(s.tunnel[i] ? s.tunnels_open : s.decks_on_ground);
+      s.tunnel[i] = 0;
+    }
+  }
+}
+
+// A structure triangle counted as ground that lies over another road in plan (a deck's end
+// over the street in the cutting beneath it) stays a structure: as ground, the terrain would
+// close the step under it across the lower road. Returns whether any did.
+bool keep_covering_structures(const PlanOverlaps& overlaps, Support& s) {
+  bool any = false;
+  for (const auto& [lower, upper] : overlaps.lower_upper) {
+    if (!s.counted_as_ground[upper]) continue;
+    s.ground[upper] = 0;
+    s.tunnel[upper] = s.counted_as_ground[upper] == 2;
+    --(s.tunnel[upper] ? s.tunnels_open : s.decks_on_ground);
+    s.counted_as_ground[upper] = 0;
+    any = true;
+  }
+  return any;
+}
 
 Support triangle_support(const RoadMeshes& roads, const RoadModel& model, const RoadNetwork& network) {
   std::unordered_map<int, WayAttributes> attributes;  // OpenDRIVE road id -> its OSM way's
@@ -32,6 +90,7 @@ Support triangle_support(const RoadMeshes& roads, const RoadModel& model, const 
   Support s;
   s.ground.assign(roads.road.triangles.size(), 1);
   s.tunnel.assign(roads.road.triangles.size(), 0);
+  s.counted_as_ground.assign(roads.road.triangles.size(), 0);
   for (std::size_t i = 0; i < s.ground.size(); ++i) {
     const auto it = attributes.find(roads.road_triangle_owner[i]);
     if (it == attributes.end()) continue;  // a junction patch
@@ -82,12 +141,18 @@ MeshSummary write_mesh_outputs(const MeshStageInput& in, OutputSet& files, Stage
       seam_gap(submesh(roads.road, lanes), submesh(roads.road, junction), kSeamReachM).max_gap_m;
 
   // Roads on the ground, less the triangles that lie under another road seen from above (a
-  // tunnel's approach running on under the street over its portal, OSM ways closer than their
-  // widths): a 2.5-D ground holds one surface per point, and the terrain closes the step between
-  // the lower road's edge and the upper one (the portal face).
+  // tunnel's approach running on under the street over its portal, a street in a cutting under
+  // a bridge's abutment, OSM ways closer than their widths): a 2.5-D ground holds one surface
+  // per point. The terrain closes the step between the lower road's edge and the upper road: as
+  // a ramp where the step is small, over an opening where a vehicle passes below
+  // (ground_openings.h).
   Support support = triangle_support(roads, in.model, in.network);
+  structures_on_the_ground(roads.road, in.dem, options.tunnel_portal_height_m, support);
   std::vector<std::uint8_t>& ground = support.ground;
-  const PlanOverlaps overlaps = plan_overlaps(roads.road, ground);
+  PlanOverlaps overlaps = plan_overlaps(roads.road, ground);
+  if (keep_covering_structures(overlaps, support)) overlaps = plan_overlaps(roads.road, ground);
+  summary.deck_triangles_on_ground = support.decks_on_ground;
+  summary.tunnel_triangles_open = support.tunnels_open;
   for (std::size_t i = 0; i < ground.size(); ++i) {
     if (overlaps.under[i]) {
       ground[i] = 0;
@@ -97,10 +162,10 @@ MeshSummary write_mesh_outputs(const MeshStageInput& in, OutputSet& files, Stage
   if (overlaps.pairs > 0)
     report_plan_overlaps(overlaps, summary.ground_triangles_under_roads, in.diagnostics);
   const TriangleMesh ground_road = submesh(roads.road, ground);
-  const std::vector<Vec3> portals = portal_vertices(roads.road, ground, support.tunnel, overlaps.under);
-  const auto raised = [&](const Vec3& p) { return Vec3(p + Vec3(0.0, 0.0, options.tunnel_portal_height_m)); };
-  std::vector<Vec3> raised_portals;  // sorted as `portals` (same x, y order; z shifted alike)
-  for (const Vec3& p : portals) raised_portals.push_back(raised(p));
+  GroundOpeningOptions opening_options;
+  opening_options.mouth_height_m = options.tunnel_portal_height_m;
+  const std::vector<std::pair<Vec3, Vec3>> tops =
+      opening_tops(roads.road, ground, support.tunnel, overlaps, opening_options);
 
   std::optional<TerrainBuild> terrain;
   if (options.terrain) {
@@ -109,9 +174,9 @@ MeshSummary write_mesh_outputs(const MeshStageInput& in, OutputSet& files, Stage
       for (const auto& loop : boundary_loops(ground_road)) {
         Polyline3 points;
         for (const std::uint32_t v : loop) {
-          // The terrain takes a tunnel mouth's top edge, not the road's end edge under it.
+          // The terrain takes an opening's top edge, not the road's edge under it.
           const Vec3& p = ground_road.vertices[v];
-          points.push_back(is_portal(portals, p) ? raised(p) : p);
+          points.push_back(opening_top(tops, p));
         }
         if (points.size() >= 3) outline.push_back(std::move(points));
       }
@@ -144,7 +209,7 @@ MeshSummary write_mesh_outputs(const MeshStageInput& in, OutputSet& files, Stage
   // it only reads the scene, so it runs beside the file writers.
   struct Checked {
     std::vector<MeshQuality> quality;
-    std::size_t ground_holes = 0, ground_components = 0, ground_portals = 0;
+    std::size_t ground_holes = 0, ground_components = 0, ground_portals = 0, structure_terrain_pairs = 0;
     std::optional<double> seam_road_terrain_m;
   };
   BackgroundStage<Checked> check("check meshes (beside the files)", [&] {
@@ -164,11 +229,25 @@ MeshSummary write_mesh_outputs(const MeshStageInput& in, OutputSet& files, Stage
       across.intersections_across.assign(ground_all.triangles.size(), 0);
       std::fill_n(across.intersections_across.begin(), ground_road.triangles.size(), 1);
       q.push_back(analyse_mesh(ground_all, across));
-      // A portal's mouth is an opening by design (the tunnel's road goes on beyond it).
-      c.ground_portals = loops_through(ground_all, raised_portals);
+      // An opening is one by design (a road goes on below the ground there).
+      c.ground_portals = loops_through_tops(ground_all, tops);
       c.ground_holes = q.back().holes - std::min(q.back().holes, c.ground_portals);
       c.ground_components = q.back().components;
       c.seam_road_terrain_m = seam_gap(ground_road, terrain->terrain, kSeamReachM).max_gap_m;
+      // Road triangles off the ground (decks, tunnels, pieces under other roads) against the
+      // terrain, welded where they share positions, only pairs across the two tested.
+      std::vector<std::uint8_t> off(ground.size());
+      for (std::size_t i = 0; i < off.size(); ++i) off[i] = !ground[i];
+      TriangleMesh structures = submesh(roads.road, off);
+      const std::size_t n_structures = structures.triangles.size();
+      if (n_structures > 0) {
+        structures.append(terrain->terrain);
+        structures = weld_identical_vertices(structures);
+        MeshQualityOptions o;
+        o.intersections_across.assign(structures.triangles.size(), 0);
+        std::fill_n(o.intersections_across.begin(), n_structures, 1);
+        c.structure_terrain_pairs = analyse_mesh(structures, o).self_intersecting_pairs;
+      }
     }
     return c;
   });
@@ -206,6 +285,7 @@ MeshSummary write_mesh_outputs(const MeshStageInput& in, OutputSet& files, Stage
   if (terrain) {
     summary.ground_holes = checked.ground_holes;
     summary.ground_portals = checked.ground_portals;
+    summary.structure_terrain_intersecting_pairs = checked.structure_terrain_pairs;
     summary.ground_components = checked.ground_components;
     summary.seam_road_terrain_m = checked.seam_road_terrain_m;
   }

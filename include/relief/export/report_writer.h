@@ -115,6 +115,11 @@ struct MeshSummary {
   std::size_t ground_holes = 0;        ///< holes of roads on the ground + terrain, welded
   std::size_t ground_components = 0;
   std::size_t ground_portals = 0;  ///< tunnel mouths: openings of the ground by design, not holes
+  /// Structure triangles meshed as roads on the ground: decks within 1 m above the DEM (or
+  /// below it), tunnel triangles under less than the mouth's height of DEM.
+  std::size_t deck_triangles_on_ground = 0, tunnel_triangles_open = 0;
+  /// Road triangles off the ground (decks, tunnels, under other roads) x Terrain, intersecting pairs.
+  std::size_t structure_terrain_intersecting_pairs = 0;
   /// Road triangles on the ground left out of the ground because another road lies over them
   /// in plan (plan_overlaps); the terrain closes the step between the two.
   std::size_t ground_triangles_under_roads = 0;

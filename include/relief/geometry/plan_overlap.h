@@ -5,6 +5,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "relief/geometry/triangle_mesh.h"
@@ -17,6 +18,8 @@ struct PlanOverlaps {
   std::vector<std::uint8_t> under;
   std::size_t pairs = 0;    ///< pairs of candidate triangles whose interiors overlap in plan
   std::vector<Vec3> sites;  ///< centroids of the first kMaxPlanOverlapSites triangles flagged `under`
+  /// Every overlapping pair as (lower, upper) triangle indices.
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> lower_upper;
 };
 
 inline constexpr std::size_t kMaxPlanOverlapSites = 20;
