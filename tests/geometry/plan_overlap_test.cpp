@@ -53,6 +53,11 @@ TEST(PlanOverlap, TheLowerOfTwoCrossingStripsIsFlaggedWhereTheyOverlap) {
   EXPECT_EQ(flagged(o.under, 0, road), 8u);
   EXPECT_EQ(flagged(o.under, road, m.triangles.size()), 0u);
   EXPECT_GE(o.pairs, 8u);
+  ASSERT_EQ(o.lower_upper.size(), o.pairs);
+  for (const auto& [lower, upper] : o.lower_upper) {
+    EXPECT_LT(lower, road);  // the road under the street
+    EXPECT_GE(upper, road);
+  }
   ASSERT_FALSE(o.sites.empty());
   for (const Vec3& s : o.sites) {
     EXPECT_LT(std::abs(s.x()), 1.0);
