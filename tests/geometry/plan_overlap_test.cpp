@@ -7,25 +7,12 @@
 #include <vector>
 
 #include "relief/core/errors.h"
+#include "support/mesh_grid.h"
 
 namespace relief {
 namespace {
 
-// Appends an nx x ny grid of 1 m squares (two triangles each) from (x0, y0) at height z, with
-// its own vertices.
-void add_grid(TriangleMesh& m, double x0, double y0, int nx, int ny, double z) {
-  const auto base = static_cast<std::uint32_t>(m.vertices.size());
-  for (int j = 0; j <= ny; ++j) {
-    for (int i = 0; i <= nx; ++i) m.vertices.emplace_back(x0 + i, y0 + j, z);
-  }
-  const auto at = [&](int i, int j) { return base + static_cast<std::uint32_t>(j * (nx + 1) + i); };
-  for (int j = 0; j < ny; ++j) {
-    for (int i = 0; i < nx; ++i) {
-      m.triangles.push_back({at(i, j), at(i + 1, j), at(i + 1, j + 1)});
-      m.triangles.push_back({at(i, j), at(i + 1, j + 1), at(i, j + 1)});
-    }
-  }
-}
+using test::add_grid;
 
 std::size_t flagged(const std::vector<std::uint8_t>& flags, std::size_t first, std::size_t last) {
   return static_cast<std::size_t>(std::count(flags.begin() + static_cast<std::ptrdiff_t>(first),
