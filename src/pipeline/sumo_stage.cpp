@@ -93,14 +93,22 @@ SumoJob start_sumo(const SumoStageInput& in, StageTimer& timer) {
   summary.internal_lanes_by_netconvert = plain.stats.internal_lanes_by_netconvert;
   summary.max_profile_grade_percent = plain.stats.max_edge_grade_percent;
 
-  // netconvert is another process: it runs on the other core while the meshes are built.
+  // netconvert is another process: it runs on the other core while the meshes are built, and
+  // its net is checked on this thread as soon as it is written.
   job.scratch = std::make_unique<ScratchDir>(options.out_dir);
-  job.netconvert =
-      std::async(std::launch::async, [plain = job.plain, dir = job.scratch->path(), name = in.name] {
+  job.netconvert = std::async(
+      std::launch::async, [plain = job.plain, dir = job.scratch->path(), name = in.name, model = &in.model] {
+        const auto seconds_since = [](std::chrono::steady_clock::time_point t) {
+          return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+        };
+        NetconvertResult r;
         const auto t0 = std::chrono::steady_clock::now();
-        NetconvertRun run = run_netconvert(*plain, dir, name);
-        return std::pair(std::move(run),
-                         std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+        r.run = run_netconvert(*plain, dir, name);
+        r.seconds = seconds_since(t0);
+        const auto t1 = std::chrono::steady_clock::now();
+        r.check = check_sumo_net(r.run.net_xml, *model, name + ".net.xml");
+        r.check_seconds = seconds_since(t1);
+        return r;
       });
   return job;
 }
@@ -112,8 +120,10 @@ SumoSummary finish_sumo(const SumoStageInput& in, SumoJob& job, OutputSet& files
   SumoSummary& summary = job.summary;
   const ScratchDir& scratch = *job.scratch;
   const auto t_wait = std::chrono::steady_clock::now();
-  const auto [nc, seconds] = job.netconvert.get();
-  timer.add("netconvert (beside the meshes)", seconds);
+  const NetconvertResult result = job.netconvert.get();
+  const NetconvertRun& nc = result.run;
+  timer.add("netconvert (beside the meshes)", result.seconds);
+  timer.add("check SUMO network (after netconvert, beside the meshes)", result.check_seconds);
   timer.add("wait for netconvert",
             std::chrono::duration<double>(std::chrono::steady_clock::now() - t_wait).count());
   summary.netconvert_warnings = nc.warnings;
@@ -134,8 +144,8 @@ SumoSummary finish_sumo(const SumoStageInput& in, SumoJob& job, OutputSet& files
   add_with(in.name + ".con.xml", write_sumo_connections);
   add_with(in.name + ".sumo_mapping.json", write_sumo_mapping);
 
-  timer.run("check SUMO network", [&] {
-    const SumoNetCheck check = check_sumo_net(nc.net_xml, in.model, in.name + ".net.xml");
+  {
+    const SumoNetCheck& check = result.check;
     summary.junctions = check.junctions;
     summary.traffic_lights = check.traffic_lights;
     summary.lanes = check.lanes;
@@ -155,8 +165,7 @@ SumoSummary finish_sumo(const SumoStageInput& in, SumoJob& job, OutputSet& files
           Severity::warning, "sumo.unmapped_lane_points",
           std::to_string(check.points_unmapped) + " SUMO lane points have no OpenDRIVE road");
     }
-    return 0;
-  });
+  }
 
   if (options.demand.trips > 0) {
     const DemandRun demand =

@@ -11,6 +11,7 @@
 #include "pipeline/stages.h"
 #include "relief/core/atomic_file.h"
 #include "relief/export/report_writer.h"
+#include "relief/export/sumo_checks.h"
 #include "relief/export/sumo_tools.h"
 #include "relief/roads/road_model.h"
 
@@ -39,14 +40,23 @@ class ScratchDir {
 };
 
 /// The SUMO stage under way: the plain network built, netconvert running.
+/// What the background thread makes: netconvert's run, then the check of its .net.xml.
+struct NetconvertResult {
+  NetconvertRun run;
+  double seconds = 0.0;  ///< netconvert's wall time
+  SumoNetCheck check;
+  double check_seconds = 0.0;
+};
+
 struct SumoJob {
   SumoSummary summary;
   std::shared_ptr<const SumoPlainNetwork> plain;  ///< shared with the netconvert thread
   std::unique_ptr<ScratchDir> scratch;
-  std::future<std::pair<NetconvertRun, double>> netconvert;  ///< its output and wall time
+  std::future<NetconvertResult> netconvert;
 };
 
-/// Builds the plain network and starts netconvert on it in the background.
+/// Builds the plain network and starts netconvert on it in the background, and the check of
+/// the .net.xml it writes against `in.model` (which must outlive the job).
 [[nodiscard]] SumoJob start_sumo(const SumoStageInput& in, StageTimer& timer);
 
 /// Waits for netconvert, then writes NAME.net.xml, NAME.{nod,edg,con}.xml,
