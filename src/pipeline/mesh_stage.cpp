@@ -2,9 +2,9 @@
 
 #include <algorithm>
 #include <optional>
-#include <unordered_map>
 
 #include "pipeline/ground_openings.h"
+#include "pipeline/ground_support.h"
 #include "relief/core/number_format.h"
 #include "relief/export/mesh_report.h"
 #include "relief/export/mesh_writer.h"
@@ -16,89 +16,6 @@
 
 namespace relief {
 namespace {
-
-// Per road triangle: 1 when it lies on the ground (not on a bridge deck or in a tunnel), and
-// 1 when it lies in a tunnel.
-struct Support {
-  std::vector<std::uint8_t> ground, tunnel;
-  std::vector<std::uint8_t> counted_as_ground;        ///< 1: a deck, 2: a tunnel triangle
-  std::size_t decks_on_ground = 0, tunnels_open = 0;  ///< structure triangles counted as ground
-};
-
-constexpr double kDeckOnGroundM = 1.0;  // a deck triangle this close above the DEM lies on it
-
-// Structure triangles the terrain would cut through count as ground (the terrain then meets
-// them): a deck within kDeckOnGroundM above the DEM or below it (a deck cut off by the data's
-// edge follows the DEM; nothing passes under it, or the fit would have lifted it), and a tunnel
-// triangle with less than the mouth's height of DEM over it (the tunnel runs in a cutting there,
-// and its mouth moves to where the cover is enough).
-void structures_on_the_ground(const TriangleMesh& road, const DemSampler& dem, double mouth_height_m,
-                              Support& s) {
-  std::vector<std::uint32_t> used;
-  for (std::size_t i = 0; i < road.triangles.size(); ++i) {
-    if (!s.ground[i]) used.insert(used.end(), road.triangles[i].begin(), road.triangles[i].end());
-  }
-  std::sort(used.begin(), used.end());
-  used.erase(std::unique(used.begin(), used.end()), used.end());
-  std::vector<Vec2> xy;
-  xy.reserve(used.size());
-  for (const std::uint32_t v : used) xy.push_back(road.vertices[v].head<2>());
-  std::vector<std::optional<double>> z_dem(used.size());
-  dem.heights_at(xy, z_dem);
-  const auto dem_at = [&](std::uint32_t v) {
-    return z_dem[static_cast<std::size_t>(std::lower_bound(used.begin(), used.end(), v) - used.begin())];
-  };
-  for (std::size_t i = 0; i < road.triangles.size(); ++i) {
-    if (s.ground[i]) continue;
-    bool deck_on_dem = true, shallow = false;
-    for (const std::uint32_t v : road.triangles[i]) {
-      const std::optional<double> z = dem_at(v);
-      deck_on_dem = deck_on_dem && z && road.vertices[v].z() - *z <= kDeckOnGroundM;
-      shallow = shallow || (z && *z - road.vertices[v].z() < mouth_height_m);
-    }
-    if (s.tunnel[i] ? shallow : deck_on_dem) {
-      s.ground[i] = 1;
-      s.counted_as_ground[i] = s.tunnel[i] ? 2 : 1;
-      ++(s.tunnel[i] ? s.tunnels_open : s.decks_on_ground);
-      s.tunnel[i] = 0;
-    }
-  }
-}
-
-// A structure triangle counted as ground that lies over another road in plan (a deck's end
-// over the street in the cutting beneath it) stays a structure: as ground, the terrain would
-// close the step under it across the lower road. Returns whether any did.
-bool keep_covering_structures(const PlanOverlaps& overlaps, Support& s) {
-  bool any = false;
-  for (const auto& [lower, upper] : overlaps.lower_upper) {
-    if (!s.counted_as_ground[upper]) continue;
-    s.ground[upper] = 0;
-    s.tunnel[upper] = s.counted_as_ground[upper] == 2;
-    --(s.tunnel[upper] ? s.tunnels_open : s.decks_on_ground);
-    s.counted_as_ground[upper] = 0;
-    any = true;
-  }
-  return any;
-}
-
-Support triangle_support(const RoadMeshes& roads, const RoadModel& model, const RoadNetwork& network) {
-  std::unordered_map<int, WayAttributes> attributes;  // OpenDRIVE road id -> its OSM way's
-  for (const ModelRoad& road : model.roads) {
-    if (road.source_road >= 0)
-      attributes[road.id] = network.roads[static_cast<std::size_t>(road.source_road)].attributes;
-  }
-  Support s;
-  s.ground.assign(roads.road.triangles.size(), 1);
-  s.tunnel.assign(roads.road.triangles.size(), 0);
-  s.counted_as_ground.assign(roads.road.triangles.size(), 0);
-  for (std::size_t i = 0; i < s.ground.size(); ++i) {
-    const auto it = attributes.find(roads.road_triangle_owner[i]);
-    if (it == attributes.end()) continue;  // a junction patch
-    s.ground[i] = !(it->second.bridge || it->second.tunnel);
-    s.tunnel[i] = it->second.tunnel;
-  }
-  return s;
-}
 
 void report_plan_overlaps(const PlanOverlaps& overlaps, std::size_t under, Diagnostics& diagnostics) {
   std::string sites;
@@ -113,8 +30,10 @@ void report_plan_overlaps(const PlanOverlaps& overlaps, std::size_t under, Diagn
       Severity::info, "mesh.roads_overlap_in_plan",
       std::to_string(under) + " road triangle(s) on the ground lie under another road seen from above (" +
           std::to_string(overlaps.pairs) + " overlapping pairs" + sites +
-          "): a tunnel approach under the street over its portal, or ways closer than their widths; "
-          "the terrain meets the upper road and closes the step to the lower one");
+          "): a tunnel approach under the street over its portal, a street under a bridge's abutment, or "
+          "ways "
+          "closer than their widths; the terrain closes the step to the upper road, over an opening where it "
+          "clears a vehicle");
 }
 
 }  // namespace
@@ -146,7 +65,7 @@ MeshSummary write_mesh_outputs(const MeshStageInput& in, OutputSet& files, Stage
   // per point. The terrain closes the step between the lower road's edge and the upper road: as
   // a ramp where the step is small, over an opening where a vehicle passes below
   // (ground_openings.h).
-  Support support = triangle_support(roads, in.model, in.network);
+  GroundSupport support = triangle_support(roads, in.model, in.network);
   structures_on_the_ground(roads.road, in.dem, options.tunnel_portal_height_m, support);
   std::vector<std::uint8_t>& ground = support.ground;
   PlanOverlaps overlaps = plan_overlaps(roads.road, ground);
