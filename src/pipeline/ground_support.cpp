@@ -12,7 +12,7 @@ constexpr double kDeckOnGroundM = 1.0;  // a deck triangle this close above the 
 }  // namespace
 
 // Structure triangles the terrain would cut through count as ground (the terrain then meets
-// them): a deck within kDeckOnGroundM above the DEM or below it (a deck cut off by the data's
+// them): a deck within kDeckOnGroundM above the DEM or below it at a corner (a deck cut off by the data's
 // edge follows the DEM; nothing passes under it, or the fit would have lifted it), and a tunnel
 // triangle with less than the mouth's height of DEM over it (the tunnel runs in a cutting there,
 // and its mouth moves to where the cover is enough).
@@ -34,10 +34,10 @@ void structures_on_the_ground(const TriangleMesh& road, const DemSampler& dem, d
   };
   for (std::size_t i = 0; i < road.triangles.size(); ++i) {
     if (s.ground[i]) continue;
-    bool deck_on_dem = true, shallow = false;
+    bool deck_on_dem = false, shallow = false;
     for (const std::uint32_t v : road.triangles[i]) {
       const std::optional<double> z = dem_at(v);
-      deck_on_dem = deck_on_dem && z && road.vertices[v].z() - *z <= kDeckOnGroundM;
+      deck_on_dem = deck_on_dem || (z && road.vertices[v].z() - *z <= kDeckOnGroundM);
       shallow = shallow || (z && *z - road.vertices[v].z() < mouth_height_m);
     }
     if (s.tunnel[i] ? shallow : deck_on_dem) {

@@ -27,7 +27,7 @@ struct GroundSupport {
 [[nodiscard]] GroundSupport triangle_support(const RoadMeshes& roads, const RoadModel& model,
                                              const RoadNetwork& network);
 
-/// Counts as ground a deck triangle within 1 m above the DEM (or below it) at all its corners,
+/// Counts as ground a deck triangle within 1 m above the DEM (or below it) at one of its corners,
 /// and a tunnel triangle with less than `mouth_height_m` of DEM over one of its corners.
 void structures_on_the_ground(const TriangleMesh& road, const DemSampler& dem, double mouth_height_m,
                               GroundSupport& s);

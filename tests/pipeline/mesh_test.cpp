@@ -227,7 +227,7 @@ TEST(MeshPipeline, NorthEastSceneFiguresAndReimport) {
   // approaches under the streets over their portals, Broadway under Hyde Street's abutments,
   // ramps, ways closer than their widths) and are left out of the ground, which had 34 holes
   // before; 11 openings: 6 tunnel mouths (Broadway's two bores and Stockton; the 1st Street
-  // "tunnel" has no cover and is open) and 5 underpasses. 44 deck / tunnel x terrain pairs (220
+  // "tunnel" has no cover and is open) and 5 underpasses. 25 deck / tunnel x terrain pairs (220
   // before decks on the DEM and tunnels without cover counted as ground). The 3 Road_Road pairs that
   // intersected at (1690, -908) were the James Lick Freeway viaduct lying on Perry Street (cut off by the
   // data's edge, it followed the DEM); alongside separations now lift it. Before forks could trim
@@ -238,7 +238,7 @@ TEST(MeshPipeline, NorthEastSceneFiguresAndReimport) {
                            .upside_down_triangles = 0,
                            .ground_triangles_under_roads = 175,
                            .ground_portals = 11,
-                           .structure_terrain_pairs = 44});
+                           .structure_terrain_pairs = 25});
   expect_files_reimport(b);
 }
 
