@@ -1,6 +1,7 @@
 #include "relief/geometry/plan_overlap.h"
 
 #include <array>
+#include <cmath>
 #include <string>
 
 #include <Eigen/Geometry>  // cross()
@@ -36,18 +37,18 @@ bool interiors_overlap(const Corners& a, const Corners& b) {
   return !separated_by_an_edge_of(a, b) && !separated_by_an_edge_of(b, a);
 }
 
-// Height of the triangle's plane above (x, y); the triangle is not vertical.
-double plane_height(const TriangleMesh& mesh, const Triangle& t, const Vec2& xy) {
-  const Vec3& a = mesh.vertices[t[0]];
-  const Vec3 n = (mesh.vertices[t[1]] - a).cross(mesh.vertices[t[2]] - a);
-  return a.z() - (n.x() * (xy.x() - a.x()) + n.y() * (xy.y() - a.y())) / n.z();
-}
-
 Vec3 centroid(const TriangleMesh& mesh, const Triangle& t) {
   return (mesh.vertices[t[0]] + mesh.vertices[t[1]] + mesh.vertices[t[2]]) / 3.0;
 }
 
 }  // namespace
+
+std::optional<double> plane_height(const TriangleMesh& mesh, const Triangle& t, const Vec2& xy) {
+  const Vec3& a = mesh.vertices[t[0]];
+  const Vec3 n = (mesh.vertices[t[1]] - a).cross(mesh.vertices[t[2]] - a);
+  if (!(std::abs(n.z()) > 1e-12)) return std::nullopt;
+  return a.z() - (n.x() * (xy.x() - a.x()) + n.y() * (xy.y() - a.y())) / n.z();
+}
 
 PlanOverlaps plan_overlaps(const TriangleMesh& mesh, const std::vector<std::uint8_t>& candidates) {
   if (!candidates.empty() && candidates.size() != mesh.triangles.size()) {
@@ -86,8 +87,9 @@ PlanOverlaps plan_overlaps(const TriangleMesh& mesh, const std::vector<std::uint
     const Triangle& ti = mesh.triangles[i];
     const Triangle& tj = mesh.triangles[j];
     const Vec3 mid = (centroid(mesh, ti) + centroid(mesh, tj)) / 2.0;
-    const double zi = plane_height(mesh, ti, mid.head<2>());
-    const double zj = plane_height(mesh, tj, mid.head<2>());
+    // Both are non-degenerate in plan (collinear ones have no box), so both planes exist.
+    const double zi = *plane_height(mesh, ti, mid.head<2>());
+    const double zj = *plane_height(mesh, tj, mid.head<2>());
     const std::uint32_t lower = zi < zj ? i : zj < zi ? j : std::max(i, j);
     ++out.pairs;
     out.lower_upper.emplace_back(lower, lower == i ? j : i);

@@ -1,29 +1,15 @@
 #include "pipeline/ground_openings.h"
 
 #include <algorithm>
-#include <array>
-#include <cmath>
 #include <limits>
 #include <optional>
 #include <tuple>
-
-#include <Eigen/Geometry>  // cross()
 
 namespace relief {
 namespace {
 
 bool less(const Vec3& a, const Vec3& b) {
   return std::tie(a.x(), a.y(), a.z()) < std::tie(b.x(), b.y(), b.z());
-}
-
-// Height of the triangle's plane above (x, y), extended beyond the triangle; nothing for a
-// triangle vertical or degenerate in plan.
-std::optional<double> plane_height(const TriangleMesh& mesh, const std::array<std::uint32_t, 3>& t,
-                                   const Vec2& xy) {
-  const Vec3& a = mesh.vertices[t[0]];
-  const Vec3 n = (mesh.vertices[t[1]] - a).cross(mesh.vertices[t[2]] - a);
-  if (!(std::abs(n.z()) > 1e-12)) return std::nullopt;
-  return a.z() - (n.x() * (xy.x() - a.x()) + n.y() * (xy.y() - a.y())) / n.z();
 }
 
 }  // namespace

@@ -12,8 +12,8 @@ constexpr double kDeckOnGroundM = 1.0;  // a deck triangle this close above the 
 }  // namespace
 
 // Structure triangles the terrain would cut through count as ground (the terrain then meets
-// them): a deck within kDeckOnGroundM above the DEM or below it at a corner (a deck cut off by the data's
-// edge follows the DEM; nothing passes under it, or the fit would have lifted it), and a tunnel
+// them): a deck within kDeckOnGroundM above the DEM or below it at a corner (a deck cut off by
+// the data's edge follows the DEM; nothing passes under it, or the fit would have lifted it), and a tunnel
 // triangle with less than the mouth's height of DEM over it (the tunnel runs in a cutting there,
 // and its mouth moves to where the cover is enough).
 void structures_on_the_ground(const TriangleMesh& road, const DemSampler& dem, double mouth_height_m,

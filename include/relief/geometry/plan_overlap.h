@@ -3,8 +3,10 @@
 // the ground) overlap in plan, e.g. a tunnel's approach running under the street above its portal,
 // or two OSM ways closer than their widths. Exact predicates (CGAL); CGAL stays in src/geometry/.
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <utility>
 #include <vector>
 
@@ -23,6 +25,11 @@ struct PlanOverlaps {
 };
 
 inline constexpr std::size_t kMaxPlanOverlapSites = 20;
+
+/// Height above (x, y) of the plane through triangle `t` of `mesh`, extended beyond the
+/// triangle; nothing for a triangle vertical or degenerate in plan.
+[[nodiscard]] std::optional<double> plane_height(const TriangleMesh& mesh,
+                                                 const std::array<std::uint32_t, 3>& t, const Vec2& xy);
 
 /// Pairs of `candidates` (one flag per triangle; all when empty) whose interiors overlap when
 /// projected onto the xy plane; touching along an edge or at a vertex is no overlap, and a
