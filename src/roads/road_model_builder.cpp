@@ -335,7 +335,8 @@ double segment_distance(const Vec2& a0, const Vec2& a1, const Vec2& b0, const Ve
 }
 
 // A road end at a junction in plan: its end cross-section (outermost right to outermost left
-// lane border) and the outline of its lanes over the first metres from that end.
+// lane border) and the outline of its lanes over the first metres from that end (at most
+// `max_reach` of them).
 struct EndShape {
   Vec2 left = Vec2::Zero(), right = Vec2::Zero();
   Polyline2 strip;  ///< closed implicitly
@@ -344,9 +345,9 @@ struct EndShape {
 constexpr double kStripLength = 50.0;  // m of lanes next to a junction that other ends must clear
 constexpr double kStripStep = 1.0;     // m between outline samples
 
-EndShape end_shape(const PlanView& plan, double outer_t, bool at_start) {
+EndShape end_shape(const PlanView& plan, double outer_t, bool at_start, double max_reach) {
   const double length = plan.length();
-  const double reach = std::min(length, kStripLength);
+  const double reach = std::min({length, kStripLength, max_reach});
   const int steps = std::max(1, static_cast<int>(std::ceil(reach / kStripStep)));
   Polyline2 left, right;
   for (int k = 0; k <= steps; ++k) {
@@ -513,8 +514,11 @@ RoadModelBuild build_road_model(const RoadNetwork& network, const std::vector<Ro
       if (!shape[k]) {
         const Road& road = network.roads[ends[k]->road];
         std::vector<double> kept_s, ref_s;
-        shape[k] = end_shape(fit_part(road, kept_s, ref_s, nullptr), outer_border_t(road.attributes),
-                             ends[k]->at_start);
+        const PlanView plan = fit_part(road, kept_s, ref_s, nullptr);
+        // A loop's strip stops at its middle: the far half holds its other end, which would
+        // otherwise always overlap this one however far both are trimmed.
+        const double max_reach = road.start_junction == road.end_junction ? 0.5 * plan.length() : kStripLength;
+        shape[k] = end_shape(plan, outer_border_t(road.attributes), ends[k]->at_start, max_reach);
       }
       return *shape[k];
     };

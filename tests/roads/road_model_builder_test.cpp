@@ -7,6 +7,7 @@
 #include <map>
 #include <numbers>
 
+#include "relief/roads/road_mesh.h"
 #include "relief/roads/road_model_checks.h"
 #include "relief/roads/road_surface.h"
 #include "support/synthetic.h"
@@ -151,6 +152,32 @@ TEST(RoadModelBuilder, ShortForkBranchesGiveUpMoreThanTheRadiusShare) {
       EXPECT_GE(upper.length(), options.min_kept_length_m - 1e-9);
     }
   }
+}
+
+TEST(RoadModelBuilder, ALoopBackToItsJunctionClearsItsOwnOtherEnd) {
+  // A street ending in a 68 m triangular loop (a turnaround), both loop ends at one node 35.5
+  // degrees apart: 6 m wide, they clear once trimmed 2 d sin 17.7° >= 6.5 m, d ~ 11 m. Each
+  // end's 50 m strip used to reach round the loop to the other end, which then always
+  // overlapped it: trimmed to the 40 % cap, the junction outline crossed itself (Potrero).
+  const RoadNetwork net = test::make_network({{{60, 0}, {0, 0}}, {{0, 0}, {-25, 8}, {-25, -8}, {0, 0}}},
+                                             {street(1, 1), street(1, 1)});
+  ASSERT_EQ(net.roads[1].start_junction, net.roads[1].end_junction);
+  Diagnostics d;
+  const RoadModelBuild b = build_road_model(net, drape(net), {}, d);
+  EXPECT_EQ(b.stats.junction_ends_overlap, 0u);
+  EXPECT_EQ(d.count("model.junction_ends_overlap"), 0u);
+  const ModelRoad& loop = b.model.roads[b.model_road_of[1]];
+  const double full = 2.0 * std::hypot(25.0, 8.0) + 16.0;  // the polyline; rounded corners shorten it a little
+  EXPECT_GT(full - loop.length(), 2.0 * 10.0);  // both ends trimmed about 11 m, not to the cap
+  EXPECT_LT(full - loop.length(), 2.0 * 14.0);
+  const auto [r1, l1] = end_section(loop, true);
+  const auto [r2, l2] = end_section(loop, false);
+  EXPECT_GE(std::min({point_segment_distance(r1, r2, l2), point_segment_distance(l1, r2, l2),
+                      point_segment_distance(r2, r1, l1), point_segment_distance(l2, r1, l1)}),
+            0.5);
+  const RoadMeshes meshes = build_road_meshes(b.model, {}, d);
+  EXPECT_EQ(meshes.junctions_meshed, 1u);
+  EXPECT_EQ(meshes.junctions_failed, 0u);
 }
 
 // A two-way street crossing a divided one whose carriageways (one-way, southbound on the west,
