@@ -58,6 +58,23 @@ void expect_sumo_loads(const std::filesystem::path& net) {
   EXPECT_EQ(r.output.find("Error"), std::string::npos) << r.output;
 }
 
+// relief's plain XML (nodes, edges, connections) is valid against SUMO's own schemas: netconvert
+// reads it without validation (a second faster).
+void expect_plain_xml_valid(const std::filesystem::path& dir, const std::string& name) {
+  const auto home = sumo_home();
+  ASSERT_TRUE(home);
+  const std::filesystem::path xsd = *home / "data" / "xsd";
+  if (!std::filesystem::exists(xsd / "nodes_file.xsd")) GTEST_SKIP() << "no SUMO schemas in " << xsd;
+  for (const auto& [suffix, schema] : {std::pair{".nod.xml", "nodes_file.xsd"},
+                                       std::pair{".edg.xml", "edges_file.xsd"},
+                                       std::pair{".con.xml", "connections_file.xsd"}}) {
+    const std::filesystem::path file = dir / (name + suffix);
+    const ProcessResult r =
+        run_process({"xmllint", "--noout", "--schema", (xsd / schema).string(), file.string()}, {});
+    EXPECT_EQ(r.exit_code, 0) << file << ":\n" << r.output.substr(0, 2000);
+  }
+}
+
 // The figures every SF network meets: lanes on the OpenDRIVE surface (z and plan), no steps
 // where a lane hands over to its internal lane, lane grades those of the profiles.
 void expect_on_surface(const SumoSummary& s, double z_max_m, double xy_max_m, double step_m = 0.1) {
@@ -80,6 +97,7 @@ TEST(Sumo, PotreroNetworkLoadsAndLiesOnTheSurface) {
   const SumoSummary& s = *r.sumo;
   print(r.name, s);
   expect_sumo_loads(o.out_dir / s.file);
+  expect_plain_xml_valid(o.out_dir, r.name);
   expect_on_surface(s, 0.1, 0.01);
   // Connecting roads run along their lane centres: every internal lane is relief's shape
   // (163 were left to netconvert when connecting roads were pinched Hermite curves).
@@ -98,6 +116,7 @@ TEST(Sumo, NortheastNetworkLoadsAndLiesOnTheSurface) {
   const SumoSummary& s = *r.sumo;
   print(r.name, s);
   expect_sumo_loads(o.out_dir / s.file);
+  expect_plain_xml_valid(o.out_dir, r.name);
   // Lanes lie within millimetres of the OpenDRIVE surface (z p99 0.002 m, max 0.015 m; the
   // largest plan offset, 0.30 m, is netconvert's on an internal lane) and every internal lane is
   // relief's shape. Before forks trimmed from the whole road and two arriving one-ways stopped
