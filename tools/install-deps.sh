@@ -7,7 +7,7 @@ packages=(
   build-essential cmake ninja-build pkg-config
   libcgal-dev libeigen3-dev libgmp-dev libmpfr-dev libboost-dev
   libproj-dev proj-data proj-bin
-  libosmium2-dev libprotozero-dev libexpat1-dev libbz2-dev zlib1g-dev
+  libosmium2-dev libprotozero-dev libexpat1-dev libbz2-dev zlib1g-dev libdeflate-dev
   libgdal-dev gdal-bin
   libassimp-dev assimp-utils
   libgtest-dev libgmock-dev libbenchmark-dev
