@@ -24,6 +24,7 @@
 #include <boost/iterator/function_output_iterator.hpp>
 #pragma GCC diagnostic pop
 
+#include "geometry/edge_order.h"
 #include "relief/core/errors.h"
 
 namespace relief {
@@ -91,9 +92,10 @@ std::vector<EdgeUse> sorted_edge_uses(const TriangleMesh& mesh) {
       if (a != b) uses.push_back({edge_key(a, b), i, k});
     }
   }
-  std::sort(uses.begin(), uses.end(), [](const EdgeUse& x, const EdgeUse& y) {
-    return x.key != y.key ? x.key < y.key : x.tri < y.tri;
-  });
+  // By key, then triangle (the uses were made in triangle order and the sort is stable).
+  detail::sort_by_vertex_pair(
+      uses, mesh.vertices.size(), [](const EdgeUse& u) { return static_cast<std::uint32_t>(u.key >> 32); },
+      [](const EdgeUse& u) { return static_cast<std::uint32_t>(u.key); });
   return uses;
 }
 

@@ -2,11 +2,11 @@
 
 #include <algorithm>
 #include <cstring>
-#include <tuple>
 #include <unordered_map>
 
 #include <Eigen/Geometry>  // cross()
 
+#include "geometry/edge_order.h"
 #include "relief/core/errors.h"
 
 namespace relief {
@@ -77,8 +77,8 @@ std::vector<std::vector<std::uint32_t>> boundary_loops(const TriangleMesh& mesh)
       if (a != b) edges.push_back({std::min(a, b), std::max(a, b), a, b});
     }
   }
-  std::sort(edges.begin(), edges.end(),
-            [](const Edge& x, const Edge& y) { return std::tie(x.lo, x.hi) < std::tie(y.lo, y.hi); });
+  detail::sort_by_vertex_pair(
+      edges, n, [](const Edge& e) { return e.lo; }, [](const Edge& e) { return e.hi; });
   std::vector<Edge> boundary;
   for (std::size_t i = 0; i < edges.size();) {
     std::size_t j = i + 1;
@@ -154,6 +154,7 @@ TriangleMesh weld_identical_vertices(const TriangleMesh& mesh) {
     }
   };
   std::unordered_map<Key, std::uint32_t, Hash> index;
+  index.reserve(mesh.vertices.size());
   TriangleMesh out;
   out.name = mesh.name;
   out.kind = mesh.kind;
