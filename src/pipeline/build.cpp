@@ -241,7 +241,7 @@ BuildResult build(const BuildOptions& options, Diagnostics& diagnostics, const P
   std::optional<SumoJob> sumo;
   if (options.outputs.count(Output::sumo)) {
     sumo_in.emplace(SumoStageInput{options, loaded, built->model, report.name, diagnostics});
-    sumo = start_sumo(*sumo_in, timer);
+    sumo = start_sumo(*sumo_in);
   }
   if (options.outputs.count(Output::geojson)) {
     timer.run("write GeoJSON", [&] {

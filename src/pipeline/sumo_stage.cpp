@@ -59,69 +59,64 @@ ScratchDir::~ScratchDir() {
   std::filesystem::remove_all(path_, ec);
 }
 
-SumoJob start_sumo(const SumoStageInput& in, StageTimer& timer) {
-  const BuildOptions& options = in.options;
-  const RoadNetwork& network = in.loaded.network;
+SumoJob start_sumo(const SumoStageInput& in) {
   SumoJob job;
-  SumoSummary& summary = job.summary;
-  summary.file = in.name + ".net.xml";
-  summary.max_grade_percent = options.sumo.max_grade_percent;
-
-  job.plain = std::make_shared<const SumoPlainNetwork>(timer.run("build SUMO network", [&] {
-    std::vector<SumoRoadInfo> info(in.model.roads.size());
-    for (std::size_t r = 0; r < in.model.roads.size(); ++r) {
-      const int source = in.model.roads[r].source_road;
-      if (source >= 0) info[r].highway = network.roads[static_cast<std::size_t>(source)].attributes.highway;
+  job.summary.file = in.name + ".net.xml";
+  job.summary.max_grade_percent = in.options.sumo.max_grade_percent;
+  // The plain network, netconvert (another process) and the check of its net run on their own
+  // thread, beside the meshes; diagnostics are kept there and reported in finish_sumo.
+  job.scratch = std::make_unique<ScratchDir>(in.options.out_dir);
+  job.netconvert = std::async(std::launch::async, [&options = in.options, &loaded = in.loaded,
+                                                   &model = in.model, dir = job.scratch->path(), name = in.name] {
+    const auto seconds_since = [](std::chrono::steady_clock::time_point t) {
+      return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+    };
+    NetconvertResult r;
+    const auto t_build = std::chrono::steady_clock::now();
+    std::vector<SumoRoadInfo> info(model.roads.size());
+    for (std::size_t i = 0; i < model.roads.size(); ++i) {
+      const int source = model.roads[i].source_road;
+      if (source >= 0) info[i].highway = loaded.network.roads[static_cast<std::size_t>(source)].attributes.highway;
     }
     SumoOptions so = options.sumo;
-    so.signalled_junctions =
-        signalled_junctions(in.loaded, in.model, options.signal_snap_m, summary.signals_mid_road);
-    if (summary.signals_mid_road > 0) {
-      in.diagnostics.report(
-          Severity::info, "sumo.signal_mid_road",
-          std::to_string(summary.signals_mid_road) + " traffic signals are more than " +
-              std::to_string(options.signal_snap_m) +
-              " m from any intersection (pedestrian crossings); SUMO gets no light for them");
+    so.signalled_junctions = signalled_junctions(loaded, model, options.signal_snap_m, r.signals_mid_road);
+    if (r.signals_mid_road > 0) {
+      r.diagnostics.report(Severity::info, "sumo.signal_mid_road",
+                           std::to_string(r.signals_mid_road) + " traffic signals are more than " +
+                               std::to_string(options.signal_snap_m) +
+                               " m from any intersection (pedestrian crossings); SUMO gets no light for them");
     }
-    return build_sumo_network(in.model, info, so, in.diagnostics);
-  }));
-  const SumoPlainNetwork& plain = *job.plain;
-  summary.nodes = plain.stats.nodes;
-  summary.edges = plain.stats.edges;
-  summary.connections = plain.stats.connections;
-  summary.restricted_edges = plain.stats.restricted_edges;
-  summary.internal_lanes_by_netconvert = plain.stats.internal_lanes_by_netconvert;
-  summary.max_profile_grade_percent = plain.stats.max_edge_grade_percent;
-
-  // netconvert is another process: it runs on the other core while the meshes are built, and
-  // its net is checked on this thread as soon as it is written.
-  job.scratch = std::make_unique<ScratchDir>(options.out_dir);
-  job.netconvert = std::async(
-      std::launch::async, [plain = job.plain, dir = job.scratch->path(), name = in.name, model = &in.model] {
-        const auto seconds_since = [](std::chrono::steady_clock::time_point t) {
-          return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
-        };
-        NetconvertResult r;
-        const auto t0 = std::chrono::steady_clock::now();
-        r.run = run_netconvert(*plain, dir, name);
-        r.seconds = seconds_since(t0);
-        const auto t1 = std::chrono::steady_clock::now();
-        r.check = check_sumo_net(r.run.net_xml, *model, name + ".net.xml");
-        r.check_seconds = seconds_since(t1);
-        return r;
-      });
+    r.plain = std::make_shared<const SumoPlainNetwork>(build_sumo_network(model, info, so, r.diagnostics));
+    r.build_seconds = seconds_since(t_build);
+    const auto t0 = std::chrono::steady_clock::now();
+    r.run = run_netconvert(*r.plain, dir, name);
+    r.seconds = seconds_since(t0);
+    const auto t1 = std::chrono::steady_clock::now();
+    r.check = check_sumo_net(r.run.net_xml, model, name + ".net.xml");
+    r.check_seconds = seconds_since(t1);
+    return r;
+  });
   return job;
 }
 
 SumoSummary finish_sumo(const SumoStageInput& in, SumoJob& job, OutputSet& files, StageTimer& timer,
                         std::vector<std::filesystem::path>& written, std::vector<std::string>& names) {
   const BuildOptions& options = in.options;
-  const SumoPlainNetwork& plain = *job.plain;
   SumoSummary& summary = job.summary;
   const ScratchDir& scratch = *job.scratch;
   const auto t_wait = std::chrono::steady_clock::now();
   const NetconvertResult result = job.netconvert.get();
+  for (const Diagnostic& d : result.diagnostics.kept()) in.diagnostics.report(d);
+  const SumoPlainNetwork& plain = *result.plain;
+  summary.signals_mid_road = result.signals_mid_road;
+  summary.nodes = plain.stats.nodes;
+  summary.edges = plain.stats.edges;
+  summary.connections = plain.stats.connections;
+  summary.restricted_edges = plain.stats.restricted_edges;
+  summary.internal_lanes_by_netconvert = plain.stats.internal_lanes_by_netconvert;
+  summary.max_profile_grade_percent = plain.stats.max_edge_grade_percent;
   const NetconvertRun& nc = result.run;
+  timer.add("build SUMO network (beside the meshes)", result.build_seconds);
   timer.add("netconvert (beside the meshes)", result.seconds);
   timer.add("check SUMO network (after netconvert, beside the meshes)", result.check_seconds);
   timer.add("wait for netconvert",

@@ -3,6 +3,7 @@
 // OpenDRIVE surface, optional demand.
 
 #include <filesystem>
+#include <limits>
 #include <future>
 #include <memory>
 #include <string>
@@ -39,25 +40,29 @@ class ScratchDir {
   std::filesystem::path path_;
 };
 
-/// The SUMO stage under way: the plain network built, netconvert running.
-/// What the background thread makes: netconvert's run, then the check of its .net.xml.
+/// What the SUMO thread makes: the plain network, netconvert's run on it, then the check of
+/// its .net.xml; the diagnostics of the plain network are kept here (every one) for the caller.
 struct NetconvertResult {
+  std::shared_ptr<const SumoPlainNetwork> plain;
+  Diagnostics diagnostics{std::numeric_limits<std::size_t>::max()};
+  std::size_t signals_mid_road = 0;
+  double build_seconds = 0.0;  ///< the plain network's
   NetconvertRun run;
   double seconds = 0.0;  ///< netconvert's wall time
   SumoNetCheck check;
   double check_seconds = 0.0;
 };
 
+/// The SUMO stage under way.
 struct SumoJob {
   SumoSummary summary;
-  std::shared_ptr<const SumoPlainNetwork> plain;  ///< shared with the netconvert thread
   std::unique_ptr<ScratchDir> scratch;
   std::future<NetconvertResult> netconvert;
 };
 
-/// Builds the plain network and starts netconvert on it in the background, and the check of
-/// the .net.xml it writes against `in.model` (which must outlive the job).
-[[nodiscard]] SumoJob start_sumo(const SumoStageInput& in, StageTimer& timer);
+/// Starts the SUMO thread: the plain network from `in.model`, netconvert on it and the check of
+/// the .net.xml it writes (`in`'s options, network and model must outlive the job).
+[[nodiscard]] SumoJob start_sumo(const SumoStageInput& in);
 
 /// Waits for netconvert, then writes NAME.net.xml, NAME.{nod,edg,con}.xml,
 /// NAME.sumo_mapping.json (and NAME.rou.xml, NAME.sumocfg when options.demand.trips > 0) into
