@@ -300,7 +300,8 @@ SumoPlainNetwork build_sumo_network(const RoadModel& model, const std::vector<Su
         e.id = k == 0 ? edge_id(road.id, along_s) : second_half(edge_id(road.id, along_s));
         e.odr_road = road.id;
         e.along_s = along_s;
-        const std::string middle = "M" + std::to_string(road.id);
+        std::string middle = "M";  // not "M" + to_string(): GCC 12's false -Wrestrict (bug 105329)
+        middle += std::to_string(road.id);
         e.from = k == 0 ? node_of.at(static_cast<int>(r), along_s ? 0 : 1) : middle;
         e.to = k + 1 < pieces.size() ? middle : node_of.at(static_cast<int>(r), along_s ? 1 : 0);
         e.shape = sampled([&](double s) { return lane_border_t(road, s, 0); });

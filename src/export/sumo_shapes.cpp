@@ -45,11 +45,7 @@ Polyline3 sample_road_curve(const ModelRoad& road, const std::function<double(do
   // Every metre, and closer where the road turns: at most kMaxTurnRad between samples, or an
   // offset lane on a tight bend (a few metres of radius) would be cut short by its chords.
   constexpr double kMaxTurnRad = 2.0 * M_PI / 180.0;
-  double turn = 0.0;
-  const int fine = std::max(1, static_cast<int>(std::ceil(length / 0.25)));
-  for (int i = 0; i < fine; ++i)
-    turn += std::abs(road.plan.at(s_begin + length * (i + 0.5) / fine).curvature);
-  turn *= length / fine;
+  const double turn = road.plan.total_turn(s_begin, s_end);
   const int n =
       std::max({1, static_cast<int>(std::ceil(length)), static_cast<int>(std::ceil(turn / kMaxTurnRad))});
   Polyline3 line;
@@ -57,8 +53,9 @@ Polyline3 sample_road_curve(const ModelRoad& road, const std::function<double(do
   line.reserve(static_cast<std::size_t>(n) + 1);
   for (int i = 0; i <= n; ++i) {
     const double s = s_begin + length * i / n;
-    const Vec3 p = surface_point(road, s, t_of(s));
-    const double h = heading_at(road, s);
+    const Pose2 pose = road.plan.at(s);
+    const Vec3 p = surface_point(road, pose, s, t_of(s));
+    const double h = pose.heading;
     // Where the road bends tighter than the offset t, the offset curve loops back (a cusp):
     // keep only points that advance along the reference line's heading.
     if (!line.empty() && i < n) {

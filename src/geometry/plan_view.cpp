@@ -218,6 +218,44 @@ std::size_t PlanView::record_at(double s) const {
   return static_cast<std::size_t>(it - records_.begin()) - 1;
 }
 
+double PlanView::total_turn(double s0, double s1) const {
+  double turn = 0.0;
+  for (std::size_t i = records_.empty() ? 0 : record_at(s0); i < records_.size(); ++i) {
+    const PlanGeometry& g = records_[i];
+    const double a = std::max(s0, g.s) - g.s, b = std::min(s1, g.s + g.length) - g.s;  // in the record
+    if (g.s >= s1) break;
+    if (!(b > a)) continue;
+    switch (g.kind) {
+      case PlanGeometry::Kind::line:
+        break;
+      case PlanGeometry::Kind::arc:
+        turn += std::abs(g.curvature) * (b - a);
+        break;
+      case PlanGeometry::Kind::spiral: {
+        // Curvature linear in s: |k| integrates to a trapezoid, or two triangles where k
+        // changes sign.
+        const double rate = (g.curvature_end - g.curvature_start) / g.length;
+        const double ka = g.curvature_start + rate * a, kb = g.curvature_start + rate * b;
+        if ((ka >= 0.0) == (kb >= 0.0)) {
+          turn += 0.5 * std::abs(ka + kb) * (b - a);
+        } else {
+          turn += 0.5 * (ka * ka + kb * kb) / std::abs(rate);
+        }
+        break;
+      }
+      case PlanGeometry::Kind::param_poly3: {
+        const int steps = std::max(1, static_cast<int>(std::ceil((b - a) / 0.25)));
+        const double step = (b - a) / steps;
+        for (int k = 0; k < steps; ++k) {
+          turn += std::abs(evaluate_param_poly3(g, a + (k + 0.5) * step, arc_tables_[i]).curvature) * step;
+        }
+        break;
+      }
+    }
+  }
+  return turn;
+}
+
 Pose2 PlanView::at(double s) const {
   if (records_.empty()) throw InvalidInput("plan view: no geometry records");
   const double clamped = std::clamp(s, records_.front().s, length());

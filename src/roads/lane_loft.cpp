@@ -92,7 +92,8 @@ class SectionSampler {
     station.t = border_t(s);
     if (only_border_ >= 0) station.t = {station.t[static_cast<std::size_t>(only_border_)]};
     station.p.reserve(station.t.size());
-    for (const double t : station.t) station.p.push_back(surface_point(road_, s, t));
+    const Pose2 pose = road_.plan.at(s);  // once for every border of the station
+    for (const double t : station.t) station.p.push_back(surface_point(road_, pose, s, t));
     return station;
   }
 

@@ -79,8 +79,9 @@ ModelDeviation compare_models(const RoadModel& a, const RoadModel& b, double ste
       const LaneSection& sec = section_at(ra, s);
       for (const auto* side : {&sec.left, &sec.right})
         for (const LaneModel& l : *side) ts.push_back(lane_border_t(ra, s, l.id));
+      const Pose2 pose_a = ra.plan.at(s), pose_b = rb.plan.at(s);  // once per station, not per border
       for (double t : ts) {
-        const Vec3 p = surface_point(ra, s, t), q = surface_point(rb, s, t);
+        const Vec3 p = surface_point(ra, pose_a, s, t), q = surface_point(rb, pose_b, s, t);
         const double xy = (p.head<2>() - q.head<2>()).norm(), z = std::abs(p.z() - q.z());
         ++d.points;
         if (xy > d.max_xy_m || z > d.max_z_m) d.worst_road = ra.id;

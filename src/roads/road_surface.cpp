@@ -61,7 +61,10 @@ double lane_centre_t(const ModelRoad& road, double s, int lane_id) {
 }
 
 Vec3 surface_point(const ModelRoad& road, double s, double t) {
-  const Pose2 pose = road.plan.at(s);
+  return surface_point(road, road.plan.at(s), s, t);
+}
+
+Vec3 surface_point(const ModelRoad& road, const Pose2& pose, double s, double t) {
   const double clamped = std::clamp(s, 0.0, road.plan.length());
   const Vec2 normal(-std::sin(pose.heading), std::cos(pose.heading));
   const Vec2 xy = pose.position + t * normal;

@@ -190,6 +190,31 @@ PlanView line_then_arc() {
   return PlanView({line(0.0, Vec2::Zero(), 0.0, 10.0), arc(10.0, {10.0, 0.0}, 0.0, 0.5 * kPi * r, 1.0 / r)});
 }
 
+TEST(PlanView, TotalTurnIntegratesAbsoluteCurvature) {
+  // Line (no turn), quarter arc of radius 20 (pi/2), spiral from -0.1 to 0.3 1/m over 20 m
+  // (crosses zero at 5 m: triangles of 0.25 and 2.25 rad), then the parabola u = 10 p,
+  // v = 5 p^2 whose heading turns by atan(1) over its length.
+  const double r = 20.0;
+  PlanGeometry s = spiral(20.0, -0.1, 0.3);
+  s.s = 10.0 + 0.5 * kPi * r;
+  PlanGeometry p = line(s.s + 20.0, Vec2::Zero(), 0.0, 0.0);
+  p.kind = PlanGeometry::Kind::param_poly3;
+  p.u = Poly3{0.0, 10.0, 0.0, 0.0};
+  p.v = Poly3{0.0, 0.0, 5.0, 0.0};
+  p.length = param_poly3_length(p.u, p.v, 1.0);
+  const PlanView plan({line(0.0, Vec2::Zero(), 0.0, 10.0), arc(10.0, {10.0, 0.0}, 0.0, 0.5 * kPi * r, 1.0 / r), s, p});
+  EXPECT_EQ(plan.total_turn(0.0, 10.0), 0.0);
+  EXPECT_NEAR(plan.total_turn(0.0, s.s), 0.5 * kPi, 1e-12);
+  EXPECT_NEAR(plan.total_turn(10.0 + 0.25 * kPi * r, s.s), 0.25 * kPi, 1e-12);  // half the arc
+  EXPECT_NEAR(plan.total_turn(s.s, s.s + 20.0), 0.25 + 2.25, 1e-12);
+  EXPECT_NEAR(plan.total_turn(s.s, s.s + 5.0), 0.25, 1e-12);
+  EXPECT_NEAR(plan.total_turn(s.s + 5.0, s.s + 10.0), 0.25, 1e-12);  // 0 to 0.1 over 5 m
+  EXPECT_NEAR(plan.total_turn(p.s, plan.length()), std::atan(1.0), 1e-4);  // midpoint sums
+  EXPECT_NEAR(plan.total_turn(-5.0, 1e9), 0.5 * kPi + 2.5 + std::atan(1.0), 1e-4);
+  EXPECT_EQ(plan.total_turn(30.0, 20.0), 0.0);
+  EXPECT_EQ(PlanView().total_turn(0.0, 1.0), 0.0);
+}
+
 TEST(PlanView, LengthRecordAtAndClampedPoses) {
   const PlanView plan = line_then_arc();
   EXPECT_NEAR(plan.length(), 10.0 + 10.0 * kPi, 1e-12);

@@ -57,6 +57,10 @@ class PlanView {
   /// Index of the record containing s (binary search; a record's start s belongs to it; s before
   /// the first record gives 0, after the last the last). Throws InvalidInput when empty.
   [[nodiscard]] std::size_t record_at(double s) const;
+  /// Angle turned over [s0, s1], both ways counted: the integral of |curvature|. Exact for
+  /// lines, arcs and spirals; paramPoly3 records are sampled at the midpoints of steps of at
+  /// most 0.25 m. 0 when s1 <= s0 or the plan view is empty.
+  [[nodiscard]] double total_turn(double s0, double s1) const;
 
  private:
   std::vector<PlanGeometry> records_;
