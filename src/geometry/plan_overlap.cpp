@@ -27,7 +27,12 @@ bool separated_by_an_edge_of(const Corners& a, const Corners& b) {
     const Point2& p = a[static_cast<std::size_t>(i)];
     const Point2& q = a[static_cast<std::size_t>((i + 1) % 3)];
     bool outside = true;
-    for (const Point2& r : b) outside = outside && CGAL::orientation(p, q, r) != turn;
+    for (const Point2& r : b) {
+      // A shared corner lies on the line: settled here, where the filtered predicate would fall
+      // back to exact arithmetic to prove a zero (most pairs are neighbours sharing corners).
+      if (r == p || r == q) continue;
+      outside = outside && CGAL::orientation(p, q, r) != turn;
+    }
     if (outside) return true;
   }
   return false;
