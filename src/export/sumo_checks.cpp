@@ -288,7 +288,7 @@ SumoNetCheck check_sumo_net(std::string_view net_xml, const RoadModel& model, co
           ++check.points_unmapped;
           continue;
         }
-        const double error = std::abs(p.z() - surface_point(*at->road, at->s, at->t).z());
+        const double error = std::abs(p.z() - surface_z(*at->road, at->s, at->t));
         if (!at->lane.odr_shape) {
           // netconvert's own curve where the OpenDRIVE lane folds: measured apart.
           ++check.points_netconvert_shape;
@@ -368,7 +368,7 @@ FcdCheck check_sumo_fcd(std::string_view fcd_xml, std::string_view net_xml, cons
       }
       const ModelRoad& road = *at->road;
       if (const pugi::xml_attribute z = v.attribute("z")) {
-        z_errors.push_back(std::abs(z.as_double() - surface_point(road, at->s, at->t).z()));
+        z_errors.push_back(std::abs(z.as_double() - surface_z(road, at->s, at->t)));
       }
       if (const pugi::xml_attribute slope = v.attribute("slope")) {
         // Grade along the line at the sample's t: dz/ds of the profile scaled by the offset

@@ -64,12 +64,15 @@ Vec3 surface_point(const ModelRoad& road, double s, double t) {
   return surface_point(road, road.plan.at(s), s, t);
 }
 
-Vec3 surface_point(const ModelRoad& road, const Pose2& pose, double s, double t) {
+double surface_z(const ModelRoad& road, double s, double t) {
   const double clamped = std::clamp(s, 0.0, road.plan.length());
+  return road.elevation.value(clamped) + t * std::tan(road.superelevation.value(clamped));
+}
+
+Vec3 surface_point(const ModelRoad& road, const Pose2& pose, double s, double t) {
   const Vec2 normal(-std::sin(pose.heading), std::cos(pose.heading));
   const Vec2 xy = pose.position + t * normal;
-  const double z = road.elevation.value(clamped) + t * std::tan(road.superelevation.value(clamped));
-  return {xy.x(), xy.y(), z};
+  return {xy.x(), xy.y(), surface_z(road, s, t)};
 }
 
 double heading_at(const ModelRoad& road, double s) {

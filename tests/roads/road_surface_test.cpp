@@ -121,6 +121,11 @@ TEST(RoadSurface, SuperelevationTiltsAcrossTheRoad) {
   const Vec3 left = surface_point(road, 30.0, 3.5);
   EXPECT_NEAR(right.z(), elevation(30.0) - 6.5 * std::tan(0.05), 1e-12);
   EXPECT_NEAR(left.z(), elevation(30.0) + 3.5 * std::tan(0.05), 1e-12);
+  // The height alone, and the point from a pose evaluated once, are the same numbers.
+  EXPECT_EQ(surface_z(road, 30.0, -6.5), right.z());
+  EXPECT_EQ(surface_z(road, 150.0, 3.5), surface_point(road, 100.0, 3.5).z());  // clamped
+  const Vec3 again = surface_point(road, road.plan.at(30.0), 30.0, 3.5);
+  EXPECT_EQ(again, left);
 }
 
 TEST(RoadSurface, SurfacePointClampsToTheRoad) {

@@ -21,6 +21,8 @@ namespace relief {
 /// normal, z = elevation(s) + t * tan(superelevation(s)); s is clamped to the road.
 /// Throws InvalidInput when the road has no plan view records (as does heading_at).
 [[nodiscard]] Vec3 surface_point(const ModelRoad& road, double s, double t);
+/// Height of the road surface at (s, t), the z of surface_point() without its plan position.
+[[nodiscard]] double surface_z(const ModelRoad& road, double s, double t);
 /// The same with the reference line's pose at s already evaluated (road.plan.at(s)).
 [[nodiscard]] Vec3 surface_point(const ModelRoad& road, const Pose2& pose, double s, double t);
 
