@@ -55,7 +55,9 @@ class Compressor {
   std::string zlib(const void* data, std::size_t bytes) {
     std::string packed(libdeflate_zlib_compress_bound(c_.get(), bytes), '\0');
     const std::size_t n = libdeflate_zlib_compress(c_.get(), data, bytes, packed.data(), packed.size());
-    if (n == 0) throw InvalidInput("FBX: libdeflate failed to compress an array of " + std::to_string(bytes) + " bytes");
+    if (n == 0)
+      throw InvalidInput("FBX: libdeflate failed to compress an array of " + std::to_string(bytes) +
+                         " bytes");
     packed.resize(n);
     return packed;
   }

@@ -27,7 +27,8 @@ ObjText encode_obj(const fbx::SceneDesc& scene, const std::string& mtl_name,
   // About 30 bytes per vertex for each of v, vt, vn and 40 per face: one allocation, no regrowth.
   std::size_t estimate = 4096 + metadata_lines.size();
   for (const fbx::MeshDesc& mesh : scene.meshes) {
-    estimate += 30 * (mesh.positions.size() + mesh.uvs.size() + mesh.normals.size()) + 40 * mesh.triangles.size();
+    estimate +=
+        30 * (mesh.positions.size() + mesh.uvs.size() + mesh.normals.size()) + 40 * mesh.triangles.size();
   }
   o.reserve(estimate);
   o += "# written by relief\n";

@@ -67,7 +67,8 @@ SumoJob start_sumo(const SumoStageInput& in) {
   // thread, beside the meshes; diagnostics are kept there and reported in finish_sumo.
   job.scratch = std::make_unique<ScratchDir>(in.options.out_dir);
   job.netconvert = std::async(std::launch::async, [&options = in.options, &loaded = in.loaded,
-                                                   &model = in.model, dir = job.scratch->path(), name = in.name] {
+                                                   &model = in.model, dir = job.scratch->path(),
+                                                   name = in.name] {
     const auto seconds_since = [](std::chrono::steady_clock::time_point t) {
       return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
     };
@@ -76,15 +77,17 @@ SumoJob start_sumo(const SumoStageInput& in) {
     std::vector<SumoRoadInfo> info(model.roads.size());
     for (std::size_t i = 0; i < model.roads.size(); ++i) {
       const int source = model.roads[i].source_road;
-      if (source >= 0) info[i].highway = loaded.network.roads[static_cast<std::size_t>(source)].attributes.highway;
+      if (source >= 0)
+        info[i].highway = loaded.network.roads[static_cast<std::size_t>(source)].attributes.highway;
     }
     SumoOptions so = options.sumo;
     so.signalled_junctions = signalled_junctions(loaded, model, options.signal_snap_m, r.signals_mid_road);
     if (r.signals_mid_road > 0) {
-      r.diagnostics.report(Severity::info, "sumo.signal_mid_road",
-                           std::to_string(r.signals_mid_road) + " traffic signals are more than " +
-                               std::to_string(options.signal_snap_m) +
-                               " m from any intersection (pedestrian crossings); SUMO gets no light for them");
+      r.diagnostics.report(
+          Severity::info, "sumo.signal_mid_road",
+          std::to_string(r.signals_mid_road) + " traffic signals are more than " +
+              std::to_string(options.signal_snap_m) +
+              " m from any intersection (pedestrian crossings); SUMO gets no light for them");
     }
     r.plain = std::make_shared<const SumoPlainNetwork>(build_sumo_network(model, info, so, r.diagnostics));
     r.build_seconds = seconds_since(t_build);

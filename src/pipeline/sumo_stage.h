@@ -3,8 +3,8 @@
 // OpenDRIVE surface, optional demand.
 
 #include <filesystem>
-#include <limits>
 #include <future>
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>

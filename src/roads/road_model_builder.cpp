@@ -517,7 +517,8 @@ RoadModelBuild build_road_model(const RoadNetwork& network, const std::vector<Ro
         const PlanView plan = fit_part(road, kept_s, ref_s, nullptr);
         // A loop's strip stops at its middle: the far half holds its other end, which would
         // otherwise always overlap this one however far both are trimmed.
-        const double max_reach = road.start_junction == road.end_junction ? 0.5 * plan.length() : kStripLength;
+        const double max_reach =
+            road.start_junction == road.end_junction ? 0.5 * plan.length() : kStripLength;
         shape[k] = end_shape(plan, outer_border_t(road.attributes), ends[k]->at_start, max_reach);
       }
       return *shape[k];

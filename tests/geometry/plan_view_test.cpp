@@ -202,13 +202,14 @@ TEST(PlanView, TotalTurnIntegratesAbsoluteCurvature) {
   p.u = Poly3{0.0, 10.0, 0.0, 0.0};
   p.v = Poly3{0.0, 0.0, 5.0, 0.0};
   p.length = param_poly3_length(p.u, p.v, 1.0);
-  const PlanView plan({line(0.0, Vec2::Zero(), 0.0, 10.0), arc(10.0, {10.0, 0.0}, 0.0, 0.5 * kPi * r, 1.0 / r), s, p});
+  const PlanView plan(
+      {line(0.0, Vec2::Zero(), 0.0, 10.0), arc(10.0, {10.0, 0.0}, 0.0, 0.5 * kPi * r, 1.0 / r), s, p});
   EXPECT_EQ(plan.total_turn(0.0, 10.0), 0.0);
   EXPECT_NEAR(plan.total_turn(0.0, s.s), 0.5 * kPi, 1e-12);
   EXPECT_NEAR(plan.total_turn(10.0 + 0.25 * kPi * r, s.s), 0.25 * kPi, 1e-12);  // half the arc
   EXPECT_NEAR(plan.total_turn(s.s, s.s + 20.0), 0.25 + 2.25, 1e-12);
   EXPECT_NEAR(plan.total_turn(s.s, s.s + 5.0), 0.25, 1e-12);
-  EXPECT_NEAR(plan.total_turn(s.s + 5.0, s.s + 10.0), 0.25, 1e-12);  // 0 to 0.1 over 5 m
+  EXPECT_NEAR(plan.total_turn(s.s + 5.0, s.s + 10.0), 0.25, 1e-12);        // 0 to 0.1 over 5 m
   EXPECT_NEAR(plan.total_turn(p.s, plan.length()), std::atan(1.0), 1e-4);  // midpoint sums
   EXPECT_NEAR(plan.total_turn(-5.0, 1e9), 0.5 * kPi + 2.5 + std::atan(1.0), 1e-4);
   EXPECT_EQ(plan.total_turn(30.0, 20.0), 0.0);

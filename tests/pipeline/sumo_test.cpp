@@ -65,9 +65,9 @@ void expect_plain_xml_valid(const std::filesystem::path& dir, const std::string&
   ASSERT_TRUE(home);
   const std::filesystem::path xsd = *home / "data" / "xsd";
   if (!std::filesystem::exists(xsd / "nodes_file.xsd")) GTEST_SKIP() << "no SUMO schemas in " << xsd;
-  for (const auto& [suffix, schema] : {std::pair{".nod.xml", "nodes_file.xsd"},
-                                       std::pair{".edg.xml", "edges_file.xsd"},
-                                       std::pair{".con.xml", "connections_file.xsd"}}) {
+  for (const auto& [suffix, schema] :
+       {std::pair{".nod.xml", "nodes_file.xsd"}, std::pair{".edg.xml", "edges_file.xsd"},
+        std::pair{".con.xml", "connections_file.xsd"}}) {
     const std::filesystem::path file = dir / (name + suffix);
     const ProcessResult r =
         run_process({"xmllint", "--noout", "--schema", (xsd / schema).string(), file.string()}, {});

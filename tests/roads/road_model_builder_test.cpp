@@ -167,7 +167,8 @@ TEST(RoadModelBuilder, ALoopBackToItsJunctionClearsItsOwnOtherEnd) {
   EXPECT_EQ(b.stats.junction_ends_overlap, 0u);
   EXPECT_EQ(d.count("model.junction_ends_overlap"), 0u);
   const ModelRoad& loop = b.model.roads[b.model_road_of[1]];
-  const double full = 2.0 * std::hypot(25.0, 8.0) + 16.0;  // the polyline; rounded corners shorten it a little
+  const double full =
+      2.0 * std::hypot(25.0, 8.0) + 16.0;       // the polyline; rounded corners shorten it a little
   EXPECT_GT(full - loop.length(), 2.0 * 10.0);  // both ends trimmed about 11 m, not to the cap
   EXPECT_LT(full - loop.length(), 2.0 * 14.0);
   const auto [r1, l1] = end_section(loop, true);
