@@ -17,15 +17,21 @@
 namespace relief {
 namespace {
 
-void report_plan_overlaps(const PlanOverlaps& overlaps, std::size_t under, Diagnostics& diagnostics) {
-  std::string sites;
-  for (std::size_t i = 0; i < overlaps.sites.size() && i < 5; ++i) {
-    sites += i == 0 ? " at (" : ", (";
-    append_fixed(sites, overlaps.sites[i].x(), 1);
-    sites += ", ";
-    append_fixed(sites, overlaps.sites[i].y(), 1);
-    sites += ")";
+// " at (x, y), (x, y)..." for the first five sites, in the local frame.
+std::string first_sites(const std::vector<Vec3>& sites) {
+  std::string text;
+  for (std::size_t i = 0; i < sites.size() && i < 5; ++i) {
+    text += i == 0 ? " at (" : ", (";
+    append_fixed(text, sites[i].x(), 1);
+    text += ", ";
+    append_fixed(text, sites[i].y(), 1);
+    text += ")";
   }
+  return text;
+}
+
+void report_plan_overlaps(const PlanOverlaps& overlaps, std::size_t under, Diagnostics& diagnostics) {
+  const std::string sites = first_sites(overlaps.sites);
   diagnostics.report(
       Severity::info, "mesh.roads_overlap_in_plan",
       std::to_string(under) + " road triangle(s) on the ground lie under another road seen from above (" +
@@ -129,6 +135,7 @@ MeshSummary write_mesh_outputs(const MeshStageInput& in, OutputSet& files, Stage
   struct Checked {
     std::vector<MeshQuality> quality;
     std::size_t ground_holes = 0, ground_components = 0, ground_portals = 0, structure_terrain_pairs = 0;
+    std::vector<Vec3> structure_terrain_sites;
     std::optional<double> seam_road_terrain_m;
   };
   BackgroundStage<Checked> check("check meshes (beside the files)", [&] {
@@ -165,7 +172,9 @@ MeshSummary write_mesh_outputs(const MeshStageInput& in, OutputSet& files, Stage
         MeshQualityOptions o;
         o.intersections_across.assign(structures.triangles.size(), 0);
         std::fill_n(o.intersections_across.begin(), n_structures, 1);
-        c.structure_terrain_pairs = analyse_mesh(structures, o).self_intersecting_pairs;
+        MeshQuality crossing = analyse_mesh(structures, o);
+        c.structure_terrain_pairs = crossing.self_intersecting_pairs;
+        c.structure_terrain_sites = std::move(crossing.self_intersection_sites);
       }
     }
     return c;
@@ -205,6 +214,16 @@ MeshSummary write_mesh_outputs(const MeshStageInput& in, OutputSet& files, Stage
     summary.ground_holes = checked.ground_holes;
     summary.ground_portals = checked.ground_portals;
     summary.structure_terrain_intersecting_pairs = checked.structure_terrain_pairs;
+    if (checked.structure_terrain_pairs > 0) {
+      in.diagnostics.report(
+          Severity::warning, "mesh.structure_terrain_intersections",
+          std::to_string(checked.structure_terrain_pairs) +
+              " triangle pair(s) of a deck, tunnel or road piece under another road intersect the terrain" +
+              first_sites(checked.structure_terrain_sites) +
+              ": a deck beside a road on an embankment, whose fill slope rises through it, or the terrain "
+              "closing "
+              "the step over a road piece under another");
+    }
     summary.ground_components = checked.ground_components;
     summary.seam_road_terrain_m = checked.seam_road_terrain_m;
   }

@@ -37,13 +37,15 @@ BuildOptions scene_options(BuildOptions o) {
 struct SceneBuild {
   BuildOptions options;
   BuildResult result;
-  nlohmann::json mesh_report;  ///< mesh_report.json
+  nlohmann::json mesh_report;                      ///< mesh_report.json
+  std::map<std::string, std::size_t> diagnostics;  ///< count per code
 };
 
 SceneBuild build_scene(const BuildOptions& options) {
-  SceneBuild b{options, {}, {}};
+  SceneBuild b{options, {}, {}, {}};
   Diagnostics d;
   b.result = build(options, d);
+  b.diagnostics = d.counts();
   std::ifstream in(options.out_dir / "mesh_report.json");
   b.mesh_report = nlohmann::json::parse(in);
   return b;
@@ -105,6 +107,13 @@ void expect_scene_figures(const MeshSummary& m, const KnownDefects& known) {
   EXPECT_LE(m.ground_triangles_under_roads, known.ground_triangles_under_roads);
   EXPECT_EQ(m.ground_portals, known.ground_portals);
   EXPECT_LE(m.structure_terrain_intersecting_pairs, known.structure_terrain_pairs);
+}
+
+// Structures crossing the terrain are reported once, with their sites, as a warning.
+void expect_structure_warning(const SceneBuild& b, const MeshSummary& m) {
+  const auto it = b.diagnostics.find("mesh.structure_terrain_intersections");
+  EXPECT_EQ(it == b.diagnostics.end() ? 0u : it->second,
+            m.structure_terrain_intersecting_pairs > 0 ? 1u : 0u);
 }
 
 struct Box {
@@ -201,7 +210,8 @@ void expect_files_reimport(const SceneBuild& b) {
 
 TEST(MeshPipeline, PotreroSceneFigures) {
   RELIEF_REQUIRE_SHARED_DATA();
-  const MeshSummary& m = summary(potrero());
+  const SceneBuild& b = potrero();
+  const MeshSummary& m = summary(b);
   print("potrero", m);
   // Every junction meshed: junction 42's outline crossed itself until a service loop's ends
   // stopped counting the loop's far half as overlapping them (it was trimmed to 11 m); junction
@@ -216,6 +226,7 @@ TEST(MeshPipeline, PotreroSceneFigures) {
                            .ground_triangles_under_roads = 6,
                            .ground_portals = 1,
                            .structure_terrain_pairs = 1});
+  expect_structure_warning(b, m);
 }
 
 TEST(MeshPipeline, NorthEastSceneFiguresAndReimport) {
@@ -239,6 +250,7 @@ TEST(MeshPipeline, NorthEastSceneFiguresAndReimport) {
                            .ground_triangles_under_roads = 175,
                            .ground_portals = 11,
                            .structure_terrain_pairs = 25});
+  expect_structure_warning(b, m);
   expect_files_reimport(b);
 }
 
