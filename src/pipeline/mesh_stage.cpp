@@ -1,6 +1,7 @@
 #include "pipeline/mesh_stage.h"
 
 #include <algorithm>
+#include <array>
 #include <optional>
 
 #include "pipeline/ground_openings.h"
@@ -77,6 +78,13 @@ MeshSummary write_mesh_outputs(const MeshStageInput& in, OutputSet& files, Stage
   PlanOverlaps overlaps = plan_overlaps(roads.road, ground);
   if (keep_covering_structures(overlaps, support)) overlaps = plan_overlaps(roads.road, ground);
   summary.deck_triangles_on_ground = support.decks_on_ground;
+  // Decks off the ground (before the pieces under other roads leave it): the terrain keeps under them.
+  std::vector<std::array<Vec3, 3>> decks;
+  for (std::size_t i = 0; i < ground.size(); ++i) {
+    if (ground[i] || support.tunnel[i]) continue;
+    const auto& t = roads.road.triangles[i];
+    decks.push_back({roads.road.vertices[t[0]], roads.road.vertices[t[1]], roads.road.vertices[t[2]]});
+  }
   summary.tunnel_triangles_open = support.tunnels_open;
   for (std::size_t i = 0; i < ground.size(); ++i) {
     if (overlaps.under[i]) {
@@ -107,7 +115,7 @@ MeshSummary write_mesh_outputs(const MeshStageInput& in, OutputSet& files, Stage
       }
       Aabb2 area;
       for (const Vec3& p : roads.road.vertices) area.extend(Vec2(p.x(), p.y()));
-      return build_terrain(in.dem, area, outline, options.terrain_options);
+      return build_terrain(in.dem, area, outline, options.terrain_options, decks);
     });
     summary.terrain_tin_vertices = terrain->tin_vertices;
     summary.terrain_max_vertical_error_m = terrain->max_vertical_error_m;
@@ -220,9 +228,8 @@ MeshSummary write_mesh_outputs(const MeshStageInput& in, OutputSet& files, Stage
           std::to_string(checked.structure_terrain_pairs) +
               " triangle pair(s) of a deck, tunnel or road piece under another road intersect the terrain" +
               first_sites(checked.structure_terrain_sites) +
-              ": a deck beside a road on an embankment, whose fill slope rises through it, or the terrain "
-              "closing "
-              "the step over a road piece under another");
+              ": the terrain closing the step over a road piece under another road, or a deck whose edge "
+              "crosses a road edge (the terrain is kept under decks only inside edges clear of the roads)");
     }
     summary.ground_components = checked.ground_components;
     summary.seam_road_terrain_m = checked.seam_road_terrain_m;

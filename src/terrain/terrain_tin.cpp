@@ -14,6 +14,7 @@
 #include "relief/geometry/polyline.h"
 #include "terrain/outline_index.h"
 #include "terrain/terrain_cdt.h"
+#include "terrain/under_decks.h"
 
 namespace relief {
 namespace {
@@ -40,6 +41,8 @@ void check_input(const Aabb2& area, const std::vector<Polyline3>& outline, const
           "max_slope_width_m must be >= 0, got " + std::to_string(o.max_slope_width_m));
   require(std::isfinite(o.constraint_clearance_m) && o.constraint_clearance_m > 0.0,
           "constraint_clearance_m must be > 0, got " + std::to_string(o.constraint_clearance_m));
+  require(std::isfinite(o.deck_clearance_m) && o.deck_clearance_m >= 0.0,
+          "deck_clearance_m must be >= 0, got " + std::to_string(o.deck_clearance_m));
   for (std::size_t i = 0; i < outline.size(); ++i) {
     require(outline[i].size() >= 3, "outline loop " + std::to_string(i) + " has " +
                                         std::to_string(outline[i].size()) + " points (>= 3)");
@@ -333,8 +336,12 @@ TriangleMesh extract_mesh(const Tin& tin, const GridSamples& grid, TerrainBuild&
 }  // namespace
 
 TerrainBuild build_terrain(const DemSampler& dem, const Aabb2& area, const std::vector<Polyline3>& outline,
-                           const TerrainOptions& options) {
+                           const TerrainOptions& options, const std::vector<std::array<Vec3, 3>>& decks) {
   check_input(area, outline, options);
+  for (const auto& t : decks) {
+    for (const Vec3& p : t)
+      if (!p.allFinite()) throw InvalidInput("terrain: a deck triangle has a non-finite point");
+  }
   const double step = options.grid_step_m > 0.0 ? options.grid_step_m : dem_resolution_m(dem);
 
   // 1. The DEM on a regular grid over the area (clipped to where the DEMs are).
@@ -382,6 +389,10 @@ TerrainBuild build_terrain(const DemSampler& dem, const Aabb2& area, const std::
     build.max_cut_m = std::max(build.max_cut_m, grid.z_dem[k] - grid.z_target[k]);
     build.max_fill_m = std::max(build.max_fill_m, grid.z_target[k] - grid.z_dem[k]);
   }
+  // 6. Under the decks.
+  const UnderDecks under = keep_under_decks(tin, decks, outline, options.deck_clearance_m);
+  build.deck_edges_constrained = under.edges_constrained;
+  build.vertices_under_decks = under.vertices_lowered;
   build.terrain = extract_mesh(tin, grid, build);
   return build;
 }

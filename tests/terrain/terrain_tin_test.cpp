@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <functional>
 #include <limits>
@@ -282,6 +283,46 @@ TEST(TerrainTin, LiftedRoadGetsAFillBatterThatMeetsItsEdge) {
         EXPECT_NEAR(*z, plane(x, y), tolerance) << x << ", " << y;
       }
     }
+  }
+}
+
+TEST(TerrainTin, ADeckBesideAFillStaysAboveTheTerrain) {
+  // A road lifted 10 m (its fill batter reaches 15 m out) and, 5 m from its edge, a deck 5 m
+  // above the plane: the batter there is 6.7 m up and would rise through the deck.
+  const DemSampler dem = make_dem("deck", plane);
+  const std::vector<Polyline3> outline{
+      square(-40.0, -40.0, 40.0, 40.0, 4.0, [](double x, double y) { return plane(x, y) + 10.0; })};
+  const auto deck_z = [](double x, double y) { return plane(x, y) + 5.0; };
+  const auto corner = [&](double x, double y) { return Vec3(x, y, deck_z(x, y)); };
+  const std::vector<std::array<Vec3, 3>> deck{{corner(45, -20), corner(60, -20), corner(60, 20)},
+                                              {corner(45, -20), corner(60, 20), corner(45, 20)}};
+  TerrainOptions options;
+  options.vertical_tolerance_m = 0.05;
+  const auto highest_over_deck = [&](const TriangleMesh& terrain) {
+    double worst = -std::numeric_limits<double>::infinity();  // terrain height - deck height
+    for (double x = 45.0; x <= 60.0; x += 0.5) {
+      for (double y = -20.0; y <= 20.0; y += 0.5) {
+        const auto z = height_on(terrain, Vec2(x, y));
+        if (z) worst = std::max(worst, *z - deck_z(x, y));
+      }
+    }
+    return worst;
+  };
+  const TerrainBuild without = build_terrain(dem, box(150.0), outline, options);
+  EXPECT_GT(highest_over_deck(without.terrain), 1.0);
+  EXPECT_EQ(without.vertices_under_decks, 0u);
+
+  const TerrainBuild build = build_terrain(dem, box(150.0), outline, options, deck);
+  expect_well_formed(build.terrain);
+  EXPECT_EQ(build.deck_edges_constrained, 4u);  // the rectangle; its diagonal is inside
+  EXPECT_GT(build.vertices_under_decks, 0u);
+  EXPECT_LE(highest_over_deck(build.terrain), -options.deck_clearance_m + 1e-9);
+  // The road edge is still the terrain's, vertex for vertex.
+  const std::set<Key> vertices = vertex_set(build.terrain);
+  for (const Vec3& p : outline[0]) EXPECT_TRUE(vertices.count({p.x(), p.y(), p.z()}));
+  // Away from the deck the terrain is unchanged.
+  for (const Vec2& p : {Vec2(-60.0, 0.0), Vec2(0.0, 60.0), Vec2(100.0, 100.0)}) {
+    EXPECT_NEAR(*height_on(build.terrain, p), *height_on(without.terrain, p), 1e-9);
   }
 }
 

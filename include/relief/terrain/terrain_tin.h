@@ -4,6 +4,7 @@
 // the paved area removed, and cut/fill slopes between the road edges and the natural ground, so
 // that terrain and roads meet exactly (shared positions) with no hole and no overlap.
 
+#include <array>
 #include <cstddef>
 #include <vector>
 
@@ -21,6 +22,9 @@ struct TerrainOptions {
   /// DEM samples closer than this to the outline never become vertices (no slivers along the
   /// road edges); > 0.
   double constraint_clearance_m = 0.3;
+  /// Terrain under a bridge deck stays at least this far below it (a fill slope beside a deck,
+  /// or the DEM between its samples, would otherwise rise through it); >= 0.
+  double deck_clearance_m = 0.3;
 };
 
 struct TerrainBuild {
@@ -34,6 +38,8 @@ struct TerrainBuild {
   std::size_t vertices_on_slopes = 0;  ///< moved to a cut/fill batter
   double max_cut_m = 0.0;              ///< natural ground above the batter, largest (at the DEM samples)
   double max_fill_m = 0.0;             ///< natural ground below the batter, largest (at the DEM samples)
+  std::size_t deck_edges_constrained = 0;  ///< deck outline edges inserted as constraints
+  std::size_t vertices_under_decks = 0;    ///< terrain vertices lowered under a deck
 };
 
 /// Builds the terrain over `area` (local frame) grown by options.margin_m. `outline` are closed
@@ -44,10 +50,15 @@ struct TerrainBuild {
 /// of the two constraints' interpolated heights). Samples without a DEM height are skipped;
 /// triangles may span a void between valid samples. The TIN approximates the DEM moved onto the
 /// cut/fill batter, so the batter is refined like any other relief (no fixed densification).
+/// `decks` are the triangles of bridge decks off the ground: the terrain stays
+/// options.deck_clearance_m under them (their outline edges become constraints where they keep
+/// clear of the road outline, and terrain vertices under them are lowered; the vertical error
+/// then counts from the lowered surface).
 /// Throws InvalidInput for options out of range or an outline loop of < 3 (or non-finite)
 /// points; CoverageError when the DEM has no height anywhere in the area (or only along a line).
 [[nodiscard]] TerrainBuild build_terrain(const DemSampler& dem, const Aabb2& area,
                                          const std::vector<Polyline3>& outline,
-                                         const TerrainOptions& options = {});
+                                         const TerrainOptions& options = {},
+                                         const std::vector<std::array<Vec3, 3>>& decks = {});
 
 }  // namespace relief
