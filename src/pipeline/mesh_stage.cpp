@@ -78,6 +78,7 @@ MeshSummary write_mesh_outputs(const MeshStageInput& in, OutputSet& files, Stage
   PlanOverlaps overlaps = plan_overlaps(roads.road, ground);
   if (keep_covering_structures(overlaps, support)) overlaps = plan_overlaps(roads.road, ground);
   summary.deck_triangles_on_ground = support.decks_on_ground;
+  summary.tunnel_triangles_open = support.tunnels_open;
   // Decks off the ground (before the pieces under other roads leave it): the terrain keeps under them.
   std::vector<std::array<Vec3, 3>> decks;
   for (std::size_t i = 0; i < ground.size(); ++i) {
@@ -85,7 +86,6 @@ MeshSummary write_mesh_outputs(const MeshStageInput& in, OutputSet& files, Stage
     const auto& t = roads.road.triangles[i];
     decks.push_back({roads.road.vertices[t[0]], roads.road.vertices[t[1]], roads.road.vertices[t[2]]});
   }
-  summary.tunnel_triangles_open = support.tunnels_open;
   for (std::size_t i = 0; i < ground.size(); ++i) {
     if (overlaps.under[i]) {
       ground[i] = 0;

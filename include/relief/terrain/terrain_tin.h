@@ -52,8 +52,8 @@ struct TerrainBuild {
 /// cut/fill batter, so the batter is refined like any other relief (no fixed densification).
 /// `decks` are the triangles of bridge decks off the ground: the terrain stays
 /// options.deck_clearance_m under them (their outline edges become constraints where they keep
-/// clear of the road outline, and terrain vertices under them are lowered; the vertical error
-/// then counts from the lowered surface).
+/// clear of the road outline, and terrain vertices under them are lowered; max_vertical_error_m
+/// is measured before).
 /// Throws InvalidInput for options out of range or an outline loop of < 3 (or non-finite)
 /// points; CoverageError when the DEM has no height anywhere in the area (or only along a line).
 [[nodiscard]] TerrainBuild build_terrain(const DemSampler& dem, const Aabb2& area,
