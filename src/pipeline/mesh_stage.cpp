@@ -1,7 +1,6 @@
 #include "pipeline/mesh_stage.h"
 
 #include <algorithm>
-#include <array>
 #include <optional>
 
 #include "pipeline/ground_openings.h"
@@ -80,12 +79,9 @@ MeshSummary write_mesh_outputs(const MeshStageInput& in, OutputSet& files, Stage
   summary.deck_triangles_on_ground = support.decks_on_ground;
   summary.tunnel_triangles_open = support.tunnels_open;
   // Decks off the ground (before the pieces under other roads leave it): the terrain keeps under them.
-  std::vector<std::array<Vec3, 3>> decks;
-  for (std::size_t i = 0; i < ground.size(); ++i) {
-    if (ground[i] || support.tunnel[i]) continue;
-    const auto& t = roads.road.triangles[i];
-    decks.push_back({roads.road.vertices[t[0]], roads.road.vertices[t[1]], roads.road.vertices[t[2]]});
-  }
+  std::vector<std::uint8_t> is_deck(ground.size());
+  for (std::size_t i = 0; i < ground.size(); ++i) is_deck[i] = !ground[i] && !support.tunnel[i];
+  const TriangleMesh decks = submesh(roads.road, is_deck);
   for (std::size_t i = 0; i < ground.size(); ++i) {
     if (overlaps.under[i]) {
       ground[i] = 0;

@@ -336,11 +336,10 @@ TriangleMesh extract_mesh(const Tin& tin, const GridSamples& grid, TerrainBuild&
 }  // namespace
 
 TerrainBuild build_terrain(const DemSampler& dem, const Aabb2& area, const std::vector<Polyline3>& outline,
-                           const TerrainOptions& options, const std::vector<std::array<Vec3, 3>>& decks) {
+                           const TerrainOptions& options, const TriangleMesh& decks) {
   check_input(area, outline, options);
-  for (const auto& t : decks) {
-    for (const Vec3& p : t)
-      if (!p.allFinite()) throw InvalidInput("terrain: a deck triangle has a non-finite point");
+  for (const Vec3& p : decks.vertices) {
+    if (!p.allFinite()) throw InvalidInput("terrain: a deck has a non-finite point");
   }
   const double step = options.grid_step_m > 0.0 ? options.grid_step_m : dem_resolution_m(dem);
 

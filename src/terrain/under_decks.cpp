@@ -4,10 +4,9 @@
 #include <cmath>
 #include <cstdint>
 #include <optional>
-#include <unordered_map>
 #include <utility>
 
-#include <Eigen/Geometry>  // cross()
+#include "relief/geometry/plan_overlap.h"
 
 namespace relief::terrain_detail {
 namespace {
@@ -28,26 +27,27 @@ class BoxGrid {
         cells_(static_cast<std::size_t>(nx_ * ny_)) {}
 
   void add(const Aabb2& box, std::uint32_t item) {
-    for_cells(box, [&](std::vector<std::uint32_t>& cell) { cell.push_back(item); });
+    for_cells(box, [&](std::size_t cell) { cells_[cell].push_back(item); });
   }
 
   template <class F>
   void visit(const Aabb2& box, F&& f) const {
-    const_cast<BoxGrid*>(this)->for_cells(box, [&](const std::vector<std::uint32_t>& cell) {
-      for (const std::uint32_t item : cell) f(item);
+    for_cells(box, [&](std::size_t cell) {
+      for (const std::uint32_t item : cells_[cell]) f(item);
     });
   }
 
  private:
+  // Calls f with the index of every cell the box meets.
   template <class F>
-  void for_cells(const Aabb2& box, F&& f) {
+  void for_cells(const Aabb2& box, F&& f) const {
     const auto cell_of = [&](double v, double o, long n) {
       return std::clamp(static_cast<long>(std::floor((v - o) / kCellM)), 0L, n - 1);
     };
     const long x0 = cell_of(box.min.x(), origin_.x(), nx_), x1 = cell_of(box.max.x(), origin_.x(), nx_);
     const long y0 = cell_of(box.min.y(), origin_.y(), ny_), y1 = cell_of(box.max.y(), origin_.y(), ny_);
     for (long y = y0; y <= y1; ++y)
-      for (long x = x0; x <= x1; ++x) f(cells_[static_cast<std::size_t>(y * nx_ + x)]);
+      for (long x = x0; x <= x1; ++x) f(static_cast<std::size_t>(y * nx_ + x));
   }
 
   Vec2 origin_;
@@ -61,50 +61,20 @@ Aabb2 box_of(std::initializer_list<Vec2> points) {
   return box;
 }
 
-// The outline edges of the decks: edges of exactly one deck triangle, vertices compared by
-// exact position.
-std::vector<std::pair<Vec3, Vec3>> deck_outline(const std::vector<std::array<Vec3, 3>>& decks) {
-  struct Hash {
-    std::size_t operator()(const std::pair<Vec3, Vec3>& e) const {
-      std::size_t h = 0;
-      for (const Vec3* p : {&e.first, &e.second})
-        for (int i = 0; i < 3; ++i) h = h * 1000003u ^ std::hash<double>()((*p)[i]);
-      return h;
-    }
-  };
-  const auto less = [](const Vec3& a, const Vec3& b) {
-    return std::lexicographical_compare(a.data(), a.data() + 3, b.data(), b.data() + 3);
-  };
-  std::unordered_map<std::pair<Vec3, Vec3>, int, Hash> uses;
-  for (const auto& t : decks) {
-    for (std::size_t k = 0; k < 3; ++k) {
-      const Vec3& a = t[k];
-      const Vec3& b = t[(k + 1) % 3];
-      ++uses[less(a, b) ? std::pair{a, b} : std::pair{b, a}];
-    }
-  }
-  std::vector<std::pair<Vec3, Vec3>> out;
-  for (const auto& [edge, n] : uses) {
-    if (n == 1) out.push_back(edge);
-  }
-  std::sort(out.begin(), out.end(), [&](const auto& x, const auto& y) {
-    return less(x.first, y.first) || (x.first == y.first && less(x.second, y.second));
-  });  // a fixed order: the TIN does not depend on the hash table's
-  return out;
-}
-
 }  // namespace
 
-UnderDecks keep_under_decks(Tin& tin, const std::vector<std::array<Vec3, 3>>& decks,
-                            const std::vector<Polyline3>& outline, double clearance_m) {
+UnderDecks keep_under_decks(Tin& tin, const TriangleMesh& decks, const std::vector<Polyline3>& outline,
+                            double clearance_m) {
   UnderDecks out;
-  if (decks.empty()) return out;
+  if (decks.triangles.empty()) return out;
+  const auto loops = boundary_loops(decks);  // first: it rejects an index out of range
+  const auto xy = [&](std::uint32_t v) { return Vec2(decks.vertices[v].head<2>()); };
   Aabb2 bounds;
-  for (const auto& t : decks)
-    for (const Vec3& p : t) bounds.extend(Vec2(p.head<2>()));
+  for (const Vec3& p : decks.vertices) bounds.extend(Vec2(p.head<2>()));
   BoxGrid deck_grid(bounds), outline_grid(bounds);
-  for (std::uint32_t i = 0; i < decks.size(); ++i) {
-    deck_grid.add(box_of({decks[i][0].head<2>(), decks[i][1].head<2>(), decks[i][2].head<2>()}), i);
+  for (std::uint32_t i = 0; i < decks.triangles.size(); ++i) {
+    const auto& t = decks.triangles[i];
+    deck_grid.add(box_of({xy(t[0]), xy(t[1]), xy(t[2])}), i);
   }
   std::vector<Segment2> segments;
   for (const Polyline3& loop : outline) {
@@ -120,15 +90,15 @@ UnderDecks keep_under_decks(Tin& tin, const std::vector<std::array<Vec3, 3>>& de
     std::optional<double> z;
     const Point2 q(x, y);
     deck_grid.visit(box_of({Vec2(x, y)}), [&](std::uint32_t i) {
-      const auto& t = decks[i];
-      const Point2 a(t[0].x(), t[0].y()), b(t[1].x(), t[1].y()), c(t[2].x(), t[2].y());
+      const auto& t = decks.triangles[i];
+      const Point2 a(xy(t[0]).x(), xy(t[0]).y()), b(xy(t[1]).x(), xy(t[1]).y()),
+          c(xy(t[2]).x(), xy(t[2]).y());
       const CGAL::Orientation turn = CGAL::orientation(a, b, c);
       if (turn == CGAL::COLLINEAR) return;
       if (CGAL::orientation(a, b, q) == -turn || CGAL::orientation(b, c, q) == -turn ||
           CGAL::orientation(c, a, q) == -turn)
         return;
-      const Vec3 n = (t[1] - t[0]).cross(t[2] - t[0]);
-      const double h = t[0].z() - (n.x() * (x - t[0].x()) + n.y() * (y - t[0].y())) / n.z();
+      const double h = *plane_height(decks, t, Vec2(x, y));  // not vertical: not collinear in plan
       z = z ? std::min(*z, h) : h;
     });
     return z;
@@ -158,7 +128,12 @@ UnderDecks keep_under_decks(Tin& tin, const std::vector<std::array<Vec3, 3>>& de
   };
 
   // 1. The deck outline as constraints, off the paved area and crossing no road edge.
-  for (const auto& [a, b] : deck_outline(decks)) {
+  std::vector<std::pair<Vec3, Vec3>> edges;  // the decks' outline, loop by loop
+  for (const auto& loop : loops) {
+    for (std::size_t k = 0; k < loop.size(); ++k)
+      edges.emplace_back(decks.vertices[loop[k]], decks.vertices[loop[(k + 1) % loop.size()]]);
+  }
+  for (const auto& [a, b] : edges) {
     const Vec2 mid = 0.5 * (a.head<2>() + b.head<2>());
     if (crosses_outline(Point2(a.x(), a.y()), Point2(b.x(), b.y())) || in_paved(mid.x(), mid.y())) {
       ++out.edges_skipped;

@@ -293,9 +293,10 @@ TEST(TerrainTin, ADeckBesideAFillStaysAboveTheTerrain) {
   const std::vector<Polyline3> outline{
       square(-40.0, -40.0, 40.0, 40.0, 4.0, [](double x, double y) { return plane(x, y) + 10.0; })};
   const auto deck_z = [](double x, double y) { return plane(x, y) + 5.0; };
-  const auto corner = [&](double x, double y) { return Vec3(x, y, deck_z(x, y)); };
-  const std::vector<std::array<Vec3, 3>> deck{{corner(45, -20), corner(60, -20), corner(60, 20)},
-                                              {corner(45, -20), corner(60, 20), corner(45, 20)}};
+  TriangleMesh deck;
+  for (const Vec2& p : {Vec2(45, -20), Vec2(60, -20), Vec2(60, 20), Vec2(45, 20)})
+    deck.vertices.emplace_back(p.x(), p.y(), deck_z(p.x(), p.y()));
+  deck.triangles = {{0, 1, 2}, {0, 2, 3}};
   TerrainOptions options;
   options.vertical_tolerance_m = 0.05;
   const auto highest_over_deck = [&](const TriangleMesh& terrain) {

@@ -4,7 +4,6 @@
 // the paved area removed, and cut/fill slopes between the road edges and the natural ground, so
 // that terrain and roads meet exactly (shared positions) with no hole and no overlap.
 
-#include <array>
 #include <cstddef>
 #include <vector>
 
@@ -50,7 +49,7 @@ struct TerrainBuild {
 /// of the two constraints' interpolated heights). Samples without a DEM height are skipped;
 /// triangles may span a void between valid samples. The TIN approximates the DEM moved onto the
 /// cut/fill batter, so the batter is refined like any other relief (no fixed densification).
-/// `decks` are the triangles of bridge decks off the ground: the terrain stays
+/// `decks` are the road triangles of bridge decks off the ground: the terrain stays
 /// options.deck_clearance_m under them (their outline edges become constraints where they keep
 /// clear of the road outline, and terrain vertices under them are lowered; max_vertical_error_m
 /// is measured before).
@@ -58,7 +57,6 @@ struct TerrainBuild {
 /// points; CoverageError when the DEM has no height anywhere in the area (or only along a line).
 [[nodiscard]] TerrainBuild build_terrain(const DemSampler& dem, const Aabb2& area,
                                          const std::vector<Polyline3>& outline,
-                                         const TerrainOptions& options = {},
-                                         const std::vector<std::array<Vec3, 3>>& decks = {});
+                                         const TerrainOptions& options = {}, const TriangleMesh& decks = {});
 
 }  // namespace relief
