@@ -1,0 +1,97 @@
+#pragma once
+// A sparse convex quadratic programme whose constraint rows are soft, each with a price per unit
+// of violation:
+//
+//   minimise   1/2 x'Px + q'x + sum_r price_r * v_r
+//   subject to lower_r - v_r <= a_r x <= upper_r + v_r,   v_r >= 0
+//
+// P symmetric positive definite (n x n), A sparse (m x n); a bound may be infinite (a one-sided
+// row), every price finite and positive. With every row soft the problem is always feasible and
+// its dual bounded (the multiplier of row r lies in [-price_r, price_r]); the L1 price is exact:
+// where the rows could all be met and every price exceeds the force its row bears, the soft
+// optimum is the hard one (Nocedal & Wright, Numerical Optimization, 2nd ed., 17.2-17.3). Several
+// priorities are several price levels: a cheaper row gives way first, and only where it conflicts
+// with a dearer one.
+//
+// Method. A primal-dual interior point (Mehrotra's predictor-corrector, Nocedal & Wright 16.6)
+// on the normal equations (P + A'DA) dx = r, kept in the wide neighbourhood of its central path
+// (s_i y_i >= gamma tau_i mu; Wright, Primal-Dual Interior-Point Methods, ch. 5-6). It starts
+// from the unconstrained minimiser after a few rounds of quadratic penalties on the rows found
+// violated (a start near feasibility wherever feasibility is possible). Rows far inside their
+// bounds are screened out: the interior point runs on the rows near or beyond a bound, every row
+// is checked at its solution, and the rows found violated join another round (a point that meets
+// every row left out solves the whole problem: those rows carry no multiplier).
+// Where rows conflict the interior point can stall (the multipliers of the rows that end violated
+// must climb to their prices); then, from its last point, a semismooth Newton method solves the
+// quadratic-penalty form, min 1/2 x'Px + q'x + sum 1/2 price_r dist(a_r x, [lower_r, upper_r])^2,
+// whose objective is strongly convex with a Lipschitz gradient: with an exact line search it
+// converges from any start (and the interior point is tried once more from its solution, the
+// rows it leaves violated started at their prices). In that form a conflict is shared by price
+// rather than falling on the cheapest row alone: the dearer rows give way by a share of what the
+// cheaper ones do, and a large conflict can push a dearer row past its bound. Either way every
+// row left violated is reported by the caller, so a conflict is never silent.
+// The pattern of P + A'A is analysed once, in the caller's fill-reducing order; each iteration
+// of either method factorises it numerically once (sparse LDL').
+
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+#include <Eigen/SparseCore>
+
+namespace relief {
+
+struct SoftQp {
+  Eigen::SparseMatrix<double> P;                   ///< n x n, symmetric (both triangles stored)
+  Eigen::VectorXd q;                               ///< n
+  Eigen::SparseMatrix<double, Eigen::RowMajor> A;  ///< m x n
+  Eigen::VectorXd lower, upper;                    ///< m, -inf / +inf allowed, lower <= upper
+  Eigen::VectorXd price;                           ///< m, finite, > 0, per unit of violation
+  /// Optional, m entries: rows the screening always takes, from the first round on (rows that
+  /// bind over long stretches, which screening by distance finds only over many rounds).
+  std::vector<std::uint8_t> always;
+  /// Optional, m entries: a group per row (>= 0; -1 for none). When a round finds a row of a
+  /// group violated, the whole group joins the next round (rows of one road bind together: a
+  /// kink pushed out of one row moves to the next).
+  std::vector<int> group;
+};
+
+struct SoftQpOptions {
+  /// Relative accuracy of stationarity and of the duality gap, and the absolute accuracy (row
+  /// units) to which every row left out is checked.
+  double tolerance = 1e-9;
+  int max_iterations = 200;      ///< interior-point iterations per screening round
+  int max_rounds = 10;           ///< screening rounds
+  int newton_iterations = 1000;  ///< semismooth Newton iterations, when the interior point stalls
+  /// Fill-reducing order of the variables: indices()[old] = new. Without one, AMD on the
+  /// pattern of P + A'A.
+  std::optional<Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int>> ordering;
+  /// Called with one line per iteration (residuals, step) when set: for diagnosis.
+  std::function<void(const std::string&)> trace;
+};
+
+struct SoftQpResult {
+  Eigen::VectorXd x;
+  Eigen::VectorXd row_values;  ///< A x
+  Eigen::VectorXd violation;   ///< per row: how far A x lies outside [lower, upper] (>= 0)
+  Eigen::VectorXd multiplier;  ///< per row: the force it bears (> 0 at its lower bound; 0 if out)
+  int iterations = 0;          ///< iterations of both methods
+  int rounds = 0;              ///< screening rounds of the interior point
+  std::size_t rows_used = 0;   ///< rows in the last round / outside their bounds at the end
+  bool converged = false;
+  double stationarity = 0.0;  ///< ||Px + q - A'y||_inf relative to the largest of its terms
+  double gap = 0.0;           ///< complementarity left, relative to 1 + |objective|
+  double objective = 0.0;     ///< including the prices of the violations
+  std::string status;         ///< "converged", or why not
+  std::string method;         ///< "interior point", or the fallback and why
+};
+
+/// Solves the programme. Throws InvalidInput for inconsistent sizes, lower > upper or a price
+/// that is not finite and positive; Error when P + A'DA cannot be factorised (P not positive
+/// definite).
+[[nodiscard]] SoftQpResult solve_soft_qp(const SoftQp& problem, const SoftQpOptions& options = {});
+
+}  // namespace relief

@@ -1,0 +1,803 @@
+#include "relief/geometry/soft_qp.h"
+
+#include <Eigen/OrderingMethods>
+#include <Eigen/SparseCholesky>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <limits>
+#include <vector>
+
+#include "relief/core/errors.h"
+
+namespace relief {
+namespace {
+
+using SpMat = Eigen::SparseMatrix<double>;
+using RowMat = Eigen::SparseMatrix<double, Eigen::RowMajor>;
+using Vec = Eigen::VectorXd;
+using Permutation = Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int>;
+
+constexpr double kStepFraction = 0.99;   // of the step to the boundary of the positive orthant
+constexpr double kNeighbourhood = 1e-3;  // gamma of the neighbourhood s_i y_i >= gamma tau_i mu
+constexpr double kStartMu = 1.0;
+constexpr double kStartForceCap = 1e3;     // complementarity at the start (force x row unit)
+constexpr double kStartSlackShare = 0.05;  // smallest starting slack, share of the row's scale
+constexpr double kMaxCentring = 1.0;       // largest sigma
+constexpr std::size_t kStallWindow = 20;
+constexpr double kConflictViolation =
+    1e-3;                            // row units: a row the penalty leaves violated this far conflicts
+constexpr int kStallIterations = 4;  // without progress once the gap is closed
+constexpr double kRoundingStationarity = 1e-4;  // accepted then (relative force imbalance)
+constexpr double kFarBound = 1e6;               // a missing bound, this many row scales away
+constexpr int kPenaltyRounds = 4;               // of the start's quadratic penalties
+constexpr double kPenaltyShare = 1e-3;          // their weight, a share of the row's price
+
+// The normal matrix M = P + A'DA in the elimination order, upper triangle (the form the LDL'
+// factorisation reads without a copy), with a fixed pattern: every P entry and every entry pair
+// of every row has its slot in the value array, found once.
+class NormalMatrix {
+ public:
+  NormalMatrix(const SpMat& P, const RowMat& A, const Permutation& order) : A_(A), order_(order) {
+    const auto n = static_cast<int>(P.rows());
+    const auto perm = [&](Eigen::Index i) { return order.indices()[i]; };
+    {
+      std::vector<Eigen::Triplet<double>> pattern;
+      pattern.reserve(static_cast<std::size_t>(P.nonZeros()) / 2 + static_cast<std::size_t>(n) +
+                      static_cast<std::size_t>(A.nonZeros()));
+      for (int j = 0; j < n; ++j) {
+        pattern.emplace_back(perm(j), perm(j), 0.0);  // every diagonal, also where P has none
+        for (SpMat::InnerIterator it(P, j); it; ++it) {
+          const int a = perm(it.row()), b = perm(j);
+          if (a < b) pattern.emplace_back(a, b, 0.0);
+        }
+      }
+      for (Eigen::Index r = 0; r < A.rows(); ++r) {
+        for (RowMat::InnerIterator i(A, r); i; ++i) {
+          for (RowMat::InnerIterator k(A, r); k && k.col() < i.col(); ++k) {
+            const int a = perm(i.col()), b = perm(k.col());
+            pattern.emplace_back(std::min(a, b), std::max(a, b), 0.0);
+          }
+        }
+      }
+      M_.resize(n, n);
+      M_.setFromTriplets(pattern.begin(), pattern.end());
+    }
+    M_.makeCompressed();
+    if (M_.nonZeros() >= std::numeric_limits<std::uint32_t>::max())
+      throw Error("soft QP: the normal matrix has too many entries");
+
+    // Slots of P's upper entries (in the new order) and their values.
+    for (int j = 0; j < n; ++j) {
+      for (SpMat::InnerIterator it(P, j); it; ++it) {
+        const int a = perm(it.row()), b = perm(j);
+        if (a > b) continue;
+        p_slot_.push_back(slot(a, b));
+        p_value_.push_back(it.value());
+      }
+    }
+    // Slots of every row's entry pairs (k <= i), row after row.
+    pair_start_.assign(static_cast<std::size_t>(A.rows()) + 1, 0);
+    for (Eigen::Index r = 0; r < A.rows(); ++r) {
+      for (RowMat::InnerIterator i(A, r); i; ++i) {
+        for (RowMat::InnerIterator k(A, r); k && k.col() <= i.col(); ++k) {
+          const int a = perm(i.col()), b = perm(k.col());
+          pair_slot_.push_back(slot(std::min(a, b), std::max(a, b)));
+        }
+      }
+      pair_start_[static_cast<std::size_t>(r) + 1] = pair_slot_.size();
+    }
+    ldlt_.analyzePattern(M_);
+  }
+
+  /// Factorises M = P + sum over the rows given of d_k a_r a_r'.
+  void factorise(const std::vector<int>& rows, const std::vector<double>& d) {
+    double* values = M_.valuePtr();
+    std::fill(values, values + M_.nonZeros(), 0.0);
+    for (std::size_t k = 0; k < p_slot_.size(); ++k) values[p_slot_[k]] += p_value_[k];
+    const int* outer = A_.outerIndexPtr();
+    const double* a = A_.valuePtr();
+    const int* col = A_.innerIndexPtr();
+    for (std::size_t k = 0; k < rows.size(); ++k) {
+      const double dk = d[k];
+      if (dk == 0.0) continue;
+      const int r = rows[k];
+      std::size_t slot = pair_start_[static_cast<std::size_t>(r)];
+      for (int i = outer[r]; i < outer[r + 1]; ++i) {
+        for (int j = outer[r]; j < outer[r + 1] && col[j] <= col[i]; ++j)
+          values[pair_slot_[slot++]] += dk * a[i] * a[j];
+      }
+    }
+    ldlt_.factorize(M_);
+    // Near the end of an interior point D spans many orders of magnitude, and rounding can
+    // leave a pivot that is not positive: retry with a growing relative shift of the diagonal
+    // (a proximal term, which changes the direction, not the solution it converges to).
+    double shift = 1e-14;
+    while (ldlt_.info() != Eigen::Success && shift < 1e-6) {
+      for (int j = 0; j < M_.outerSize(); ++j) {
+        const int last = M_.outerIndexPtr()[j + 1] - 1;  // the diagonal ends each upper column
+        values[last] += shift * std::max(1.0, std::abs(values[last]));
+      }
+      ldlt_.factorize(M_);
+      shift *= 100.0;
+    }
+    if (ldlt_.info() != Eigen::Success)
+      throw Error("soft QP: the normal equations could not be factorised (is P positive definite?)");
+  }
+
+  /// Solves M x = b in the caller's variable order, with one step of iterative refinement
+  /// (D spans many orders of magnitude near the end of an interior point, and the factor's
+  /// rounding would otherwise floor the accuracy of the steps).
+  void solve(const Vec& b, Vec& x) {
+    permuted_ = order_ * b;
+    solved_ = ldlt_.solve(permuted_);
+    residual_ = permuted_ - M_.selfadjointView<Eigen::Upper>() * solved_;
+    solved_ += ldlt_.solve(residual_);
+    x = order_.transpose() * solved_;
+  }
+
+ private:
+  [[nodiscard]] std::uint32_t slot(int row, int col) const {
+    const int* begin = M_.innerIndexPtr() + M_.outerIndexPtr()[col];
+    const int* end = M_.innerIndexPtr() + M_.outerIndexPtr()[col + 1];
+    return static_cast<std::uint32_t>(std::lower_bound(begin, end, row) - M_.innerIndexPtr());
+  }
+
+  const RowMat& A_;
+  const Permutation& order_;
+  SpMat M_;
+  std::vector<std::uint32_t> p_slot_;
+  std::vector<double> p_value_;
+  std::vector<std::size_t> pair_start_;
+  std::vector<std::uint32_t> pair_slot_;
+  Vec permuted_, solved_, residual_;
+  Eigen::SimplicialLDLT<SpMat, Eigen::Upper, Eigen::NaturalOrdering<int>> ldlt_;
+};
+
+void validate(const SoftQp& problem) {
+  const Eigen::Index n = problem.P.rows();
+  const Eigen::Index m = problem.A.rows();
+  if (problem.P.cols() != n || problem.q.size() != n || problem.A.cols() != n || problem.lower.size() != m ||
+      problem.upper.size() != m || problem.price.size() != m ||
+      (!problem.always.empty() && problem.always.size() != static_cast<std::size_t>(m)) ||
+      (!problem.group.empty() && problem.group.size() != static_cast<std::size_t>(m))) {
+    throw InvalidInput("soft QP: inconsistent sizes");
+  }
+  for (Eigen::Index r = 0; r < m; ++r) {
+    if (!(problem.lower[r] <= problem.upper[r]))
+      throw InvalidInput("soft QP: row " + std::to_string(r) + " has lower > upper");
+    if (!(problem.price[r] > 0.0) || !std::isfinite(problem.price[r]))
+      throw InvalidInput("soft QP: row " + std::to_string(r) + " has no finite positive price");
+  }
+}
+
+Permutation amd_order(const SpMat& P, const RowMat& A) {
+  SpMat pattern = P;
+  const SpMat At = SpMat(A.transpose());
+  pattern += SpMat(At * A);
+  Permutation inverse;
+  Eigen::AMDOrdering<int>()(pattern, inverse);
+  return inverse.inverse();
+}
+
+// a_r . x for row r of A.
+inline double row_dot(const RowMat& A, int r, const double* x) {
+  const int* outer = A.outerIndexPtr();
+  double s = 0.0;
+  for (int i = outer[r]; i < outer[r + 1]; ++i) s += A.valuePtr()[i] * x[A.innerIndexPtr()[i]];
+  return s;
+}
+
+// out += f a_r.
+inline void row_scatter(const RowMat& A, int r, double f, double* out) {
+  const int* outer = A.outerIndexPtr();
+  for (int i = outer[r]; i < outer[r + 1]; ++i) out[A.innerIndexPtr()[i]] += f * A.valuePtr()[i];
+}
+
+// The rows in the interior point, each with two finite bounds (a missing one is moved far away)
+// and three complementarity pairs: sl yl (lower bound), su yu (upper bound), v w (the violation,
+// and what is left of its price), each pair with its weight tau on the central path.
+// Struct of arrays, indexed by position in the working set.
+struct WorkingRows {
+  std::vector<int> row;  // index in A
+  std::vector<double> scale, l, u, c;
+  std::vector<double> sl, yl, su, yu, v, w;
+  std::vector<double> tl, tu, tv;  // weights
+  // Per iteration: residuals, scalings, the right-hand side parts and the direction.
+  std::vector<double> r1, r2, r3, th_l, th_u, big_w, d, f;
+  std::vector<double> dsl, dyl, dsu, dyu, dv, dw;
+
+  [[nodiscard]] std::size_t size() const { return row.size(); }
+  void resize() {
+    const std::size_t m = row.size();
+    for (auto* a : {&sl,   &yl,   &su,    &yu, &v, &w,   &tl,  &tu,  &tv,  &r1, &r2, &r3,
+                    &th_l, &th_u, &big_w, &d,  &f, &dsl, &dyl, &dsu, &dyu, &dv, &dw})
+      a->resize(m);
+  }
+  [[nodiscard]] double product(std::size_t k, double alpha) const {
+    return (sl[k] + alpha * dsl[k]) * (yl[k] + alpha * dyl[k]) +
+           (su[k] + alpha * dsu[k]) * (yu[k] + alpha * dyu[k]) +
+           (v[k] + alpha * dv[k]) * (w[k] + alpha * dw[k]);
+  }
+};
+
+// The predictor's row directions, kept for the corrector's second-order term.
+struct AffineDirection {
+  std::vector<double> dsl, dyl, dsu, dyu, dv, dw;
+  void take(WorkingRows& rows) {
+    dsl.swap(rows.dsl);
+    dyl.swap(rows.dyl);
+    dsu.swap(rows.dsu);
+    dyu.swap(rows.dyu);
+    dv.swap(rows.dv);
+    dw.swap(rows.dw);
+    rows.resize();
+  }
+};
+
+class InteriorPoint {
+ public:
+  InteriorPoint(const SoftQp& qp, NormalMatrix& normal, const SoftQpOptions& options)
+      : qp_(qp), A_(qp.A), normal_(normal), options_(options) {}
+
+  [[nodiscard]] const WorkingRows& rows() const { return rows_; }
+
+  /// Takes row r into the working set.
+  void add(int r) {
+    const double l = qp_.lower[r], u = qp_.upper[r];
+    const bool has_l = std::isfinite(l), has_u = std::isfinite(u);
+    // A row's scale: its width, or for a one-sided row its bound's size.
+    const double scale = has_l && has_u ? u - l : 1.0 + std::abs(has_l ? l : u);
+    rows_.row.push_back(r);
+    rows_.scale.push_back(scale);
+    rows_.l.push_back(has_l ? l : u - kFarBound * scale);
+    rows_.u.push_back(has_u ? u : l + kFarBound * scale);
+    rows_.c.push_back(qp_.price[r]);
+  }
+
+  /// Runs the interior point from `x` on the working rows until the tolerance or the
+  /// iteration limit.
+  void run(Vec& x, const std::vector<double>& force, SoftQpResult& out) {
+    start(x, force);
+    const std::size_t m = rows_.size();
+    const Eigen::Index n = x.size();
+    Vec Px(n), Atz(n), rd(n), rhs(n), dx(n);
+    const double tol = options_.tolerance;
+    double weight_sum = 0.0;
+    for (std::size_t k = 0; k < m; ++k) weight_sum += rows_.tl[k] + rows_.tu[k] + rows_.tv[k];
+    weight_sum = std::max(weight_sum, 1e-300);
+    double best_stationarity = std::numeric_limits<double>::infinity();
+    Vec best_x;
+    std::vector<double> merits;
+    int stalled = 0;
+    for (int iter = 0;; ++iter) {
+      // Residuals, the scaling of every row and D.
+      Px = qp_.P * x;
+      Atz.setZero();
+      double gap = 0.0, penalty = 0.0, price_residual = 0.0, primal = 0.0;
+      for (std::size_t k = 0; k < m; ++k) {
+        const int r = rows_.row[k];
+        const double t = row_dot(A_, r, x.data());
+        row_scatter(A_, r, rows_.yl[k] - rows_.yu[k], Atz.data());
+        rows_.r1[k] = rows_.sl[k] - (t - rows_.l[k] + rows_.v[k]);
+        rows_.r2[k] = rows_.su[k] - (rows_.u[k] - t + rows_.v[k]);
+        rows_.r3[k] = rows_.yl[k] + rows_.yu[k] + rows_.w[k] - rows_.c[k];
+        primal = std::max({primal, std::abs(rows_.r1[k]), std::abs(rows_.r2[k])});
+        price_residual = std::max(price_residual, std::abs(rows_.r3[k]) / rows_.c[k]);
+        gap += rows_.product(k, 0.0);
+        penalty += rows_.c[k] * std::max({0.0, rows_.l[k] - t, t - rows_.u[k]});
+        // th = y / s of each bound; W = w + v (th_l + th_u). Nothing divides by v: v is tiny on
+        // every row inside its bounds, w of the order of the price.
+        const double tl = rows_.yl[k] / rows_.sl[k], tu = rows_.yu[k] / rows_.su[k];
+        const double v = rows_.v[k], w = rows_.w[k];
+        rows_.th_l[k] = tl;
+        rows_.th_u[k] = tu;
+        rows_.big_w[k] = w + v * (tl + tu);
+        rows_.d[k] = ((tl + tu) * w + 4.0 * v * tl * tu) / rows_.big_w[k];
+      }
+      rd = Px + qp_.q - Atz;
+      const double objective = 0.5 * x.dot(Px) + qp_.q.dot(x) + penalty;
+      const double scale = std::max({1.0, Px.lpNorm<Eigen::Infinity>(), qp_.q.lpNorm<Eigen::Infinity>(),
+                                     Atz.lpNorm<Eigen::Infinity>()});
+      out.stationarity = rd.lpNorm<Eigen::Infinity>() / scale;
+      out.gap = gap / (1.0 + std::abs(objective));
+      out.objective = objective;
+      const double mu = gap / weight_sum;
+      if (out.stationarity <= 10.0 * tol && primal <= tol && price_residual <= tol && out.gap <= tol) {
+        out.converged = true;
+        return;
+      }
+      // Complementarity gone and stationarity down to what rounding leaves in the normal
+      // equations: no further step can improve the point. Keep the best point seen, and stop
+      // there once the gap is closed and stationarity has not improved for a few iterations.
+      if (out.gap <= tol && primal <= tol && price_residual <= tol) {
+        if (out.stationarity < best_stationarity) {
+          best_stationarity = out.stationarity;
+          best_x = x;
+          stalled = 0;
+        } else if (++stalled >= kStallIterations) {
+          x = best_x;
+          out.stationarity = best_stationarity;
+          out.converged = best_stationarity <= kRoundingStationarity;
+          if (!out.converged) out.status = "stalled";
+          return;
+        }
+      }
+      if (iter >= options_.max_iterations) {
+        out.converged = false;
+        out.status = "iteration limit";
+        return;
+      }
+      // No progress: the residuals and the gap not down by a tenth over kStallWindow iterations.
+      const double merit = std::max({out.stationarity, primal, out.gap});
+      merits.push_back(merit);
+      if (merits.size() > kStallWindow && merit > 0.9 * merits[merits.size() - 1 - kStallWindow]) {
+        out.converged = false;
+        out.status = "stalled";
+        return;
+      }
+      if (!std::isfinite(gap) || !std::isfinite(out.stationarity)) {
+        out.converged = false;
+        out.status = "not finite";
+        return;
+      }
+      ++out.iterations;
+      normal_.factorise(rows_.row, rows_.d);
+
+      // Predictor (affine scaling), then the corrector with centring and the second-order term;
+      // the centred direction without that term when the corrector takes a much shorter step.
+      direction(rd, rhs, dx, 0.0, nullptr);
+      const double alpha_aff = max_step();
+      double gap_aff = 0.0;
+      for (std::size_t k = 0; k < m; ++k) gap_aff += rows_.product(k, alpha_aff);
+      // Mehrotra's centring, capped: when the predictor is blocked (a step of 1e-4), sigma = 1 would
+      // only re-centre, iteration after iteration, without closing the gap.
+      const double sigma = std::min(kMaxCentring, std::pow(std::clamp(gap_aff / gap, 0.0, 1.0), 3.0));
+      affine_.take(rows_);
+      direction(rd, rhs, dx, sigma * mu, &affine_);
+      double alpha = std::min(1.0, kStepFraction * max_step());
+      if (alpha < 0.1 * alpha_aff) {
+        direction(rd, rhs, dx, sigma * mu, nullptr);
+        alpha = std::min(1.0, kStepFraction * max_step());
+      }
+      alpha = neighbourhood_step(alpha, weight_sum);
+      if (options_.trace) {
+        char line[256];
+        std::snprintf(line, sizeof line,
+                      "iteration %d rows %zu: stationarity %.2e primal %.2e gap %.2e mu %.2e sigma %.2e "
+                      "alpha %.2e (predictor %.2e)",
+                      iter, m, out.stationarity, primal, out.gap, mu, sigma, alpha, alpha_aff);
+        options_.trace(line);
+      }
+
+      x += alpha * dx;
+      for (std::size_t k = 0; k < m; ++k) {
+        rows_.sl[k] += alpha * rows_.dsl[k];
+        rows_.su[k] += alpha * rows_.dsu[k];
+        rows_.v[k] += alpha * rows_.dv[k];
+        rows_.yl[k] += alpha * rows_.dyl[k];
+        rows_.yu[k] += alpha * rows_.dyu[k];
+        rows_.w[k] += alpha * rows_.dw[k];
+      }
+    }
+  }
+
+ private:
+  // Starts every working row at `x`: the slacks what x leaves (at least a share of the row's
+  // scale), the multipliers kStartMu over them, or the force the start's penalty put on the row
+  // where that is larger (so that the start is as stationary as the point it came from), the rest
+  // of the price in w (dual feasible), v = kStartMu / w. The weights tau of the central path are
+  // these products. A violated row starts primal infeasible (a positive slack although x lies
+  // beyond the bound), a residual the iterations close by moving x or growing v. (Starting it
+  // primal feasible instead, v past its violation, puts a complementarity of price x violation
+  // on it, and the centring then pushes every other row towards that average.)
+  void start(const Vec& x, const std::vector<double>& force) {
+    const std::size_t m = rows_.size();
+    rows_.resize();
+    for (std::size_t k = 0; k < m; ++k) {
+      const int r = rows_.row[k];
+      const double t = row_dot(A_, r, x.data());
+      const double c = rows_.c[k];
+      const double floor = std::max(kStartSlackShare * rows_.scale[k], 8.0 * kStartMu / c);
+      const double f_given = force.empty() ? 0.0 : force[static_cast<std::size_t>(r)];
+      const double f = std::abs(f_given) >= 0.5 * c ? f_given : std::clamp(f_given, -0.25 * c, 0.25 * c);
+      const double below = rows_.l[k] - t, above = t - rows_.u[k];
+      if (std::abs(f) >= 0.5 * c && std::max(below, above) > 0.0) {
+        // A row known to end violated (the quadratic-penalty solution pushed it with at least
+        // half its price) starts as it ends: its violation in v, the violated bound's slack ~0
+        // and its multiplier the rest of the price, every product kStartMu.
+        const double tiny = kStartMu / c;
+        rows_.v[k] = std::max(below, above) + tiny;
+        rows_.sl[k] = t - rows_.l[k] + rows_.v[k];
+        rows_.su[k] = rows_.u[k] - t + rows_.v[k];
+        rows_.w[k] = kStartMu / rows_.v[k];
+        if (below > 0.0) {
+          rows_.yu[k] = kStartMu / rows_.su[k];
+          rows_.yl[k] = c - rows_.w[k] - rows_.yu[k];
+        } else {
+          rows_.yl[k] = kStartMu / rows_.sl[k];
+          rows_.yu[k] = c - rows_.w[k] - rows_.yl[k];
+        }
+      } else {
+        rows_.sl[k] = std::max(t - rows_.l[k], floor);
+        rows_.su[k] = std::max(rows_.u[k] - t, floor);
+        rows_.yl[k] = std::max(std::min(kStartMu / rows_.sl[k], kStartForceCap), f);
+        rows_.yu[k] = std::max(std::min(kStartMu / rows_.su[k], kStartForceCap), -f);
+        rows_.w[k] = c - rows_.yl[k] - rows_.yu[k];
+        rows_.v[k] = kStartMu / rows_.w[k];
+      }
+      rows_.tl[k] = rows_.sl[k] * rows_.yl[k];
+      rows_.tu[k] = rows_.su[k] * rows_.yu[k];
+      rows_.tv[k] = rows_.v[k] * rows_.w[k];
+    }
+  }
+
+  // One Newton direction. The complementarity targets are rho = target tau - s y (minus the
+  // predictor's ds dy when `affine` is given); per row, dz = dyl - dyu = -D g + e with g = a dx,
+  // so (P + A'DA) dx = -rd + A'e, then each row's parts follow from g. Eliminating dsl, dsu,
+  // dyl, dyu and dw and solving v's complementarity for dv:
+  //   dv = (rho6 + v (a + b + r3) + v (th_u - th_l) g) / W,  W = w + v (th_l + th_u),
+  //   a = rho4 / sl + th_l r1,  b = rho5 / su + th_u r2,  e = a - b + (th_u - th_l) f / W,
+  // with f the part of dv's numerator without g.
+  void direction(const Vec& rd, Vec& rhs, Vec& dx, double target, const AffineDirection* affine) {
+    const std::size_t m = rows_.size();
+    rhs = -rd;
+    for (std::size_t k = 0; k < m; ++k) {
+      double rho4 = target * rows_.tl[k] - rows_.sl[k] * rows_.yl[k];
+      double rho5 = target * rows_.tu[k] - rows_.su[k] * rows_.yu[k];
+      double rho6 = target * rows_.tv[k] - rows_.v[k] * rows_.w[k];
+      if (affine) {
+        rho4 -= affine->dsl[k] * affine->dyl[k];
+        rho5 -= affine->dsu[k] * affine->dyu[k];
+        rho6 -= affine->dv[k] * affine->dw[k];
+      }
+      // Keep the targets for the recovery below in the direction's own slots.
+      rows_.dyl[k] = rho4;
+      rows_.dyu[k] = rho5;
+      const double a = rho4 / rows_.sl[k] + rows_.th_l[k] * rows_.r1[k];
+      const double b = rho5 / rows_.su[k] + rows_.th_u[k] * rows_.r2[k];
+      const double f = rho6 + rows_.v[k] * (a + b + rows_.r3[k]);
+      rows_.f[k] = f;
+      const double e = (rows_.th_u[k] - rows_.th_l[k]) * f / rows_.big_w[k] + a - b;
+      row_scatter(A_, rows_.row[k], e, rhs.data());
+    }
+    normal_.solve(rhs, dx);
+    for (std::size_t k = 0; k < m; ++k) {
+      const double g = row_dot(A_, rows_.row[k], dx.data());
+      const double rho4 = rows_.dyl[k], rho5 = rows_.dyu[k];
+      const double dv = (rows_.f[k] + rows_.v[k] * (rows_.th_u[k] - rows_.th_l[k]) * g) / rows_.big_w[k];
+      const double dsl = g + dv - rows_.r1[k];
+      const double dsu = -g + dv - rows_.r2[k];
+      rows_.dv[k] = dv;
+      rows_.dsl[k] = dsl;
+      rows_.dsu[k] = dsu;
+      rows_.dyl[k] = rho4 / rows_.sl[k] - rows_.th_l[k] * dsl;
+      rows_.dyu[k] = rho5 / rows_.su[k] - rows_.th_u[k] * dsu;
+      rows_.dw[k] = -rows_.r3[k] - rows_.dyl[k] - rows_.dyu[k];
+    }
+  }
+
+  // The largest step up to `alpha` (shrunk by 0.8 at a time) that keeps every complementarity
+  // pair at least kNeighbourhood times its weight times their weighted mean.
+  [[nodiscard]] double neighbourhood_step(double alpha, double weight_sum) const {
+    const std::size_t m = rows_.size();
+    for (int tries = 0; tries < 60; ++tries, alpha *= 0.8) {
+      double sum = 0.0;
+      for (std::size_t k = 0; k < m; ++k) sum += rows_.product(k, alpha);
+      const double floor = kNeighbourhood * sum / weight_sum;
+      bool inside = true;
+      for (std::size_t k = 0; k < m && inside; ++k) {
+        inside =
+            (rows_.sl[k] + alpha * rows_.dsl[k]) * (rows_.yl[k] + alpha * rows_.dyl[k]) >=
+                floor * rows_.tl[k] &&
+            (rows_.su[k] + alpha * rows_.dsu[k]) * (rows_.yu[k] + alpha * rows_.dyu[k]) >=
+                floor * rows_.tu[k] &&
+            (rows_.v[k] + alpha * rows_.dv[k]) * (rows_.w[k] + alpha * rows_.dw[k]) >= floor * rows_.tv[k];
+      }
+      if (inside) return alpha;
+    }
+    return alpha;
+  }
+
+  // The largest step (<= 1) that keeps every slack and multiplier non-negative.
+  [[nodiscard]] double max_step() const {
+    double alpha = 1.0;
+    const auto limit = [&](double value, double delta) {
+      if (delta < 0.0) alpha = std::min(alpha, -value / delta);
+    };
+    for (std::size_t k = 0; k < rows_.size(); ++k) {
+      limit(rows_.sl[k], rows_.dsl[k]);
+      limit(rows_.yl[k], rows_.dyl[k]);
+      limit(rows_.su[k], rows_.dsu[k]);
+      limit(rows_.yu[k], rows_.dyu[k]);
+      limit(rows_.v[k], rows_.dv[k]);
+      limit(rows_.w[k], rows_.dw[k]);
+    }
+    return alpha;
+  }
+
+  const SoftQp& qp_;
+  const RowMat& A_;
+  NormalMatrix& normal_;
+  const SoftQpOptions& options_;
+  WorkingRows rows_;
+  AffineDirection affine_;
+};
+
+// The L1 form by the interior point, in screening rounds.
+// `start`: a point and the force on every row there, from which to start instead (the rows the
+// force drives at half their price or more start violated).
+struct Start {
+  Vec x;
+  std::vector<double> force;
+};
+SoftQpResult interior_point(const SoftQp& problem, NormalMatrix& normal, const SoftQpOptions& options,
+                            const Start* start = nullptr) {
+  const SpMat& P = problem.P;
+  const RowMat& A = problem.A;
+  const Eigen::Index n = P.rows();
+  const Eigen::Index m = A.rows();
+  const Vec& l = problem.lower;
+  const Vec& u = problem.upper;
+  InteriorPoint ipm(problem, normal, options);
+  SoftQpResult out;
+
+  // The unconstrained minimiser, then rounds of the interior point: the first on the rows within
+  // a quarter of their width of a bound there (a one-sided row: within its bound's size) and the
+  // rows the caller marked, each later one adding the rows the last solution violates.
+  Vec x;
+  if (start) {
+    x = start->x;
+  } else {
+    normal.factorise({}, {});
+    normal.solve(-problem.q, x);
+  }
+  Vec t = A * x;
+  // From there, a few rounds of quadratic penalties on the rows found violated, each pulled a
+  // little inside its bound (the penalty a thousandth of its price, so priorities hold): a start
+  // near feasibility wherever feasibility is possible. Parts of the problem the objective hardly
+  // determines (a deck whose only data are its anchors) would otherwise start anywhere, and an
+  // interior point needs many short steps to cross a large infeasibility among tight rows.
+  std::vector<double> force(static_cast<std::size_t>(m), 0.0);  // the rows' forces at x
+  if (start) {
+    force = start->force;
+  } else {
+    std::vector<int> penalised;
+    std::vector<double> rho, aim;
+    std::vector<std::uint8_t> taken(static_cast<std::size_t>(m), 0);
+    Vec rhs(n);
+    for (int round = 0; round < kPenaltyRounds; ++round) {
+      std::size_t added = 0;
+      for (Eigen::Index r = 0; r < m; ++r) {
+        if (taken[static_cast<std::size_t>(r)]) continue;
+        const bool low = std::isfinite(l[r]) && t[r] < l[r], high = std::isfinite(u[r]) && t[r] > u[r];
+        if (!low && !high) continue;
+        const double width =
+            std::isfinite(l[r]) && std::isfinite(u[r]) ? u[r] - l[r] : 1.0 + std::abs(low ? l[r] : u[r]);
+        const double inside = std::min(0.1 * width, 0.5 * (std::isfinite(u[r] - l[r]) ? u[r] - l[r] : width));
+        taken[static_cast<std::size_t>(r)] = 1;
+        penalised.push_back(static_cast<int>(r));
+        rho.push_back(kPenaltyShare * problem.price[r]);
+        aim.push_back(low ? l[r] + inside : u[r] - inside);
+        ++added;
+      }
+      if (added == 0) break;
+      normal.factorise(penalised, rho);
+      rhs = -problem.q;
+      for (std::size_t k = 0; k < penalised.size(); ++k)
+        row_scatter(A, penalised[k], rho[k] * aim[k], rhs.data());
+      normal.solve(rhs, x);
+      t = A * x;
+    }
+  }
+  std::vector<std::uint8_t> in(static_cast<std::size_t>(m), 0);
+  // Rows of each group, for taking a group whole.
+  std::vector<std::vector<int>> members;
+  if (!problem.group.empty()) {
+    int groups = 0;
+    for (const int g : problem.group) groups = std::max(groups, g + 1);
+    members.resize(static_cast<std::size_t>(groups));
+    for (Eigen::Index r = 0; r < m; ++r) {
+      const int g = problem.group[static_cast<std::size_t>(r)];
+      if (g >= 0) members[static_cast<std::size_t>(g)].push_back(static_cast<int>(r));
+    }
+  }
+  std::vector<std::uint8_t> group_taken(members.size(), 0);
+  const auto bounded = [&](Eigen::Index r) { return std::isfinite(l[r]) || std::isfinite(u[r]); };
+  for (int round = 1;; ++round) {
+    std::size_t added = 0;
+    const auto take = [&](Eigen::Index r) {
+      const auto k = static_cast<std::size_t>(r);
+      if (in[k] || !bounded(r)) return;
+      in[k] = 1;
+      ipm.add(static_cast<int>(r));
+      ++added;
+    };
+    for (Eigen::Index r = 0; r < m; ++r) {
+      const auto k = static_cast<std::size_t>(r);
+      if (in[k] || !bounded(r)) continue;
+      const bool has_l = std::isfinite(l[r]), has_u = std::isfinite(u[r]);
+      const double near = round > 1        ? -options.tolerance
+                          : has_l && has_u ? 0.25 * (u[r] - l[r])
+                                           : 1.0 + std::abs(has_l ? l[r] : u[r]);
+      const bool always = round == 1 && !problem.always.empty() && problem.always[k];
+      if (!always && !(has_l && t[r] < l[r] + near) && !(has_u && t[r] > u[r] - near)) continue;
+      take(r);
+      const int g = problem.group.empty() ? -1 : problem.group[k];
+      if (round > 1 && g >= 0 && !group_taken[static_cast<std::size_t>(g)]) {
+        group_taken[static_cast<std::size_t>(g)] = 1;
+        for (const int other : members[static_cast<std::size_t>(g)]) take(other);
+      }
+    }
+    if (round > 1 && added == 0) break;  // every row left out holds: the whole problem is solved
+    if (round > options.max_rounds) {
+      out.converged = false;
+      out.status = "screening round limit";
+      break;
+    }
+    out.rounds = round;
+    ipm.run(x, force, out);
+    // A later round starts from the multipliers this one found.
+    const WorkingRows& solved = ipm.rows();
+    std::fill(force.begin(), force.end(), 0.0);
+    for (std::size_t k = 0; k < solved.size(); ++k)
+      force[static_cast<std::size_t>(solved.row[k])] = solved.yl[k] - solved.yu[k];
+    t = A * x;
+    if (!out.converged) break;
+  }
+  if (out.converged) out.status = "converged";
+  out.rows_used = ipm.rows().size();
+
+  out.x = x;
+  out.row_values = t;
+  out.violation = Vec::Zero(m);
+  out.multiplier = Vec::Zero(m);
+  for (Eigen::Index r = 0; r < m; ++r) {
+    out.violation[r] =
+        std::max({0.0, std::isfinite(l[r]) ? l[r] - t[r] : 0.0, std::isfinite(u[r]) ? t[r] - u[r] : 0.0});
+  }
+  const WorkingRows& rows = ipm.rows();
+  for (std::size_t k = 0; k < rows.size(); ++k) out.multiplier[rows.row[k]] = rows.yl[k] - rows.yu[k];
+  return out;
+}
+
+// The quadratic-penalty form, min 1/2 x'Px + q'x + sum 1/2 c_r dist(a_r x, [l_r, u_r])^2, by a
+// semismooth Newton method from `start`: the generalised Hessian P + sum over the rows outside
+// their bounds of c_r a_r a_r', and an exact line search on the convex piecewise quadratic along
+// each step. The objective is strongly convex with a Lipschitz gradient, so the iterates converge
+// from any start; the step is exact once the set of rows outside their bounds settles.
+SoftQpResult penalty_newton(const SoftQp& problem, NormalMatrix& normal, const SoftQpOptions& options,
+                            Vec x) {
+  const SpMat& P = problem.P;
+  const RowMat& A = problem.A;
+  const Eigen::Index n = P.rows();
+  const Eigen::Index m = A.rows();
+  const Vec& l = problem.lower;
+  const Vec& u = problem.upper;
+  const Vec& c = problem.price;
+  const auto excess = [&](Eigen::Index r, double value) {
+    if (value < l[r]) return value - l[r];
+    if (value > u[r]) return value - u[r];
+    return 0.0;
+  };
+  SoftQpResult out;
+  Vec t = A * x;
+  std::vector<int> active, previous;
+  std::vector<double> weight;
+  std::vector<int> changing;
+  Vec g(n), d(n), td(m), Px(n);
+  for (int iter = 0;; ++iter) {
+    // The gradient and the rows outside their bounds (the generalised Hessian's).
+    active.clear();
+    weight.clear();
+    Px = P * x;
+    g = Px + problem.q;
+    for (Eigen::Index r = 0; r < m; ++r) {
+      const double e = excess(r, t[r]);
+      if (e == 0.0) continue;
+      row_scatter(A, static_cast<int>(r), c[r] * e, g.data());
+      active.push_back(static_cast<int>(r));
+      weight.push_back(c[r]);
+    }
+    const double scale = std::max({1.0, problem.q.lpNorm<Eigen::Infinity>(), Px.lpNorm<Eigen::Infinity>()});
+    out.stationarity = g.lpNorm<Eigen::Infinity>() / scale;
+    if (options.trace) {
+      char line[160];
+      std::snprintf(line, sizeof line, "newton %d: outside %zu, gradient %.3e", iter, active.size(),
+                    out.stationarity);
+      options.trace(line);
+    }
+    const bool settled = iter > 0 && active == previous;
+    if (out.stationarity <= options.tolerance || (settled && out.stationarity <= kRoundingStationarity)) {
+      out.converged = true;
+      out.status = "converged";
+      break;
+    }
+    if (iter >= options.newton_iterations) {
+      out.status = "iteration limit";
+      break;
+    }
+    ++out.iterations;
+    normal.factorise(active, weight);
+    normal.solve(-g, d);
+    td = A * d;
+    // Exact line search on the convex piecewise quadratic phi(alpha) = f(x + alpha d): the root
+    // of its increasing derivative in [0, 1], by bisection over the rows outside their bounds at
+    // either end (a row inside at both ends is inside all along).
+    const double d_pd = d.dot(P * d), g_d = (Px + problem.q).dot(d);
+    changing.clear();
+    for (Eigen::Index r = 0; r < m; ++r)
+      if (excess(r, t[r]) != 0.0 || excess(r, t[r] + td[r]) != 0.0) changing.push_back(static_cast<int>(r));
+    const auto dphi = [&](double a) {
+      double v = g_d + a * d_pd;
+      for (const int r : changing) v += c[r] * excess(r, t[r] + a * td[r]) * td[r];
+      return v;
+    };
+    double alpha = 1.0;
+    if (dphi(1.0) > 0.0) {
+      double lo = 0.0, hi = 1.0;
+      for (int k = 0; k < 50; ++k) {
+        const double mid = 0.5 * (lo + hi);
+        (dphi(mid) > 0.0 ? hi : lo) = mid;
+      }
+      alpha = 0.5 * (lo + hi);
+    }
+    x += alpha * d;
+    t += alpha * td;
+    previous.swap(active);
+  }
+  out.rounds = 1;
+  out.rows_used = active.size();
+  out.x = x;
+  out.row_values = t;
+  out.violation = Vec::Zero(m);
+  out.multiplier = Vec::Zero(m);
+  for (Eigen::Index r = 0; r < m; ++r) {
+    const double e = excess(r, t[r]);
+    out.violation[r] = std::abs(e);
+    out.multiplier[r] = -c[r] * e;
+  }
+  return out;
+}
+
+}  // namespace
+
+SoftQpResult solve_soft_qp(const SoftQp& problem, const SoftQpOptions& options) {
+  validate(problem);
+  const Permutation order = options.ordering ? *options.ordering : amd_order(problem.P, problem.A);
+  if (order.size() != problem.P.rows()) throw InvalidInput("soft QP: the ordering has the wrong size");
+  NormalMatrix normal(problem.P, problem.A, order);
+  SoftQpResult ipm = interior_point(problem, normal, options);
+  if (ipm.converged) {
+    ipm.method = "interior point";
+    return ipm;
+  }
+  SoftQpResult newton = penalty_newton(problem, normal, options, ipm.x);
+  newton.iterations += ipm.iterations;
+  if (!newton.converged) {
+    newton.method = "semismooth Newton after the interior point " + ipm.status;
+    return newton;
+  }
+  // The quadratic-penalty optimum shows which rows conflict: the interior point again from there,
+  // those rows started violated, for the L1 optimum.
+  Start from{newton.x, std::vector<double>(static_cast<std::size_t>(newton.multiplier.size()))};
+  for (Eigen::Index r = 0; r < newton.multiplier.size(); ++r) {
+    // Rows the penalty leaves clearly violated bear their whole price in the L1 form.
+    const double f = newton.multiplier[r];
+    from.force[static_cast<std::size_t>(r)] =
+        newton.violation[r] > kConflictViolation ? std::copysign(problem.price[r], f) : f;
+  }
+  SoftQpResult again = interior_point(problem, normal, options, &from);
+  again.iterations += newton.iterations;
+  if (again.converged) {
+    again.method =
+        "interior point, restarted from a semismooth Newton solution of the quadratic-penalty form";
+    return again;
+  }
+  newton.method = "semismooth Newton on the quadratic-penalty form (the interior point " + ipm.status + ")";
+  return newton;
+}
+
+}  // namespace relief

@@ -1,0 +1,242 @@
+#include "relief/geometry/soft_qp.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <iostream>
+#include <limits>
+#include <random>
+
+#include "relief/core/errors.h"
+
+namespace relief {
+namespace {
+
+using Vec = Eigen::VectorXd;
+using RowMat = Eigen::SparseMatrix<double, Eigen::RowMajor>;
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+// min sum_i (x_i - target_i)^2 (P = 2 I, q = -2 target) with the rows given.
+SoftQp separable(const std::vector<double>& target, const std::vector<Eigen::Triplet<double>>& rows,
+                 std::vector<double> lower, std::vector<double> upper, std::vector<double> price) {
+  const auto n = static_cast<Eigen::Index>(target.size());
+  SoftQp qp;
+  qp.P.resize(n, n);
+  qp.P.setIdentity();
+  qp.P *= 2.0;
+  qp.q = -2.0 * Eigen::Map<const Vec>(target.data(), n);
+  const auto m = static_cast<Eigen::Index>(lower.size());
+  qp.A.resize(m, n);
+  qp.A.setFromTriplets(rows.begin(), rows.end());
+  qp.lower = Eigen::Map<const Vec>(lower.data(), m);
+  qp.upper = Eigen::Map<const Vec>(upper.data(), m);
+  qp.price = Eigen::Map<const Vec>(price.data(), m);
+  return qp;
+}
+
+TEST(SoftQp, WithoutRowsIsTheUnconstrainedMinimiser) {
+  const SoftQp qp = separable({1.5, -2.0, 7.25}, {}, {}, {}, {});
+  const SoftQpResult r = solve_soft_qp(qp);
+  ASSERT_TRUE(r.converged) << r.status;
+  EXPECT_NEAR(r.x[0], 1.5, 1e-12);
+  EXPECT_NEAR(r.x[1], -2.0, 1e-12);
+  EXPECT_NEAR(r.x[2], 7.25, 1e-12);
+}
+
+TEST(SoftQp, ARowDearerThanItsForceHoldsExactly) {
+  // min (x - 3)^2 subject to x <= 1: the force at the bound is 2 (3 - 1) = 4 < price 10.
+  const SoftQp qp = separable({3.0}, {{0, 0, 1.0}}, {-kInf}, {1.0}, {10.0});
+  const SoftQpResult r = solve_soft_qp(qp);
+  ASSERT_TRUE(r.converged) << r.status;
+  EXPECT_NEAR(r.x[0], 1.0, 1e-8);
+  EXPECT_NEAR(r.multiplier[0], -4.0, 1e-5);  // pushes x down: negative at an upper bound
+  EXPECT_LT(r.violation[0], 1e-8);
+}
+
+TEST(SoftQp, ARowCheaperThanItsForceGivesWayByThePriceBalance) {
+  // Same with price 1: the optimum is where the pull 2 (3 - x) equals the price, x = 2.5.
+  const SoftQp qp = separable({3.0}, {{0, 0, 1.0}}, {-kInf}, {1.0}, {1.0});
+  const SoftQpResult r = solve_soft_qp(qp);
+  ASSERT_TRUE(r.converged) << r.status;
+  EXPECT_NEAR(r.x[0], 2.5, 1e-7);
+  EXPECT_NEAR(r.violation[0], 1.5, 1e-7);
+  EXPECT_NEAR(r.multiplier[0], -1.0, 1e-6);
+}
+
+TEST(SoftQp, ConflictingRowsTheCheaperOneGivesWay) {
+  // x >= 2 (price 100) and x <= 1 (price 10), data at 0: the cheaper row is violated by 1.
+  const SoftQp qp = separable({0.0}, {{0, 0, 1.0}, {1, 0, 1.0}}, {2.0, -kInf}, {kInf, 1.0}, {100.0, 10.0});
+  const SoftQpResult r = solve_soft_qp(qp);
+  ASSERT_TRUE(r.converged) << r.status;
+  EXPECT_NEAR(r.x[0], 2.0, 1e-7);
+  EXPECT_LT(r.violation[0], 1e-7);
+  EXPECT_NEAR(r.violation[1], 1.0, 1e-7);
+}
+
+TEST(SoftQp, TwoSidedRowOnADifference) {
+  // min (x0 - 0)^2 + (x1 - 10)^2 with |x1 - x0| <= 2: x0 = 4, x1 = 6.
+  const SoftQp qp = separable({0.0, 10.0}, {{0, 1, 1.0}, {0, 0, -1.0}}, {-2.0}, {2.0}, {1e6});
+  const SoftQpResult r = solve_soft_qp(qp);
+  ASSERT_TRUE(r.converged) << r.status;
+  EXPECT_NEAR(r.x[0], 4.0, 1e-7);
+  EXPECT_NEAR(r.x[1], 6.0, 1e-7);
+  EXPECT_NEAR(r.multiplier[0], -8.0, 1e-4);
+}
+
+// KKT conditions of the L1-soft programme, checked independently of the solver:
+//   P x + q = A' y,  and per row: y = 0 strictly inside, y in [0, c] at the lower bound,
+//   y = c below it, y in [-c, 0] at the upper bound, y = -c above it.
+void expect_kkt(const SoftQp& qp, const SoftQpResult& r, double tol) {
+  const Vec t = qp.A * r.x;
+  // Multipliers implied by the row positions where they are determined.
+  const Vec grad = qp.P * r.x + qp.q;
+  const Vec residual = grad - Vec(qp.A.transpose() * r.multiplier);
+  const double scale = std::max(1.0, grad.lpNorm<Eigen::Infinity>());
+  EXPECT_LT(residual.lpNorm<Eigen::Infinity>() / scale, tol);
+  for (Eigen::Index k = 0; k < t.size(); ++k) {
+    const double y = r.multiplier[k], c = qp.price[k];
+    const double width = std::max(1.0, std::abs(t[k]));
+    // Classified with a margin well above the solver's: it stops when every complementarity
+    // product is ~1e-9 of the objective, so a row 1e-6 beyond its bound is at it.
+    if (t[k] < qp.lower[k] - 1e-3 * width) {
+      EXPECT_NEAR(y, c, 1e-4 * c) << "row " << k << " below its bound";
+    } else if (t[k] > qp.upper[k] + 1e-3 * width) {
+      EXPECT_NEAR(y, -c, 1e-4 * c) << "row " << k << " above its bound";
+    } else {
+      EXPECT_GE(y, -c * (1 + 1e-6));
+      EXPECT_LE(y, c * (1 + 1e-6));
+      if (t[k] > qp.lower[k] + 1e-3 * width && t[k] < qp.upper[k] - 1e-3 * width) {
+        EXPECT_NEAR(y, 0.0, 1e-4 * scale) << "row " << k << " strictly inside";
+      }
+    }
+  }
+}
+
+// A chain like a road profile: data, second-difference smoothing, grade and curvature rows.
+SoftQp random_chain(std::mt19937& rng, int n) {
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  std::vector<Eigen::Triplet<double>> p;
+  Vec q(n);
+  double z = 0.0, g = 0.0;
+  for (int i = 0; i < n; ++i) {
+    g += 0.3 * (unit(rng) - 0.5);
+    z += g + 2.0 * (unit(rng) - 0.5);
+    p.emplace_back(i, i, 1.0);
+    q[i] = -z;
+  }
+  const double lambda = 5.0 + 50.0 * unit(rng);
+  for (int i = 1; i + 1 < n; ++i) {
+    const int idx[3] = {i - 1, i, i + 1};
+    const double c[3] = {1.0, -2.0, 1.0};
+    for (int a = 0; a < 3; ++a)
+      for (int b = 0; b < 3; ++b) p.emplace_back(idx[a], idx[b], lambda * c[a] * c[b]);
+  }
+  SoftQp qp;
+  qp.P.resize(n, n);
+  qp.P.setFromTriplets(p.begin(), p.end());
+  qp.q = q;
+  std::vector<Eigen::Triplet<double>> rows;
+  std::vector<double> lo, hi, price;
+  const double cap = 0.2 + 0.6 * unit(rng);
+  for (int i = 0; i + 1 < n; ++i) {  // grades
+    const auto r = static_cast<int>(lo.size());
+    rows.emplace_back(r, i + 1, 1.0);
+    rows.emplace_back(r, i, -1.0);
+    lo.push_back(-cap);
+    hi.push_back(cap);
+    price.push_back(unit(rng) < 0.1 ? 0.5 + unit(rng) : 1e4);  // a few cheap ones give way
+  }
+  for (int i = 1; i + 1 < n; ++i) {  // one-sided curvature rows on some stations
+    if (unit(rng) < 0.7) continue;
+    const auto r = static_cast<int>(lo.size());
+    rows.emplace_back(r, i - 1, 1.0);
+    rows.emplace_back(r, i, -2.0);
+    rows.emplace_back(r, i + 1, 1.0);
+    lo.push_back(-0.05);
+    hi.push_back(kInf);
+    price.push_back(1e3);
+  }
+  const auto m = static_cast<Eigen::Index>(lo.size());
+  qp.A.resize(m, n);
+  qp.A.setFromTriplets(rows.begin(), rows.end());
+  qp.lower = Eigen::Map<const Vec>(lo.data(), m);
+  qp.upper = Eigen::Map<const Vec>(hi.data(), m);
+  qp.price = Eigen::Map<const Vec>(price.data(), m);
+  return qp;
+}
+
+TEST(SoftQp, RandomChainsMeetTheKktConditions) {
+  int rounds_over_one = 0, fallbacks = 0;
+  for (int seed = 1; seed <= 40; ++seed) {
+    std::mt19937 rng(static_cast<unsigned>(seed));
+    const SoftQp qp = random_chain(rng, 60 + seed * 7);
+    const SoftQpResult r = solve_soft_qp(qp);
+    ASSERT_TRUE(r.converged) << "seed " << seed << ": " << r.status;
+    EXPECT_LT(r.iterations, 400) << "seed " << seed;
+    rounds_over_one += r.rounds > 1 ? 1 : 0;
+    SCOPED_TRACE("seed " + std::to_string(seed) + ", " + r.method);
+    if (r.method == "interior point") {
+      expect_kkt(qp, r, 1e-6);
+    } else {
+      // The quadratic-penalty form: P x + q = A'y with y = -price * (signed excess) on every row.
+      const Vec t = qp.A * r.x;
+      for (Eigen::Index k = 0; k < t.size(); ++k) {
+        const double e = t[k] < qp.lower[k]   ? t[k] - qp.lower[k]
+                         : t[k] > qp.upper[k] ? t[k] - qp.upper[k]
+                                              : 0.0;
+        EXPECT_NEAR(r.multiplier[k], -qp.price[k] * e, 1e-9 * qp.price[k]);
+      }
+      const Vec residual = qp.P * r.x + qp.q - Vec(qp.A.transpose() * r.multiplier);
+      EXPECT_LT(residual.lpNorm<Eigen::Infinity>() / std::max(1.0, qp.q.lpNorm<Eigen::Infinity>()), 1e-5);
+      ++fallbacks;
+    }
+  }
+  std::cout << "random chains: " << rounds_over_one << " of 40 needed more than one screening round, "
+            << fallbacks << " the semismooth Newton fallback\n";
+}
+
+TEST(SoftQp, RowsLeftOutAreCheckedAtTheEnd) {
+  // min x0^2 + x1^2 + (x2 - 10)^2, |x2 - x1| <= 1, |x1 - x0| <= 3. At the unconstrained
+  // minimiser (0, 0, 10) the second row is far inside and left out; the first pulls x1 up to 4.5,
+  // beyond the second, which joins in a second round. Optimum (1, 4, 5).
+  const SoftQp qp = separable({0.0, 0.0, 10.0}, {{0, 2, 1.0}, {0, 1, -1.0}, {1, 1, 1.0}, {1, 0, -1.0}},
+                              {-1.0, -3.0}, {1.0, 3.0}, {1e6, 1e6});
+  const SoftQpResult r = solve_soft_qp(qp);
+  ASSERT_TRUE(r.converged) << r.status;
+  EXPECT_NEAR(r.x[0], 1.0, 1e-7);
+  EXPECT_NEAR(r.x[1], 4.0, 1e-7);
+  EXPECT_NEAR(r.x[2], 5.0, 1e-7);
+  expect_kkt(qp, r, 1e-7);
+}
+
+TEST(SoftQp, GroupsAndAlwaysRowsDoNotChangeTheOptimum) {
+  // The same with a third row far inside, the rows grouped and marked.
+  SoftQp qp = separable({0.0, 0.0, 10.0}, {{0, 2, 1.0}, {0, 1, -1.0}, {1, 1, 1.0}, {1, 0, -1.0}, {2, 0, 1.0}},
+                        {-1.0, -3.0, -100.0}, {1.0, 3.0, 100.0}, {1e6, 1e6, 1e6});
+  qp.group = {-1, 7, 7};
+  qp.always = {0, 0, 1};
+  const SoftQpResult r = solve_soft_qp(qp);
+  ASSERT_TRUE(r.converged) << r.status;
+  EXPECT_EQ(r.rows_used, 3u);  // the marked row is in although far inside
+  EXPECT_NEAR(r.x[0], 1.0, 1e-7);
+  EXPECT_NEAR(r.x[1], 4.0, 1e-7);
+  EXPECT_NEAR(r.x[2], 5.0, 1e-7);
+}
+
+TEST(SoftQp, RefusesInconsistentInput) {
+  SoftQp qp = separable({0.0}, {{0, 0, 1.0}}, {1.0}, {0.0}, {1.0});
+  EXPECT_THROW((void)solve_soft_qp(qp), InvalidInput);  // lower > upper
+  qp = separable({0.0}, {{0, 0, 1.0}}, {0.0}, {1.0}, {0.0});
+  EXPECT_THROW((void)solve_soft_qp(qp), InvalidInput);  // no positive price
+  qp = separable({0.0}, {{0, 0, 1.0}}, {0.0}, {1.0}, {kInf});
+  EXPECT_THROW((void)solve_soft_qp(qp), InvalidInput);  // infinite price
+  qp = separable({0.0}, {{0, 0, 1.0}}, {0.0}, {1.0}, {1.0});
+  qp.q.resize(2);
+  EXPECT_THROW((void)solve_soft_qp(qp), InvalidInput);
+  qp = separable({0.0}, {{0, 0, 1.0}}, {0.0}, {1.0}, {1.0});
+  qp.always = {1, 1};
+  EXPECT_THROW((void)solve_soft_qp(qp), InvalidInput);
+}
+
+}  // namespace
+}  // namespace relief
