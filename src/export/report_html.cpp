@@ -188,7 +188,8 @@ void write_cards(std::string& h, const RunReport& r) {
   if (r.fit) {
     card(h, esc(r.fit->policy), "fit policy");
     card(h, std::to_string(r.fit->iterations) + (r.fit->converged ? " \xE2\x9C\x93" : " \xE2\x9C\x97"),
-         r.fit->converged ? "fit rounds, converged" : "fit rounds, NOT converged");
+         r.fit->converged ? "fit iterations, converged" : "fit iterations, NOT converged");
+    card(h, std::to_string(r.fit->violations.size()), "limits left violated");
     card(h, fixed(r.fit->max_violation_m, 3) + " m", "fit max violation");
   }
   if (r.paper) {

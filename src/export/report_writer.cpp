@@ -161,11 +161,35 @@ std::string report_json(const RunReport& r) {
   for (const auto& [cls, percent] : r.grade_limits.percent) limits[std::string(to_string(cls))] = percent;
   profiles["grade_limits_percent"] = limits;
   if (r.fit) {
-    profiles["fit"] = {
-        {"policy", r.fit->policy},           {"iterations", r.fit->iterations},
-        {"converged", r.fit->converged},     {"variables", r.fit->variables},
-        {"constraints", r.fit->constraints}, {"max_violation_m", r.fit->max_violation_m},
-        {"clearance_m", r.fit->clearance_m}, {"cutoff_wavelength_m", r.fit->cutoff_wavelength_m}};
+    Json violations = Json::array();
+    for (const FitViolation& v : r.fit->violations) {
+      Json item = {{"limit", std::string(to_string(v.limit))},
+                   {"x", round_to(v.xy.x(), 1e-2)},
+                   {"y", round_to(v.xy.y(), 1e-2)},
+                   {"value", round_to(v.value, 1e-6)},
+                   {"bound", round_to(v.bound, 1e-6)},
+                   {"excess_m", round_to(v.excess_m, 1e-4)},
+                   {"places", v.places}};
+      if (v.road >= 0) {
+        item["road"] = v.road;
+        item["osm_way_id"] = v.osm_way_id;
+        item["s_m"] = round_to(v.s_m, 1e-2);
+      } else {
+        item["junction"] = v.junction;
+      }
+      violations.push_back(item);
+    }
+    profiles["fit"] = {{"policy", r.fit->policy},
+                       {"iterations", r.fit->iterations},
+                       {"converged", r.fit->converged},
+                       {"solver", r.fit->solver},
+                       {"variables", r.fit->variables},
+                       {"constraints", r.fit->constraints},
+                       {"max_violation_m", r.fit->max_violation_m},
+                       {"clearance_m", r.fit->clearance_m},
+                       {"cutoff_wavelength_m", r.fit->cutoff_wavelength_m},
+                       {"max_ground_departure_m", r.fit->max_ground_departure_m},
+                       {"violations", violations}};
   }
   if (r.paper) {
     profiles["paper"] = {{"max_iterations", r.paper->max_iterations},

@@ -169,14 +169,19 @@ BuildResult build(const BuildOptions& options, Diagnostics& diagnostics, const P
       return fit_profiles(network, raw, o, diagnostics);
     });
     fit_seconds = timer.timings().back().second;
-    report.fit = FitSummary{std::string(to_string(options.fit.policy)),
-                            fit->iterations,
-                            fit->converged,
-                            fit->variables,
-                            fit->constraints,
-                            fit->max_violation_m,
-                            options.fit.clearance_m,
-                            options.fit.cutoff_wavelength_m};
+    FitSummary summary;
+    summary.policy = std::string(to_string(options.fit.policy));
+    summary.iterations = fit->iterations;
+    summary.converged = fit->converged;
+    summary.solver = fit->solver_status;
+    summary.variables = fit->variables;
+    summary.constraints = fit->constraints;
+    summary.max_violation_m = fit->max_violation_m;
+    summary.clearance_m = options.fit.clearance_m;
+    summary.cutoff_wavelength_m = options.fit.cutoff_wavelength_m;
+    summary.max_ground_departure_m = options.fit.max_ground_departure_m;
+    summary.violations = fit->violations;
+    report.fit = std::move(summary);
   }
   const std::vector<RoadProfile>& profiles = options.profile_method == ProfileMethod::paper ? paper->profiles
                                              : options.profile_method == ProfileMethod::relief ? fit->profiles

@@ -7,11 +7,14 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <map>
 #include <numbers>
 #include <numeric>
 #include <sstream>
 
 #include "relief/core/errors.h"
+#include "relief/geometry/soft_qp.h"
+#include "relief/roads/vertical_curves.h"
 
 namespace relief {
 namespace {
@@ -22,8 +25,31 @@ using Vec = Eigen::VectorXd;
 
 constexpr double kMinCurvatureSpacing = 0.5;  // m; closer stations are not used for z'' rows
 constexpr double kInf = std::numeric_limits<double>::infinity();
-constexpr double kPinnedReach = 30.0;        // m along a road under a crossing
-constexpr double kPinnedStiffness = 1000.0;  // data weight factor there
+constexpr double kPinnedReach = 30.0;      // m along a road under a crossing
+constexpr double kPinnedStiffness = 30.0;  // data weight factor there (a preference, far below any price)
+constexpr int kJunctionPlaneDirections = 8;
+constexpr double kPlaneLevelWeight =
+    0.01;  // per (grade)^2, see fit_profiles  // two-sided rows: |G| <= g / cos(pi / 16)
+
+// Prices of the soft limits per metre of violation, one level per priority (FitLimit order):
+// each level is 10x the next, and the lowest is far above any force the data term can exert
+// (2 w |z - d| per station, at most ~30 per metre of road within the departure bound, and the
+// bending moment of a kilometre of it), so a limit gives way only to a higher one.
+constexpr double kPriceScale = 1e7;
+double price(FitLimit limit) {
+  switch (limit) {
+    case FitLimit::ground_departure:
+      return kPriceScale * 1e3;
+    case FitLimit::grade:
+    case FitLimit::junction_grade:
+      return kPriceScale * 1e2;
+    case FitLimit::clearance:
+      return kPriceScale * 1e1;
+    case FitLimit::vertical_curve:
+      return kPriceScale;
+  }
+  return kPriceScale;
+}
 
 // Index of every sample's height variable: interior samples own one, road ends share their
 // junction's variable.
@@ -69,25 +95,6 @@ class VariableMap {
   std::size_t count_ = 0;
 };
 
-// Linear constraint rows l <= A x <= u, assembled as triplets.
-struct Constraints {
-  std::vector<Triplet> entries;
-  std::vector<double> lower, upper;
-  /// Rows that couple variables P does not already couple (clearances, two-station roads).
-  std::vector<Triplet> extra_pattern;
-
-  void add(std::initializer_list<std::pair<std::size_t, double>> row, double lo, double hi,
-           bool within_pattern_of_p = true) {
-    const auto r = static_cast<int>(lower.size());
-    for (const auto& [col, value] : row) {
-      entries.emplace_back(r, static_cast<int>(col), value);
-      if (!within_pattern_of_p) extra_pattern.emplace_back(r, static_cast<int>(col), 1.0);
-    }
-    lower.push_back(lo);
-    upper.push_back(hi);
-  }
-};
-
 // Second divided difference z'' at the middle of three stations spaced h1, h2.
 std::array<double, 3> curvature_row(double h1, double h2) {
   h1 = std::max(h1, kMinCurvatureSpacing);
@@ -95,37 +102,17 @@ std::array<double, 3> curvature_row(double h1, double h2) {
   return {2.0 / (h1 * (h1 + h2)), -2.0 / (h1 * h2), 2.0 / (h2 * (h1 + h2))};
 }
 
+double cross2(const Vec2& a, const Vec2& b) {
+  return a.x() * b.y() - a.y() * b.x();
+}
+
 bool is_structure(const Road& road) {
   return road.attributes.bridge || road.attributes.tunnel;
 }
 
-struct Triple {
-  std::size_t a, b, c;
-  double h1, h2;
-  double lambda;  // smoothing weight of the road it lies on
-};
-
-// The smoothness triples: consecutive stations of each road.
 // lambda = (cutoff / 2 pi)^4: a smoothing spline halves the amplitude at the cutoff wavelength.
 double smoothing_weight(double cutoff_wavelength_m) {
   return std::pow(cutoff_wavelength_m / (2.0 * std::numbers::pi), 4.0);
-}
-
-std::vector<Triple> smoothness_triples(const RoadNetwork& network, const std::vector<RoadProfile>& profiles,
-                                       const VariableMap& vars, const ProfileFitOptions& options) {
-  const double ground = smoothing_weight(options.cutoff_wavelength_m);
-  const double structure = smoothing_weight(options.structure_cutoff_wavelength_m);
-  std::vector<Triple> triples;
-  for (std::size_t r = 0; r < profiles.size(); ++r) {
-    const RoadProfile& p = profiles[r];
-    const std::size_t n = p.size();
-    const double lambda = is_structure(network.roads[r]) ? structure : ground;
-    for (std::size_t i = 1; i + 1 < n; ++i) {
-      triples.push_back({vars.of(r, i - 1, n), vars.of(r, i, n), vars.of(r, i + 1, n), p.s[i] - p.s[i - 1],
-                         p.s[i + 1] - p.s[i], lambda});
-    }
-  }
-  return triples;
 }
 
 // The junction as a smooth surface: every road leaves it tangent to one plane
@@ -139,7 +126,7 @@ void add_junction_planes(const RoadNetwork& network, const std::vector<RoadProfi
     for (const RoadEnd& e : j.ends) {
       const RoadProfile& p = profiles[e.road];
       const std::size_t n = p.size();
-      if (n < 3) continue;  // a two-station road has no interior station
+      if (n < 3 || !p.has_height) continue;  // a two-station road has no interior station
       const std::size_t k = e.at_start ? 1 : n - 2;
       const Vec2 d = p.xy[k] - j.position;
       const double h = std::max(d.norm(), kMinCurvatureSpacing);
@@ -201,171 +188,77 @@ std::vector<std::uint8_t> roads_with_data(const RoadNetwork& network, Diagnostic
 
 using Permutation = Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int>;
 
-// Fill-reducing elimination order. Road interiors come first, each road in station order: a
-// chain eliminated end to end fills in only its two junctions' variables, so that part costs
-// O(samples). The junction block left behind (heights and tangent planes, coupled along every
-// road and at every grade separation) is small and ordered by AMD. Running AMD on the whole
-// matrix gives the same fill but takes seconds on millions of stations.
-Permutation elimination_order(const RoadNetwork& network, const VariableMap& vars,
-                              const std::vector<GradeSeparation>& separations) {
+// Fill-reducing elimination order. The interiors of the roads come first, each road in station
+// order: a chain eliminated end to end fills in only its two junctions' variables, so that part
+// costs O(samples). Left for the end, ordered by AMD, are the junctions' variables (heights and
+// tangent planes) and the interiors of the roads that clearance rows tie to other roads (a
+// viaduct over a street: a row every 5 m couples the two, and eliminating either in station
+// order would drag every station of the other along). AMD sees their couplings in P + A'A plus,
+// for every chain road, the clique of junction variables its elimination leaves behind. Running
+// AMD on the whole matrix gives the same fill but takes seconds on millions of stations.
+Permutation elimination_order(const RoadNetwork& network, const std::vector<RoadProfile>& profiles,
+                              const VariableMap& vars, const std::vector<GradeSeparation>& separations,
+                              const SpMat& P, const Eigen::SparseMatrix<double, Eigen::RowMajor>& A) {
+  const auto n = static_cast<int>(vars.count());
   const auto base = static_cast<int>(vars.junction_base());
-  const auto nj = static_cast<int>(vars.count()) - base;
-  // Variables of the junction block that a road couples once its interior is eliminated.
-  const auto road_block = [&](int road, std::vector<int>& out) {
-    for (const int j : {network.roads[road].start_junction, network.roads[road].end_junction}) {
-      out.push_back(static_cast<int>(vars.junction(j)) - base);
-      if (network.junctions[j].ends.size() >= 2) {
-        out.push_back(static_cast<int>(vars.gradient(j)) - base);
-        out.push_back(static_cast<int>(vars.gradient(j)) + 1 - base);
-      }
-    }
-  };
-  std::vector<Triplet> pattern;
-  std::vector<int> block;
-  const auto connect_all = [&] {
-    for (const int a : block)
-      for (const int b : block) pattern.emplace_back(a, b, 1.0);
-  };
+  std::vector<std::uint8_t> tied(network.roads.size(), 0);
+  for (const GradeSeparation& sep : separations) tied[sep.upper_road] = tied[sep.lower_road] = 1;
+  // New positions: chain interiors first; the block's variables numbered in `block_of`.
+  std::vector<int> block_of(static_cast<std::size_t>(n), -1);
+  std::vector<int> order_of(static_cast<std::size_t>(n), -1);
+  int next = 0, blocks = 0;
   for (const Road& road : network.roads) {
-    block.clear();
-    road_block(road.id, block);
-    connect_all();
+    const std::size_t np = profiles[road.id].size();
+    for (std::size_t i = 1; i + 1 < np; ++i) {
+      const auto v = static_cast<std::size_t>(vars.of(road.id, i, np));
+      if (tied[road.id]) {
+        block_of[v] = blocks++;
+      } else {
+        order_of[v] = next++;
+      }
+    }
   }
-  for (const GradeSeparation& sep : separations) {
-    block.clear();
-    road_block(sep.upper_road, block);
-    road_block(sep.lower_road, block);
-    connect_all();
+  for (int v = base; v < n; ++v) block_of[static_cast<std::size_t>(v)] = blocks++;
+
+  std::vector<Triplet> pattern;
+  const auto link = [&](int a, int b) {
+    const int x = block_of[static_cast<std::size_t>(a)], y = block_of[static_cast<std::size_t>(b)];
+    if (x >= 0 && y >= 0) pattern.emplace_back(x, y, 1.0);
+  };
+  for (int j = 0; j < P.outerSize(); ++j)
+    for (SpMat::InnerIterator it(P, j); it; ++it) link(static_cast<int>(it.row()), j);
+  for (Eigen::Index r = 0; r < A.rows(); ++r) {
+    for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator i(A, r); i; ++i)
+      for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator k(A, r); k; ++k)
+        link(static_cast<int>(i.col()), static_cast<int>(k.col()));
   }
-  SpMat junction_pattern(nj, nj);
-  junction_pattern.setFromTriplets(pattern.begin(), pattern.end());
+  // The clique each chain road leaves among its junctions' variables.
+  std::vector<int> clique;
+  for (const Road& road : network.roads) {
+    if (tied[road.id]) continue;
+    clique.clear();
+    for (const int j : {road.start_junction, road.end_junction}) {
+      clique.push_back(static_cast<int>(vars.junction(j)));
+      if (network.junctions[j].ends.size() >= 2) {
+        clique.push_back(static_cast<int>(vars.gradient(j)));
+        clique.push_back(static_cast<int>(vars.gradient(j)) + 1);
+      }
+    }
+    for (const int a : clique)
+      for (const int b : clique) link(a, b);
+  }
+  SpMat block_pattern(blocks, blocks);
+  block_pattern.setFromTriplets(pattern.begin(), pattern.end());
+  std::vector<Triplet>().swap(pattern);
   Permutation amd_inverse;
-  Eigen::AMDOrdering<int>()(junction_pattern, amd_inverse);
-  const Permutation amd = amd_inverse.inverse();  // old junction-block index -> new
-
-  Permutation order(static_cast<int>(vars.count()));
-  for (int i = 0; i < base; ++i) order.indices()[i] = i;
-  for (int k = 0; k < nj; ++k) order.indices()[base + k] = base + amd.indices()[k];
+  Eigen::AMDOrdering<int>()(block_pattern, amd_inverse);
+  const Permutation amd = amd_inverse.inverse();  // old block index -> new
+  Permutation order(n);
+  for (int v = 0; v < n; ++v) {
+    const int b = block_of[static_cast<std::size_t>(v)];
+    order.indices()[v] = b >= 0 ? next + amd.indices()[b] : order_of[static_cast<std::size_t>(v)];
+  }
   return order;
-}
-
-// min 1/2 x'Px + q'x  s.t.  l <= Ax <= u, by a primal active set with exact solves: rows found
-// violated are enforced by a stiff quadratic penalty  mu/2 (a.x - bound)^2,  rows whose penalty
-// pulls the wrong way (the bound is not binding) are released, and the system is refactorised
-// (numerically only: the sparsity pattern of P + A'A is analysed once). A few rounds suffice
-// because the active rows are few (grade caps, clearances) and every solve is exact, which the
-// long, weakly determined bridge and tunnel decks need (ADMM crawls on them).
-struct ActiveSetResult {
-  Vec x;
-  int rounds = 0;
-  bool converged = false;
-};
-
-ActiveSetResult solve_active_set(const SpMat& P_original, const Vec& q_original, const SpMat& A_original,
-                                 const SpMat& extra_pattern, const Vec& l, const Vec& u,
-                                 const Permutation& order, double tolerance, int max_rounds) {
-  // Work in the elimination order: x_new = order * x.
-  SpMat P;
-  P = P_original.selfadjointView<Eigen::Lower>().twistedBy(order);
-  const Vec q = order * q_original;
-  const SpMat A = A_original * order.transpose();
-  // The penalty is stiff against the largest curvature weight, so enforced rows are met to
-  // ~1e-7 of the forces involved; polish() does the rest.
-  const double mu = 1e7 * std::max(1.0, P.diagonal().maxCoeff());
-  const auto rows = static_cast<Eigen::Index>(A.rows());
-  Vec weight = Vec::Zero(rows);  // mu on active rows, 0 elsewhere
-  Vec bound = Vec::Zero(rows);
-
-  // Every round's matrix gets the pattern of P + A'A (the factorisation needs one pattern), with
-  // only the active rows' values.
-  Eigen::SimplicialLDLT<SpMat, Eigen::Lower, Eigen::NaturalOrdering<int>> ldlt;
-  SpMat base;
-  const SpMat extra = extra_pattern * order.transpose();
-  base = P + 0.0 * SpMat(extra.transpose() * extra);
-  ldlt.analyzePattern(base);
-  ActiveSetResult out;
-  const Eigen::SparseMatrix<double, Eigen::RowMajor> A_rows = A;
-  std::vector<Triplet> active_entries;
-  const int freeze_after = std::clamp(max_rounds / 2, 1, 8);  // then only add rows: no cycling
-  for (int round = 1; round <= max_rounds; ++round) {
-    // Only the active rows enter the system: sqrt(mu) a_r, so that Aa'Aa = sum mu a_r a_r'.
-    active_entries.clear();
-    Vec active_rhs = Vec::Zero(P.rows());
-    int k = 0;
-    for (Eigen::Index r = 0; r < rows; ++r) {
-      if (weight[r] == 0.0) continue;
-      for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(A_rows, r); it; ++it) {
-        active_entries.emplace_back(k, static_cast<int>(it.col()), std::sqrt(weight[r]) * it.value());
-        active_rhs[it.col()] += weight[r] * bound[r] * it.value();
-      }
-      ++k;
-    }
-    SpMat active(k, P.cols());
-    active.setFromTriplets(active_entries.begin(), active_entries.end());
-    const SpMat M = base + SpMat(active.transpose() * active);
-    ldlt.factorize(M);
-    if (ldlt.info() != Eigen::Success)
-      throw Error("profile fit: the normal equations could not be factorised");
-    out.x = ldlt.solve(active_rhs - q);
-    out.rounds = round;
-    const Vec ax = A * out.x;
-    bool changed = false;
-    for (Eigen::Index r = 0; r < rows; ++r) {
-      if (weight[r] > 0.0) {
-        // Release a row whose bound is not binding: the solution sits inside it.
-        const bool at_upper = bound[r] == u[r];
-        const double inside = at_upper ? bound[r] - ax[r] : ax[r] - bound[r];
-        if (round < freeze_after && inside > tolerance) {
-          weight[r] = 0.0;
-          changed = true;
-        }
-      } else if (ax[r] > u[r] + tolerance) {
-        weight[r] = mu;
-        bound[r] = u[r];
-        changed = true;
-      } else if (ax[r] < l[r] - tolerance) {
-        weight[r] = mu;
-        bound[r] = l[r];
-        changed = true;
-      }
-    }
-    if (!changed) {
-      out.converged = true;
-      break;
-    }
-  }
-  out.x = order.transpose() * out.x;
-  return out;
-}
-
-// Cyclic projections onto the violated rows, to leave no violation larger than rounding.
-double polish(const SpMat& A, const Vec& l, const Vec& u, Vec& x, int sweeps) {
-  Eigen::SparseMatrix<double, Eigen::RowMajor> rows = A;
-  Vec norms(rows.rows());
-  for (int r = 0; r < rows.rows(); ++r) norms[r] = rows.row(r).squaredNorm();
-  double worst = 0.0;
-  for (int sweep = 0; sweep < sweeps; ++sweep) {
-    worst = 0.0;
-    for (int r = 0; r < rows.rows(); ++r) {
-      const double v = rows.row(r).dot(x);
-      double target = v;
-      if (v < l[r]) target = l[r];
-      if (v > u[r]) target = u[r];
-      const double excess = std::abs(target - v);
-      if (excess <= 1e-9 || norms[r] == 0.0) continue;
-      worst = std::max(worst, excess);
-      const double step = (target - v) / norms[r];
-      for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(rows, r); it; ++it) {
-        x[it.col()] += step * it.value();
-      }
-    }
-    if (worst <= 1e-9) break;
-  }
-  // Report what is left after the last sweep.
-  const Vec Ax = A * x;
-  double left = 0.0;
-  for (int r = 0; r < Ax.size(); ++r) left = std::max({left, l[r] - Ax[r], Ax[r] - u[r]});
-  return left;
 }
 
 }  // namespace
@@ -387,10 +280,107 @@ double grade_limit(const ProfileFitOptions& options, HighwayClass cls) {
   return (highway ? options.fidelity_highway_max_grade_percent : options.fidelity_max_grade_percent) / 100.0;
 }
 
+std::string_view to_string(FitLimit limit) {
+  switch (limit) {
+    case FitLimit::ground_departure:
+      return "ground_departure";
+    case FitLimit::grade:
+      return "grade";
+    case FitLimit::junction_grade:
+      return "junction_grade";
+    case FitLimit::clearance:
+      return "clearance";
+    case FitLimit::vertical_curve:
+      return "vertical_curve";
+  }
+  return "unknown";
+}
+
+double design_speed_kmh(const WayAttributes& attributes) {
+  return 3.6 * attributes.maxspeed_mps.value_or(default_speed_mps(attributes.highway));
+}
+
+namespace {
+
+// The soft rows of the problem, each tagged with its limit and place (road and station, or
+// junction) so that a violation can be reported where it is.
+class FitRows {
+ public:
+  struct Tag {
+    FitLimit limit;
+    int road;               // -1: a junction row
+    std::uint32_t station;  // station index on the road; the junction id for junction rows
+  };
+
+  void add(std::initializer_list<std::pair<std::size_t, double>> row, double lo, double hi, Tag tag,
+           bool always = false) {
+    const auto r = static_cast<int>(lower_.size());
+    for (const auto& [col, value] : row) entries_.emplace_back(r, static_cast<int>(col), value);
+    lower_.push_back(lo);
+    upper_.push_back(hi);
+    tags_.push_back(tag);
+    always_.push_back(always ? 1 : 0);
+    group_.push_back(tag.road);
+  }
+  [[nodiscard]] std::size_t size() const { return lower_.size(); }
+  [[nodiscard]] const Tag& tag(std::size_t r) const { return tags_[r]; }
+
+  /// Moves the rows into `qp` (A, bounds, prices).
+  void move_into(SoftQp& qp, std::size_t variables) {
+    const auto m = static_cast<Eigen::Index>(lower_.size());
+    qp.A.resize(m, static_cast<Eigen::Index>(variables));
+    qp.A.setFromTriplets(entries_.begin(), entries_.end());
+    std::vector<Triplet>().swap(entries_);
+    qp.lower = Eigen::Map<const Vec>(lower_.data(), m);
+    qp.upper = Eigen::Map<const Vec>(upper_.data(), m);
+    qp.price.resize(m);
+    for (Eigen::Index r = 0; r < m; ++r) qp.price[r] = price(tags_[static_cast<std::size_t>(r)].limit);
+    qp.always = std::move(always_);
+    qp.group = std::move(group_);
+  }
+
+ private:
+  std::vector<Triplet> entries_;
+  std::vector<double> lower_, upper_;
+  std::vector<Tag> tags_;
+  std::vector<std::uint8_t> always_;
+  std::vector<int> group_;  // the road, for screening a road's rows together
+};
+
+bool has_design_curves(const Road& road, const ProfileFitOptions& options) {
+  return options.design_curves && road.attributes.highway <= options.design_curves_through;
+}
+
+// The vertical curvature bounds of a road: [-crest, +sag] in 1/m.
+std::pair<double, double> curvature_bounds(const Road& road, const ProfileFitOptions& options) {
+  double crest = options.max_curvature_per_m > 0.0 ? options.max_curvature_per_m : kInf;
+  double sag = crest;
+  if (has_design_curves(road, options)) {
+    const VerticalCurveBounds k = vertical_curve_bounds(design_speed_kmh(road.attributes));
+    crest = std::min(crest, k.crest_curvature_per_m());
+    sag = std::min(sag, k.sag_curvature_per_m());
+  }
+  return {crest, sag};
+}
+
+// Station of a row on its road, for reporting.
+struct Place {
+  double s = 0.0;
+  Vec2 xy = Vec2::Zero();
+};
+
+}  // namespace
+
 ProfileFitResult fit_profiles(const RoadNetwork& network, const std::vector<RoadProfile>& raw,
                               const ProfileFitOptions& options, Diagnostics& diagnostics) {
   if (raw.size() != network.roads.size())
     throw InvalidInput("fit_profiles: one profile per road is required");
+  if (!(options.max_ground_departure_m >= 0.0) || !(options.clearance_m >= 0.0) ||
+      !(options.max_curvature_per_m >= 0.0) || !(options.cutoff_wavelength_m > 0.0) ||
+      !(options.structure_cutoff_wavelength_m > 0.0)) {
+    throw InvalidInput(
+        "fit_profiles: departure, clearance and curvature bounds must be >= 0, wavelengths > 0");
+  }
   const VariableMap vars(network, raw);
   const std::size_t n = vars.count();
 
@@ -401,13 +391,28 @@ ProfileFitResult fit_profiles(const RoadNetwork& network, const std::vector<Road
   Vec target_weight = Vec::Zero(static_cast<Eigen::Index>(n));
   Vec initial = Vec::Zero(static_cast<Eigen::Index>(n));
   Vec initial_count = Vec::Zero(static_cast<Eigen::Index>(n));
+  // Variables that measured ground (not a void, not a structure): the departure bound's rows.
+  std::vector<std::uint8_t> measured(n, 0);
   const std::vector<std::uint8_t> with_data = roads_with_data(network, diagnostics);
   ProfileFitResult result;
   result.separations = find_grade_separations(network, raw);
-  // A road on the ground under a bridge stays on the ground: near a crossing its data term is
-  // much stiffer than the deck, so the clearance is won by lifting the deck.
+  std::vector<std::uint8_t> separated(raw.size(), 0);
+  for (const GradeSeparation& sep : result.separations)
+    separated[sep.upper_road] = separated[sep.lower_road] = 1;
+  // The road on the ground level stays on the ground: near a crossing its data term is stiffer
+  // than the other road's, so the clearance is won by lifting a bridge deck over it, or by
+  // lowering an underpass (layer -1) under it. Of two roads off the ground level the one nearer
+  // to it holds; at equal distance the lower road.
   std::vector<std::vector<double>> pinned(raw.size());
-  for (const GradeSeparation& sep : result.separations) pinned[sep.lower_road].push_back(sep.s_lower);
+  for (const GradeSeparation& sep : result.separations) {
+    const int upper = std::abs(effective_layer(network.roads[sep.upper_road].attributes));
+    const int lower = std::abs(effective_layer(network.roads[sep.lower_road].attributes));
+    if (upper < lower) {
+      pinned[sep.upper_road].push_back(sep.s_upper);
+    } else {
+      pinned[sep.lower_road].push_back(sep.s_lower);
+    }
+  }
   const auto stiffness = [&](std::size_t r, double s) {
     for (double at : pinned[r])
       if (std::abs(s - at) <= kPinnedReach) return kPinnedStiffness;
@@ -416,15 +421,29 @@ ProfileFitResult fit_profiles(const RoadNetwork& network, const std::vector<Road
   for (std::size_t r = 0; r < raw.size(); ++r) {
     const RoadProfile& p = raw[r];
     const bool ground = with_data[r] && p.has_height;
+    const bool on_ground = ground && !is_structure(network.roads[r]);
+    if (!p.has_height) {
+      // A road with no height anywhere is left out of the outputs: its interior stations are
+      // held where they are, apart from the problem, and its ends take no part in it.
+      for (std::size_t i = 1; i + 1 < p.size(); ++i) {
+        const auto k = static_cast<Eigen::Index>(vars.of(r, i, p.size()));
+        weight[k] = 1.0;
+        initial[k] = target_weight[k] = 0.0;
+        initial_count[k] = 1.0;
+      }
+      continue;
+    }
     for (std::size_t i = 0; i < p.size(); ++i) {
-      const auto v = static_cast<Eigen::Index>(vars.of(r, i, p.size()));
+      const std::size_t v = vars.of(r, i, p.size());
+      const auto k = static_cast<Eigen::Index>(v);
       const double left = i > 0 ? p.s[i] - p.s[i - 1] : 0.0;
       const double right = i + 1 < p.size() ? p.s[i + 1] - p.s[i] : 0.0;
       const double w = ground ? 0.5 * (left + right) * stiffness(r, p.s[i]) : 0.0;
-      weight[v] += w;
-      target_weight[v] += w * p.z[i];
-      initial[v] += p.z[i];
-      initial_count[v] += 1.0;
+      weight[k] += w;
+      target_weight[k] += w * p.z[i];
+      initial[k] += p.z[i];
+      initial_count[k] += 1.0;
+      if (on_ground && !p.filled[i]) measured[v] = 1;
     }
   }
   for (Eigen::Index v = 0; v < static_cast<Eigen::Index>(n); ++v) {
@@ -432,94 +451,172 @@ ProfileFitResult fit_profiles(const RoadNetwork& network, const std::vector<Road
     target[v] = weight[v] > 1e-6 ? (target_weight[v] + 1e-6 * initial[v]) / weight[v] : initial[v];
   }
 
-  // Smoothness: lambda * sum (z'')^2 ds, with lambda from the cutoff wavelength.
+  // Smoothness: lambda * sum (z'')^2 ds, with lambda from the cutoff wavelength; and the rows of
+  // the vertical curve bounds on the same triples, scaled to metres (times the mean spacing^2).
+  FitRows rows;
   const double lambda = smoothing_weight(options.cutoff_wavelength_m);
-  const std::vector<Triple> triples = smoothness_triples(network, raw, vars, options);
+  const double lambda_structure = smoothing_weight(options.structure_cutoff_wavelength_m);
   std::vector<Triplet> p_entries;
-  p_entries.reserve(n + 9 * triples.size());
+  p_entries.reserve(n * 10);
   for (std::size_t v = 0; v < n; ++v)
     p_entries.emplace_back(static_cast<int>(v), static_cast<int>(v), weight[static_cast<Eigen::Index>(v)]);
-  Constraints cons;
-  for (const Triple& t : triples) {
-    const auto c = curvature_row(t.h1, t.h2);
-    const double w =
-        t.lambda * 0.5 * (std::max(t.h1, kMinCurvatureSpacing) + std::max(t.h2, kMinCurvatureSpacing));
-    const std::array<std::size_t, 3> idx{t.a, t.b, t.c};
-    for (int i = 0; i < 3; ++i)
-      for (int k = 0; k < 3; ++k)
-        p_entries.emplace_back(static_cast<int>(idx[i]), static_cast<int>(idx[k]), w * c[i] * c[k]);
-    if (options.max_curvature_per_m > 0.0 && t.h1 >= kMinCurvatureSpacing && t.h2 >= kMinCurvatureSpacing) {
-      cons.add({{t.a, c[0]}, {t.b, c[1]}, {t.c, c[2]}}, -options.max_curvature_per_m,
-               options.max_curvature_per_m);
+  for (std::size_t r = 0; r < raw.size(); ++r) {
+    const RoadProfile& p = raw[r];
+    if (!p.has_height) continue;
+    const std::size_t np = p.size();
+    const double road_lambda = is_structure(network.roads[r]) ? lambda_structure : lambda;
+    const auto [crest, sag] = curvature_bounds(network.roads[r], options);
+    // Rows that bind over long stretches are never screened out: a design speed's curves, and
+    // the curves of roads that clearances push at single stations (screening by distance would
+    // find their kinks one round at a time).
+    const bool design = has_design_curves(network.roads[r], options) || separated[r];
+    for (std::size_t i = 1; i + 1 < np; ++i) {
+      const double h1 = p.s[i] - p.s[i - 1], h2 = p.s[i + 1] - p.s[i];
+      const auto c = curvature_row(h1, h2);
+      const double h = 0.5 * (std::max(h1, kMinCurvatureSpacing) + std::max(h2, kMinCurvatureSpacing));
+      const double w = road_lambda * h;
+      const std::array<std::size_t, 3> idx{vars.of(r, i - 1, np), vars.of(r, i, np), vars.of(r, i + 1, np)};
+      for (int a = 0; a < 3; ++a)
+        for (int b = 0; b < 3; ++b)
+          p_entries.emplace_back(static_cast<int>(idx[a]), static_cast<int>(idx[b]), w * c[a] * c[b]);
+      if (std::isfinite(crest) && h1 >= kMinCurvatureSpacing && h2 >= kMinCurvatureSpacing) {
+        const double h_sq = h * h;
+        rows.add({{idx[0], c[0] * h_sq}, {idx[1], c[1] * h_sq}, {idx[2], c[2] * h_sq}}, -crest * h_sq,
+                 sag * h_sq, {FitLimit::vertical_curve, static_cast<int>(r), static_cast<std::uint32_t>(i)},
+                 design);
+      }
     }
   }
   add_junction_planes(network, raw, vars, lambda, p_entries);
-  SpMat P(static_cast<int>(n), static_cast<int>(n));
-  P.setFromTriplets(p_entries.begin(), p_entries.end());
-  const Vec q = -weight.cwiseProduct(target);
+  // A weak pull of every junction plane towards level: the cross slope of a plane that its roads
+  // do not determine (two roads in line) is level rather than arbitrary, which also keeps the
+  // normal equations well conditioned. A 10 % slope costs as much as 1 cm of misfit over 1 m.
+  for (const Junction& j : network.junctions) {
+    if (j.ends.size() < 2) continue;
+    for (int k = 0; k < 2; ++k) {
+      const auto g = static_cast<int>(vars.gradient(j.id)) + k;
+      p_entries.emplace_back(g, g, kPlaneLevelWeight);
+    }
+  }
+  SoftQp qp;
+  qp.P.resize(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(n));
+  qp.P.setFromTriplets(p_entries.begin(), p_entries.end());
+  std::vector<Triplet>().swap(p_entries);
+  qp.q = -weight.cwiseProduct(target);
+
+  // Departure from the DEM, on every measured ground variable.
+  if (options.max_ground_departure_m > 0.0) {
+    for (std::size_t r = 0; r < raw.size(); ++r) {
+      const RoadProfile& p = raw[r];
+      for (std::size_t i = 0; i < p.size(); ++i) {
+        const std::size_t v = vars.of(r, i, p.size());
+        if (!measured[v]) continue;
+        measured[v] = 0;  // one row per variable (a junction's is shared)
+        const double t = target[static_cast<Eigen::Index>(v)];
+        rows.add({{v, 1.0}}, t - options.max_ground_departure_m, t + options.max_ground_departure_m,
+                 {FitLimit::ground_departure, static_cast<int>(r), static_cast<std::uint32_t>(i)});
+      }
+    }
+  }
 
   // Grade rows on every segment.
+  std::vector<double> junction_cap(network.junctions.size(), 0.0);
   for (std::size_t r = 0; r < raw.size(); ++r) {
     const RoadProfile& p = raw[r];
+    if (!p.has_height) continue;
     const double g = grade_limit(options, network.roads[r].attributes.highway);
+    for (const int j : {network.roads[r].start_junction, network.roads[r].end_junction})
+      junction_cap[j] = std::max(junction_cap[j], g);
     for (std::size_t i = 0; i + 1 < p.size(); ++i) {
       const std::size_t a = vars.of(r, i, p.size()), b = vars.of(r, i + 1, p.size());
       if (a == b) continue;
       const double ds = p.s[i + 1] - p.s[i];
-      cons.add({{b, 1.0}, {a, -1.0}}, -g * ds, g * ds, /*within_pattern_of_p=*/p.size() >= 3);
+      rows.add({{b, 1.0}, {a, -1.0}}, -g * ds, g * ds,
+               {FitLimit::grade, static_cast<int>(r), static_cast<std::uint32_t>(i)});
+    }
+  }
+  // The junction's plane is no steeper than the steepest road it joins, in every direction
+  // (16 directions: |G| within 2 % of the cap), so neither are the connecting roads across it.
+  for (const Junction& j : network.junctions) {
+    if (j.ends.size() < 2) continue;
+    const std::size_t gx = vars.gradient(j.id);
+    for (int k = 0; k < kJunctionPlaneDirections; ++k) {
+      const double a = std::numbers::pi * k / kJunctionPlaneDirections;
+      rows.add({{gx, std::cos(a)}, {gx + 1, std::sin(a)}}, -junction_cap[j.id], junction_cap[j.id],
+               {FitLimit::junction_grade, -1, static_cast<std::uint32_t>(j.id)});
     }
   }
 
   // Clearance rows where roads on different layers cross.
+  const auto at = [&](int road, double s) {
+    const RoadProfile& p = raw[road];
+    const auto it = std::upper_bound(p.s.begin(), p.s.end(), s);
+    std::size_t i = static_cast<std::size_t>(std::max<std::ptrdiff_t>(1, it - p.s.begin())) - 1;
+    i = std::min(i, p.size() - 2);
+    const double t = std::clamp((s - p.s[i]) / (p.s[i + 1] - p.s[i]), 0.0, 1.0);
+    return std::make_pair(i,
+                          std::array<std::pair<std::size_t, double>, 2>{
+                              {{vars.of(road, i, p.size()), 1.0 - t}, {vars.of(road, i + 1, p.size()), t}}});
+  };
+  // The deck clears the whole paved width of the road beneath: at a crossing, rows between the
+  // two roads at the centrelines' crossing and over each other's paved edges (each road's half
+  // width over the sine of the crossing angle along the other, at most 3 widths), 3 x 3 pairs.
+  const auto direction = [&](int road, std::size_t i) {
+    const RoadProfile& p = raw[road];
+    const Vec2 d = p.xy[std::min(i + 1, p.size() - 1)] - p.xy[std::min(i, p.size() - 2)];
+    return Vec2(d / std::max(d.norm(), 1e-9));
+  };
+  const auto half_width = [&](int road) {
+    const WayAttributes& a = network.roads[road].attributes;
+    return 0.5 * a.lane_width_m * (a.lanes_forward + a.lanes_backward);
+  };
   for (const GradeSeparation& sep : result.separations) {
-    const auto at = [&](int road, double s) {
-      const RoadProfile& p = raw[road];
-      const auto it = std::upper_bound(p.s.begin(), p.s.end(), s);
-      std::size_t i = static_cast<std::size_t>(std::max<std::ptrdiff_t>(1, it - p.s.begin())) - 1;
-      i = std::min(i, p.size() - 2);
-      const double t = std::clamp((s - p.s[i]) / (p.s[i + 1] - p.s[i]), 0.0, 1.0);
-      return std::array<std::pair<std::size_t, double>, 2>{
-          {{vars.of(road, i, p.size()), 1.0 - t}, {vars.of(road, i + 1, p.size()), t}}};
-    };
-    const auto u = at(sep.upper_road, sep.s_upper);
-    const auto d = at(sep.lower_road, sep.s_lower);
-    cons.add({{u[0].first, u[0].second},
-              {u[1].first, u[1].second},
-              {d[0].first, -d[0].second},
-              {d[1].first, -d[1].second}},
-             options.clearance_m, kInf, /*within_pattern_of_p=*/false);
+    if (!raw[sep.upper_road].has_height || !raw[sep.lower_road].has_height) continue;
+    std::vector<double> along_upper{0.0}, along_lower{0.0};
+    if (!sep.alongside) {
+      const double sine = std::abs(cross2(direction(sep.upper_road, at(sep.upper_road, sep.s_upper).first),
+                                          direction(sep.lower_road, at(sep.lower_road, sep.s_lower).first)));
+      const double ru =
+          std::min(half_width(sep.lower_road) / std::max(sine, 1e-3), 3.0 * half_width(sep.lower_road));
+      const double rl =
+          std::min(half_width(sep.upper_road) / std::max(sine, 1e-3), 3.0 * half_width(sep.upper_road));
+      along_upper = {-ru, 0.0, ru};
+      along_lower = {-rl, 0.0, rl};
+    }
+    for (const double a : along_upper) {
+      for (const double b : along_lower) {
+        const auto [iu, u] =
+            at(sep.upper_road, std::clamp(sep.s_upper + a, 0.0, raw[sep.upper_road].s.back()));
+        const auto [il, d] =
+            at(sep.lower_road, std::clamp(sep.s_lower + b, 0.0, raw[sep.lower_road].s.back()));
+        (void)il;
+        rows.add({{u[0].first, u[0].second},
+                  {u[1].first, u[1].second},
+                  {d[0].first, -d[0].second},
+                  {d[1].first, -d[1].second}},
+                 options.clearance_m, kInf,
+                 {FitLimit::clearance, sep.upper_road, static_cast<std::uint32_t>(iu)});
+      }
+    }
   }
 
-  SpMat A(static_cast<int>(cons.lower.size()), static_cast<int>(n));
-  A.setFromTriplets(cons.entries.begin(), cons.entries.end());
-  SpMat extra(static_cast<int>(cons.lower.size()), static_cast<int>(n));
-  extra.setFromTriplets(cons.extra_pattern.begin(), cons.extra_pattern.end());
-  const Vec l = Eigen::Map<const Vec>(cons.lower.data(), static_cast<Eigen::Index>(cons.lower.size()));
-  const Vec u = Eigen::Map<const Vec>(cons.upper.data(), static_cast<Eigen::Index>(cons.upper.size()));
-
-  // The penalty leaves enforced rows violated by ~1e-5 m; aim a little inside every bound so
-  // that the result meets the real ones.
-  constexpr double kMargin = 2e-4;  // m
-  const Vec l_aim = (l.array() + kMargin).min(0.5 * (l + u).array());
-  const Vec u_aim = (u.array() - kMargin).max(0.5 * (l + u).array());
-  const Permutation order = elimination_order(network, vars, result.separations);
-  ActiveSetResult solution =
-      solve_active_set(P, q, A, extra, l_aim, u_aim, order, options.tolerance_m, options.max_iterations);
-  result.max_violation_m = polish(A, l, u, solution.x, 1000);
-  result.iterations = solution.rounds;
-  result.converged = solution.converged;
   result.variables = n;
-  result.constraints = cons.lower.size();
+  result.constraints = rows.size();
+  rows.move_into(qp, n);
+  SoftQpOptions solver;
+  solver.max_iterations = options.max_iterations;
+  solver.ordering = elimination_order(network, raw, vars, result.separations, qp.P, qp.A);
+  solver.trace = options.trace;
+  const SoftQpResult solution = solve_soft_qp(qp, solver);
+  result.iterations = solution.iterations;
+  result.converged = solution.converged;
+  result.solver_status = solution.status + " (" + solution.method + ")";
   if (!solution.converged) {
-    diagnostics.report(Severity::warning, "fit.not_converged",
-                       "the profile fit's active set still changed after " + std::to_string(solution.rounds) +
-                           " rounds; the result is the last solve, polished onto the constraints");
-  }
-  if (result.max_violation_m > 1e-3) {
     std::ostringstream msg;
-    msg << "the profile constraints cannot all be met: largest violation " << result.max_violation_m
-        << " m (a clearance or grade limit that the network's geometry does not allow)";
-    diagnostics.report(Severity::warning, "fit.infeasible", msg.str());
+    msg << "the profile fit did not converge (" << solution.status << " after " << solution.iterations
+        << " interior-point iterations; stationarity " << solution.stationarity << ", gap " << solution.gap
+        << "): this is a defect of relief, please report it";
+    diagnostics.report(Severity::error, "fit.not_converged", msg.str());
   }
 
   // Back to per-road profiles.
@@ -534,6 +631,91 @@ ProfileFitResult fit_profiles(const RoadNetwork& network, const std::vector<Road
     result.junction_z[j] = solution.x[static_cast<Eigen::Index>(vars.junction(static_cast<int>(j)))];
   }
   update_clearances(result.separations, result.profiles);
+  // The limits left violated: the worst place per road (or junction) and limit.
+  std::map<std::pair<int, int>, FitViolation> worst;  // (limit, road or -1 - junction)
+  for (std::size_t r = 0; r < rows.size(); ++r) {
+    const double excess = solution.violation[static_cast<Eigen::Index>(r)];
+    result.max_violation_m = std::max(result.max_violation_m, excess);
+    if (excess <= options.violation_tolerance_m) continue;
+    const FitRows::Tag& tag = rows.tag(r);
+    const int owner = tag.road >= 0 ? tag.road : -1 - static_cast<int>(tag.station);
+    FitViolation& v = worst[{static_cast<int>(tag.limit), owner}];
+    ++v.places;
+    if (excess <= v.excess_m) continue;
+    v.limit = tag.limit;
+    v.excess_m = excess;
+    v.road = tag.road;
+    const double value = solution.row_values[static_cast<Eigen::Index>(r)];
+    if (tag.road >= 0) {
+      const Road& road = network.roads[tag.road];
+      const RoadProfile& p = raw[tag.road];
+      v.s_m = p.s[tag.station];
+      v.xy = p.xy[tag.station];
+      v.osm_way_id = road.osm_way_ids.empty() ? 0 : road.osm_way_ids.front();
+      switch (tag.limit) {
+        case FitLimit::ground_departure:
+          v.value = std::abs(result.profiles[tag.road].z[tag.station] - p.z[tag.station]);
+          v.bound = options.max_ground_departure_m;
+          break;
+        case FitLimit::grade: {
+          const double ds = p.s[tag.station + 1] - p.s[tag.station];
+          v.value = 100.0 * std::abs(value) / ds;
+          v.bound = 100.0 * grade_limit(options, road.attributes.highway);
+          v.s_m += 0.5 * ds;
+          break;
+        }
+        case FitLimit::clearance:
+          v.value = value;
+          v.bound = options.clearance_m;
+          break;
+        case FitLimit::vertical_curve: {
+          const double h1 = p.s[tag.station] - p.s[tag.station - 1];
+          const double h2 = p.s[tag.station + 1] - p.s[tag.station];
+          const double h = 0.5 * (h1 + h2);
+          v.value = value / (h * h);
+          const auto [crest, sag] = curvature_bounds(road, options);
+          v.bound = v.value < 0.0 ? -crest : sag;
+          break;
+        }
+        case FitLimit::junction_grade:
+          break;
+      }
+    } else {
+      const Junction& j = network.junctions[tag.station];
+      v.junction = j.id;
+      v.xy = j.position;
+      const std::size_t gx = vars.gradient(j.id);
+      v.value = 100.0 * std::hypot(solution.x[static_cast<Eigen::Index>(gx)],
+                                   solution.x[static_cast<Eigen::Index>(gx + 1)]);
+      v.bound = 100.0 * junction_cap[j.id];
+    }
+  }
+  for (auto& [key, v] : worst) result.violations.push_back(v);
+  std::stable_sort(result.violations.begin(), result.violations.end(),
+                   [](const FitViolation& a, const FitViolation& b) {
+                     if (a.limit != b.limit) return a.limit < b.limit;
+                     return a.excess_m > b.excess_m;
+                   });
+  for (const FitViolation& v : result.violations) {
+    Diagnostic d;
+    d.code = "fit.limit_violated";
+    d.severity = Severity::warning;
+    std::ostringstream msg;
+    msg.precision(3);
+    msg << std::fixed;
+    if (v.road >= 0) {
+      d.road_id = v.road;
+      if (v.osm_way_id != 0) d.osm_way_id = v.osm_way_id;
+      msg << "road " << v.road << " (OSM way " << v.osm_way_id << ") at s = " << v.s_m << " m";
+    } else {
+      msg << "junction " << v.junction;
+    }
+    msg << " (" << v.xy.x() << ", " << v.xy.y() << "): " << to_string(v.limit) << " " << v.value
+        << " against " << v.bound << ", " << v.excess_m << " m over, at " << v.places
+        << " place(s); a higher-priority limit or the network's geometry leaves no room";
+    d.message = msg.str();
+    diagnostics.report(std::move(d));
+  }
   return result;
 }
 

@@ -133,7 +133,9 @@ check "feet dem without unit" run 0 "$out" build --osm "$fix/hill.osm" --dem "$R
 check "feet dem unstated is 3.28x steeper" python3 - "$out/report.json" <<'PY'
 import json, sys
 r = json.load(open(sys.argv[1]))
-assert abs(r["gradient"]["max_percent"] - 32.81) < 0.5, r["gradient"]
+# 3.28 x the metre DEM's 10 %; the plane (38 % fall line) is steeper than a junction may be (35 %), so the
+# roads bend a little near junctions
+assert abs(r["gradient"]["max_percent"] - 32.81) < 1.0, r["gradient"]
 PY
 
 # Rasters through GDAL's virtual file systems: a VRT mosaic and a zipped DEM.

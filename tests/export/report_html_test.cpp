@@ -78,7 +78,17 @@ World make_world() {
   r.network = network_stats(w.network);
   r.profile_method = "relief";
   r.methods = {method("raw", 0.1234, 33.3), method("paper", 0.0567, 14.0), method("relief", 0.0089, 11.0)};
-  r.fit = FitSummary{"soft", 7, true, 650, 1300, 0.0012, 4.5, 40.0};
+  FitSummary fit;
+  fit.policy = "soft";
+  fit.iterations = 7;
+  fit.converged = true;
+  fit.solver = "converged (interior point)";
+  fit.variables = 650;
+  fit.constraints = 1300;
+  fit.max_violation_m = 0.0012;
+  fit.clearance_m = 4.5;
+  fit.cutoff_wavelength_m = 40.0;
+  r.fit = fit;
   r.paper = PaperSummary{50, 1, 0.8, {2}};
   w.diagnostics.report(Severity::warning, "osm.missing_node", "way 5 misses <node> 7 & \x01 \xff bytes");
   r.diagnostics = &w.diagnostics;

@@ -251,7 +251,9 @@ TEST(MeshPipeline, NorthEastSceneFiguresAndReimport) {
                            .upside_down_triangles = 0,
                            .ground_triangles_under_roads = 175,
                            .ground_portals = 11,
-                           .structure_terrain_pairs = 9});
+                           // 9 before the fit kept design-speed vertical curves on the freeway
+                           // decks and clearances over each road's paved edges (warning, sited)
+                           .structure_terrain_pairs = 12});
   expect_structure_warning(b, m);
   expect_files_reimport(b);
 }
@@ -483,10 +485,10 @@ TEST(MeshPipeline, BridgeOverARoadClearsIt) {
             << " m at least where they overlap (clearance " << o.fit.clearance_m << " m)\n";
   // The profiles keep the clearance where the centrelines cross (report: min 5.0 m)...
   EXPECT_GE(*at_crossing_m, o.fit.clearance_m - 0.01);  // 0.01: elevation records vs the fit
-  // ... but not over the whole overlap: the fit puts a crest on the deck and a sag in the
-  // ground road right at the crossing, so 3 m away (the edge of the other road) the surfaces
-  // are closer. Known defect, measured 4.868 m; a regression goes lower.
-  EXPECT_GE(*least_m, 4.86);
+  // ... and over the whole overlap: the fit keeps it over each road's paved edges too (3 x 3
+  // rows per crossing); between them the surfaces are straight enough. Measured 4.974 m (before
+  // the edge rows: 4.868 m, the deck crested and the road beneath sagged at the crossing only).
+  EXPECT_GE(*least_m, 4.95);
 }
 
 // A street through a hill in a tunnel (BC): the terrain over the tunnel meets each mouth's top

@@ -76,9 +76,9 @@ void print_summary(const BuildResult& result) {
   }
   if (r.fit) {
     out << "  fit        " << r.fit->policy << " policy, " << r.fit->variables << " heights, "
-        << r.fit->constraints << " constraints, " << r.fit->iterations << " rounds"
-        << (r.fit->converged ? "" : " (not settled)") << ", largest violation "
-        << fixed(r.fit->max_violation_m, 6) << " m\n";
+        << r.fit->constraints << " limits, " << r.fit->iterations << " iterations, " << r.fit->solver << "; "
+        << r.fit->violations.size() << " limit(s) left violated, largest " << fixed(r.fit->max_violation_m, 3)
+        << " m\n";
   }
   if (r.paper) {
     out << "  paper      " << r.paper->roads_not_converged << " roads still over their limit after "

@@ -11,6 +11,7 @@
 #include "relief/core/diagnostics.h"
 #include "relief/geometry/geo_frame.h"
 #include "relief/geometry/mesh_quality.h"
+#include "relief/roads/profile_fit.h"
 #include "relief/roads/validation.h"
 #include "relief/terrain/dem_source.h"
 
@@ -37,11 +38,14 @@ struct FitSummary {
   std::string policy;
   int iterations = 0;
   bool converged = false;
+  std::string solver;  ///< the solver's status and method
   std::size_t variables = 0;
   std::size_t constraints = 0;
   double max_violation_m = 0.0;
   double clearance_m = 0.0;
   double cutoff_wavelength_m = 0.0;
+  double max_ground_departure_m = 0.0;
+  std::vector<FitViolation> violations;  ///< limits left violated, worst per road and limit
 };
 
 /// The paper's smoothing, as run.

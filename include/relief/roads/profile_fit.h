@@ -1,18 +1,26 @@
 #pragma once
 // relief's elevation profile fit: one network-wide problem over every sample of every road,
-//   minimise  sum_i w_i (z_i - d_i)^2  +  lambda * sum (z'')^2 ds
-//   subject to  |z_{i+1} - z_i| <= g_road * ds      (grade limit of the road's class / policy)
-//               |z''| <= kappa_max                   (bounded vertical curvature)
-//               z_upper - z_lower >= clearance       (where roads on different layers cross)
-// with one shared variable per junction (exact continuity: every road end there has the same
-// height) and a tangent plane per junction that every road leaves along (the junction is a
-// smooth surface: no step and no kink between its roads, and a plane costs nothing). Bridge and tunnel
-// samples have w = 0, so decks span smoothly between their abutments and portals instead of following the
-// valley or the hill. Solved by a primal active-set method: exact sparse LDL^T solves (pattern analysed once)
-// with the violated rows enforced as stiff penalties, a few rounds; the cost is linear in the number of
-// samples (the factor of a network of chains between junctions stays sparse).
+//   minimise  sum_i w_i (z_i - d_i)^2  +  lambda * sum (z'')^2 ds  +  prices of the limits left violated
+// with one shared variable per junction (exact continuity, the only hard constraint: every road
+// end there has the same height) and a tangent plane per junction that every road leaves along
+// (no step and no kink between its roads). Every other limit is a soft row with an L1 price, in
+// this order of priority (what gives way first is listed last):
+//   1. |z_i - d_i| <= max_ground_departure_m    a ground road stays near the DEM
+//   2. |z_{i+1} - z_i| <= g_road ds             grade limit of the road's class / policy,
+//      |grad of the junction plane| <= g          and of every junction (so its connecting roads)
+//   3. z_upper - z_lower >= clearance           where roads on different layers cross
+//   4. -k_crest <= z'' <= k_sag                  vertical curves of the road's design speed
+//                                                (vertical_curves.h), else the physical bound
+// A conflict costs only where it is, and every limit left violated is returned with its place.
+// Bridge and tunnel samples have w = 0 (anchored structures span between abutments and portals).
+// Solved by a primal-dual interior point (geometry/soft_qp.h): the problem is always feasible
+// and its dual bounded, so it converges; the cost is linear in the number of samples (the
+// factor of a network of chains between junctions stays sparse).
 
+#include <cstdint>
+#include <functional>
 #include <optional>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -45,19 +53,50 @@ struct ProfileFitOptions {
   /// The same for bridge and tunnel decks, which are stiff over hundreds of metres: a deck
   /// arches smoothly over the roads it must clear instead of bumping up at each of them.
   double structure_cutoff_wavelength_m = 200.0;
-  double max_curvature_per_m = 0.05;  ///< |z''| bound (1/m); 0 disables it
-  double clearance_m = 5.0;           ///< minimum vertical clearance at grade separations
-  double tolerance_m = 1e-6;          ///< a row counts as violated beyond this (m)
-  int max_iterations = 40;            ///< active-set rounds
+  double max_curvature_per_m = 0.05;  ///< physical |z''| bound of every road (1/m); 0 disables it
+  /// Roads of these classes (motorway ... the class named here, in HighwayClass order) keep the
+  /// minimum crest and sag curves of their design speed (maxspeed, else the class default);
+  /// slower classes (SF's steep residential grid) keep only the physical bound.
+  HighwayClass design_curves_through = HighwayClass::primary_link;
+  bool design_curves = true;
+  double clearance_m = 5.0;  ///< minimum vertical clearance at grade separations
+  /// A ground road stays within this of the DEM (m); 0: no bound. Not for bridges and tunnels.
+  double max_ground_departure_m = 15.0;
+  /// A limit counts as violated beyond this (m of height; grades: over a 1 m segment).
+  double violation_tolerance_m = 1e-3;
+  int max_iterations = 200;  ///< interior-point iterations per screening round (soft_qp.h)
+  /// Called with one line per solver iteration when set (for diagnosis).
+  std::function<void(const std::string&)> trace;
+};
+
+/// The limits of the fit, in their order of priority.
+enum class FitLimit { ground_departure, grade, junction_grade, clearance, vertical_curve };
+[[nodiscard]] std::string_view to_string(FitLimit limit);
+
+/// A limit left violated on one road (the worst place of that road and limit).
+struct FitViolation {
+  FitLimit limit = FitLimit::grade;
+  int road = -1;      ///< -1 for a junction's grade
+  int junction = -1;  ///< the junction of a junction_grade violation
+  std::int64_t osm_way_id = 0;
+  double s_m = 0.0;  ///< station along the road (m)
+  Vec2 xy = Vec2::Zero();
+  /// In the limit's own unit: m (departure, clearance), percent (grades), 1/m (curves).
+  double value = 0.0;
+  double bound = 0.0;      ///< the limit, same unit
+  double excess_m = 0.0;   ///< the violation as height (m)
+  std::size_t places = 0;  ///< rows of this road and limit violated
 };
 
 struct ProfileFitResult {
   std::vector<RoadProfile> profiles;  ///< same stations as the input, fitted z
   std::vector<double> junction_z;     ///< height of each junction (m)
   std::vector<GradeSeparation> separations;
-  int iterations = 0;            ///< active-set rounds
-  bool converged = false;        ///< the active set settled
-  double max_violation_m = 0.0;  ///< largest constraint violation left (m)
+  int iterations = 0;                    ///< interior-point iterations
+  bool converged = false;                ///< the solver met its optimality tolerance
+  std::string solver_status;             ///< "converged", or why not
+  double max_violation_m = 0.0;          ///< largest limit violation left, as height (m)
+  std::vector<FitViolation> violations;  ///< worst place per road and limit, by priority then size
   std::size_t variables = 0;
   std::size_t constraints = 0;
 };
@@ -65,9 +104,13 @@ struct ProfileFitResult {
 /// Grade limit (fraction, 0.12 for 12 %) that `options` applies to a road of class `cls`.
 [[nodiscard]] double grade_limit(const ProfileFitOptions& options, HighwayClass cls);
 
+/// Design speed (km/h) of a road for its vertical curves: maxspeed, else the class default.
+[[nodiscard]] double design_speed_kmh(const WayAttributes& attributes);
+
 /// Fits every road's profile. `raw` are the DEM samples (elevation_sampling.h). Reports
-/// "fit.not_converged" and "fit.infeasible" to `diagnostics` when the constraints cannot all
-/// be met (e.g. a clearance that no grade-limited ramp can reach).
+/// "fit.not_converged" when the solver did not meet its tolerance and "fit.limit_violated"
+/// (one per road and limit, with the place) when limits conflict, e.g. a clearance that no
+/// grade-limited ramp can reach.
 [[nodiscard]] ProfileFitResult fit_profiles(const RoadNetwork& network, const std::vector<RoadProfile>& raw,
                                             const ProfileFitOptions& options, Diagnostics& diagnostics);
 
