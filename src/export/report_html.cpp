@@ -103,6 +103,7 @@ svg text{font:11px system-ui,sans-serif;fill:#394255}
 .map polyline.br{stroke-width:3.4}.map polyline.tu{stroke-dasharray:3 2.5}.map polyline.nh{stroke:#5c626e}
 details{background:#fff;border:1px solid #dde2ea;border-radius:6px;padding:6px 10px}
 code{font-size:12px}
+tr.fail td{background:#fde8e6}tr.fail strong{color:#b3261e}tr.pass td:nth-child(4){color:#2e7d32}
 )";
 
 void write_kv(std::string& h, std::string_view key, const std::string& value_html) {
@@ -321,6 +322,42 @@ void write_class_tables(std::string& h, const RunReport& r) {
     h += "</table></div>\n";
   }
   h += "</div>\n";
+}
+
+// The quality gates first, failed ones marked; then the limits the fit left violated, where.
+void write_gates(std::string& h, const RunReport& r) {
+  if (r.gates.empty()) return;
+  std::size_t failed = 0;
+  for (const Gate& g : r.gates) failed += g.passed ? 0 : 1;
+  h += "<h2>Quality gates</h2>\n<p class=\"sub\">" +
+       (failed ? integer(failed) + " of " + integer(r.gates.size()) +
+                     " gates failed: the outputs are written, but do not meet their thresholds (exit code 4)."
+               : "Every gate passed.") +
+       "</p>\n<table class=\"gates\">\n<tr><th class=\"l\">gate</th><th>value</th><th>threshold</th>"
+       "<th class=\"l\">result</th><th class=\"l\">where</th></tr>\n";
+  for (const Gate& g : r.gates) {
+    h += std::string("<tr class=\"") + (g.passed ? "pass" : "fail") + "\"><td class=\"l\"><code>" +
+         esc(g.name) + "</code></td><td>" + fixed(g.value, 4) + "</td><td>" + fixed(g.threshold, 4) +
+         "</td><td class=\"l\">" + (g.passed ? "passed" : "<strong>FAILED</strong>") +
+         "</td><td class=\"l\">" + esc(g.where) + "</td></tr>\n";
+  }
+  h += "</table>\n";
+  if (r.fit && !r.fit->violations.empty()) {
+    h += "<h3>Limits the fit left violated</h3>\n<table class=\"violations\">\n<tr><th class=\"l\">limit</th>"
+         "<th>road</th><th>OSM way</th><th>s (m)</th><th>x</th><th>y</th><th>value</th><th>bound</th>"
+         "<th>excess (m)</th><th>places</th></tr>\n";
+    std::size_t shown = 0;
+    for (const FitViolation& v : r.fit->violations) {
+      if (++shown > 200) break;
+      h += "<tr><td class=\"l\">" + esc(to_string(v.limit)) + "</td><td>" +
+           (v.road >= 0 ? std::to_string(v.road) : "J" + std::to_string(v.junction)) + "</td><td>" +
+           (v.road >= 0 ? std::to_string(v.osm_way_id) : std::string()) + "</td><td>" + fixed(v.s_m, 1) +
+           "</td><td>" + fixed(v.xy.x(), 1) + "</td><td>" + fixed(v.xy.y(), 1) + "</td><td>" +
+           fixed(v.value, 4) + "</td><td>" + fixed(v.bound, 4) + "</td><td>" + fixed(v.excess_m, 3) +
+           "</td><td>" + integer(v.places) + "</td></tr>\n";
+    }
+    h += "</table>\n";
+  }
 }
 
 void write_diagnostics(std::string& h, const RunReport& r) {
@@ -789,6 +826,7 @@ void write_report_html(std::ostream& out, const HtmlReportInput& in) {
   h += scale_css(departure_scale());
   h += "</style>\n</head>\n<body>\n<main>\n";
   write_header(h, r);
+  write_gates(h, r);
   write_cards(h, r);
   write_comparison(h, r);
   write_class_tables(h, r);

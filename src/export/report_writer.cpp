@@ -221,6 +221,26 @@ std::string report_json(const RunReport& r) {
   } else {
     j["opendrive"] = nullptr;
   }
+  if (r.model_grades) {
+    const auto grades = [](const GradeCheck& g) {
+      return Json{{"max_grade_percent", round_to(g.max_grade_percent, 1e-2)},
+                  {"max_excess_percent", round_to(g.max_excess_percent, 1e-2)},
+                  {"roads_over", g.roads_over},
+                  {"worst_road", g.worst_road},
+                  {"worst_s_m", round_to(g.worst_s, 1e-2)},
+                  {"worst_x", round_to(g.worst_xy.x(), 1e-2)},
+                  {"worst_y", round_to(g.worst_xy.y(), 1e-2)}};
+    };
+    j["model_grades"] = {{"roads", grades(r.model_grades->roads)},
+                         {"connecting_roads", grades(r.model_grades->connecting_roads)}};
+  }
+  Json gates = Json::object();
+  for (const Gate& g : r.gates) {
+    Json item = {{"value", g.value}, {"threshold", g.threshold}, {"passed", g.passed}};
+    if (!g.where.empty()) item["where"] = g.where;
+    gates[g.name] = item;
+  }
+  j["gates"] = gates;
   if (r.sumo) {
     const SumoSummary& o = *r.sumo;
     j["sumo"] = {{"file", o.file},
@@ -247,6 +267,9 @@ std::string report_json(const RunReport& r) {
                  {"max_internal_lane_grade_percent", round_to(o.max_internal_lane_grade_percent, 1e-2)},
                  {"max_profile_grade_percent", round_to(o.max_profile_grade_percent, 1e-2)},
                  {"netconvert_warnings", o.netconvert_warnings},
+                 {"lanes_without_z", o.lanes_without_z},
+                 {"height_steps", o.height_steps},
+                 {"first_step_lane", o.first_step_lane},
                  {"routes", o.routes},
                  {"step_length_s", o.step_length_s}};
   } else {

@@ -18,7 +18,8 @@
 namespace relief {
 namespace {
 
-Polyline3 parse_shape(const char* text) {
+// A lane shape; `missing_z` is set when a point comes without z (taken as 0).
+Polyline3 parse_shape(const char* text, bool* missing_z = nullptr) {
   Polyline3 out;
   std::istringstream in(text);
   for (std::string token; in >> token;) {
@@ -26,10 +27,42 @@ Polyline3 parse_shape(const char* text) {
     std::replace(token.begin(), token.end(), ',', ' ');
     std::istringstream xyz(token);
     xyz >> p.x() >> p.y();
-    if (!(xyz >> p.z())) p.z() = 0.0;
+    if (!(xyz >> p.z())) {
+      p.z() = 0.0;
+      if (missing_z) *missing_z = true;
+    }
     out.push_back(p);
   }
   return out;
+}
+
+constexpr double kStepRiseM = 0.1;     // a height step: more than this rise...
+constexpr double kStepWindowM = 0.5;   // ...within this plan distance...
+constexpr double kStepMinGrade = 0.5;  // ...and steeper than this there
+
+// The first step along a 3D polyline (two points within kStepWindowM of plan distance along it
+// that differ by more than kStepRiseM in height, at more than kStepMinGrade), or nullopt.
+std::optional<Vec3> first_step(const Polyline3& line) {
+  std::size_t j = 0;
+  double run = 0.0;  // plan distance along the line from point i to point j
+  for (std::size_t i = 0; i + 1 < line.size(); ++i) {
+    if (j < i) {
+      j = i;
+      run = 0.0;
+    }
+    while (j + 1 < line.size() && run + (line[j + 1] - line[j]).head<2>().norm() <= kStepWindowM) {
+      run += (line[j + 1] - line[j]).head<2>().norm();
+      ++j;
+    }
+    for (std::size_t k = i + 1; k <= j; ++k) {
+      const double dz = std::abs(line[k].z() - line[i].z());
+      double along = 0.0;
+      for (std::size_t q = i + 1; q <= k; ++q) along += (line[q] - line[q - 1]).head<2>().norm();
+      if (dz > kStepRiseM && dz > kStepMinGrade * along) return line[i];
+    }
+    if (j > i) run -= (line[i + 1] - line[i]).head<2>().norm();
+  }
+  return std::nullopt;
 }
 
 std::optional<int> param_int(const pugi::xml_node& node, const char* key) {
@@ -271,8 +304,16 @@ SumoNetCheck check_sumo_net(std::string_view net_xml, const RoadModel& model, co
     if (!internal) ++check.edges;
     for (const pugi::xml_node& lane : edge.children("lane")) {
       const std::string id = lane.attribute("id").as_string();
-      const Polyline3 shape = parse_shape(lane.attribute("shape").as_string());
+      bool missing_z = false;
+      const Polyline3 shape = parse_shape(lane.attribute("shape").as_string(), &missing_z);
+      if (missing_z) ++check.lanes_without_z;
       lane_shapes[id] = shape;
+      if (const auto step = first_step(shape)) {
+        if (check.height_steps++ == 0) {
+          check.first_step_lane = id;
+          check.first_step_point = *step;
+        }
+      }
       if (!lane.attribute("disallow").empty()) ++check.disallowed_lanes;
       internal ? ++check.internal_lanes : ++check.lanes;
       for (std::size_t i = 1; i < shape.size(); ++i) {
@@ -323,9 +364,14 @@ SumoNetCheck check_sumo_net(std::string_view net_xml, const RoadModel& model, co
     const auto a = lane_shapes.find(from + "_" + c.attribute("fromLane").as_string());
     const auto b = lane_shapes.find(via.empty() ? to + "_" + c.attribute("toLane").as_string() : via);
     if (a == lane_shapes.end() || b == lane_shapes.end() || a->second.empty() || b->second.empty()) continue;
-    check.max_handover_step_m =
-        std::max(check.max_handover_step_m, std::abs(a->second.back().z() - b->second.front().z()));
+    const double step = std::abs(a->second.back().z() - b->second.front().z());
+    check.max_handover_step_m = std::max(check.max_handover_step_m, step);
     ++check.handovers;
+    const double gap = (a->second.back() - b->second.front()).head<2>().norm();
+    if (step > kStepRiseM && step > kStepMinGrade * gap && check.height_steps++ == 0) {
+      check.first_step_lane = a->first;
+      check.first_step_point = a->second.back();
+    }
   }
   for (const pugi::xml_node& j : net.children("junction")) {
     if (std::string_view(j.attribute("type").as_string()) != "internal") ++check.junctions;

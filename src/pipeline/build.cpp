@@ -11,6 +11,7 @@
 #include "relief/core/errors.h"
 #include "relief/export/geojson_writer.h"
 #include "relief/export/opendrive_writer.h"
+#include "relief/export/quality_gates.h"
 #include "relief/export/report_html.h"
 #include "relief/roads/opendrive_reader.h"
 #include "relief/roads/road_model_checks.h"
@@ -239,6 +240,18 @@ BuildResult build(const BuildOptions& options, Diagnostics& diagnostics, const P
     built = timer.run("build road model",
                       [&] { return build_road_model(network, profiles, options.road_model, diagnostics); });
     built->model.name = report.name;
+    // The elevation records' grades against the caps the fit applied (connecting roads: the
+    // steeper road's they join).
+    report.model_grades = timer.run("check road model grades", [&] {
+      ProfileFitOptions caps = options.fit;
+      caps.limits = options.grade_limits;
+      std::vector<double> cap(built->model.roads.size(), -1.0);
+      for (std::size_t i = 0; i < built->model.roads.size(); ++i) {
+        const int source = built->model.roads[i].source_road;
+        if (source >= 0) cap[i] = grade_limit(caps, network.roads[source].attributes.highway);
+      }
+      return check_grades(built->model, cap);
+    });
   }
   // netconvert is the longest chain of the build (SUMO network, netconvert, its check): it
   // starts first and runs in the background while the other outputs are written.
@@ -306,6 +319,12 @@ BuildResult build(const BuildOptions& options, Diagnostics& diagnostics, const P
   if (sumo) report.sumo = finish_sumo(*sumo_in, *sumo, files, timer, result.written, report.outputs);
   if (xodr_check) report.opendrive = xodr_check->take(timer);
   take_validation();
+  report.gates = evaluate_gates(report, options.gates);
+  for (const Gate& g : failed_gates(report.gates)) {
+    diagnostics.report(Severity::error, "gate.failed",
+                       "quality gate " + g.name + " failed: " + std::to_string(g.value) + " against " +
+                           std::to_string(g.threshold) + (g.where.empty() ? "" : ", " + g.where));
+  }
   if (options.outputs.count(Output::html)) {
     report.outputs.push_back("report.html");
     result.written.push_back(options.out_dir / "report.html");

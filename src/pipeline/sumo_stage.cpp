@@ -156,6 +156,10 @@ SumoSummary finish_sumo(const SumoStageInput& in, SumoJob& job, OutputSet& files
     summary.xy_max_m = check.xy_max_m;
     summary.xy_max_lane = check.xy_max_lane;
     summary.max_handover_step_m = check.max_handover_step_m;
+    summary.lanes_without_z = check.lanes_without_z;
+    summary.height_steps = check.height_steps;
+    summary.first_step_lane = check.first_step_lane;
+    summary.first_step_point = check.first_step_point;
     summary.max_lane_grade_percent = check.max_lane_grade_percent;
     summary.max_internal_lane_grade_percent = check.max_internal_lane_grade_percent;
     if (check.points_unmapped > 0) {

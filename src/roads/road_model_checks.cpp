@@ -1,5 +1,7 @@
 #include "relief/roads/road_model_checks.h"
 
+#include "relief/core/errors.h"
+
 #include <cmath>
 
 #include "relief/roads/road_surface.h"
@@ -91,6 +93,49 @@ ModelDeviation compare_models(const RoadModel& a, const RoadModel& b, double ste
     }
   }
   return d;
+}
+
+ModelGrades check_grades(const RoadModel& model, const std::vector<double>& cap, double tolerance,
+                         double step_m) {
+  if (cap.size() != model.roads.size()) throw InvalidInput("check_grades: one cap per road is required");
+  if (!(step_m > 0.0)) throw InvalidInput("check_grades: the step must be > 0 m");
+  // A connecting road's cap: the larger cap of the roads it joins.
+  const auto cap_of = [&](std::size_t i) {
+    if (cap[i] >= 0.0) return cap[i];
+    double c = 0.0;
+    for (const auto& link : {model.roads[i].predecessor, model.roads[i].successor}) {
+      if (!link || link->element != RoadLink::Element::road) continue;
+      const int k = model.road_index(link->id);
+      if (k >= 0 && cap[static_cast<std::size_t>(k)] >= 0.0)
+        c = std::max(c, cap[static_cast<std::size_t>(k)]);
+    }
+    return c;
+  };
+  ModelGrades out;
+  for (std::size_t i = 0; i < model.roads.size(); ++i) {
+    const ModelRoad& road = model.roads[i];
+    GradeCheck& g = road.junction >= 0 ? out.connecting_roads : out.roads;
+    const double limit = cap_of(i);
+    const double length = road.length();
+    const int steps = std::max(1, static_cast<int>(std::ceil(length / step_m)));
+    double road_worst = 0.0;
+    for (int k = 0; k < steps; ++k) {
+      const double s0 = length * k / steps, s1 = length * (k + 1) / steps;
+      const double grade =
+          std::abs(road.elevation.value(s1) - road.elevation.value(s0)) / std::max(s1 - s0, 1e-9);
+      road_worst = std::max(road_worst, grade);
+      g.max_grade_percent = std::max(g.max_grade_percent, 100.0 * grade);
+      const double excess = 100.0 * (grade - limit);
+      if (excess > g.max_excess_percent) {
+        g.max_excess_percent = excess;
+        g.worst_road = road.id;
+        g.worst_s = 0.5 * (s0 + s1);
+        g.worst_xy = road.plan.at(g.worst_s).position;
+      }
+    }
+    if (road_worst > limit + tolerance) ++g.roads_over;
+  }
+  return out;
 }
 
 }  // namespace relief

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # End-to-end checks of the relief CLI: a good build, and every bad input with its documented
-# exit code (0 done, 1 internal, 2 usage, 3 bad input), a message that names the file and the
-# problem, and no output files left behind.
+# exit code (0 done, 1 internal, 2 usage, 3 bad input, 4 outputs failed quality gates), a message
+# that names the file and the
+# problem, and no output files left behind (but with exit 4, every output).
 set -u
 : "${RELIEF:?path of the relief binary}" "${RELIEF_SOURCE_DIR:?}" "${RELIEF_TMP:?}"
 rm -rf "$RELIEF_TMP" && mkdir -p "$RELIEF_TMP"
@@ -129,13 +130,19 @@ assert abs(r["gradient"]["max_percent"] - 10.0) < 0.15, r["gradient"]
 assert r["inputs"]["dems"][0]["vertical_unit"] == "ft" and r["inputs"]["dems"][0]["unit_source"] == "user"
 PY
 out="$RELIEF_TMP/feet_unstated"
-check "feet dem without unit" run 0 "$out" build --osm "$fix/hill.osm" --dem "$RELIEF_TMP/feet.tif" --out "$out" --quiet
+# Read as metres, the feet DEM is a 38 % plane: steeper than the junctions may be (35 %), so the
+# connecting roads across them are over their caps and the build says so loudly (exit 4), with
+# every output written.
+check "feet dem without unit" run 4 "$out" build --osm "$fix/hill.osm" --dem "$RELIEF_TMP/feet.tif" --out "$out" --quiet
+check "feet dem gate named" grep -q "GATE FAILED connecting_road_grade_over_cap_percent" "$RELIEF_TMP/stdout"
+check "feet dem outputs written" test -s "$out/hill.xodr"
 check "feet dem unstated is 3.28x steeper" python3 - "$out/report.json" <<'PY'
 import json, sys
 r = json.load(open(sys.argv[1]))
-# 3.28 x the metre DEM's 10 %; the plane (38 % fall line) is steeper than a junction may be (35 %), so the
-# roads bend a little near junctions
+# 3.28 x the metre DEM's 10 %; the roads bend a little near the junctions, whose planes are capped
 assert abs(r["gradient"]["max_percent"] - 32.81) < 1.0, r["gradient"]
+assert not r["gates"]["connecting_road_grade_over_cap_percent"]["passed"], r["gates"]
+assert r["gates"]["fit_converged"]["passed"], r["gates"]
 PY
 
 # Rasters through GDAL's virtual file systems: a VRT mosaic and a zipped DEM.

@@ -42,14 +42,32 @@ struct BuildArgs {
   double mesh_tolerance_m = 0.02;
   double terrain_tolerance_m = 0.25;
   double mesh_tile_size_m = 0.0;
+  double max_ground_departure_m = 15.0;
+  bool no_design_curves = false;
+  std::vector<std::string> gates;
+  std::string gate_mode = "enforce";
 };
+
+// The quality gates, failed ones first and loud; the rest on one line.
+void print_gates(std::ostream& out, const RunReport& r) {
+  const std::vector<Gate> failed = failed_gates(r.gates);
+  for (const Gate& g : failed) {
+    out << "  GATE FAILED " << g.name << ": " << g.value << " (threshold " << g.threshold << ")"
+        << (g.where.empty() ? "" : ", " + g.where) << "\n";
+  }
+  if (!r.gates.empty()) {
+    out << "  gates      " << (r.gates.size() - failed.size()) << " of " << r.gates.size() << " passed"
+        << (failed.empty() ? "" : " (see above; exit code 4)") << "\n";
+  }
+}
 
 void print_summary(const BuildResult& result) {
   const RunReport& r = result.report;
   const NetworkStats& n = r.network;
   std::ostringstream out;
-  out << "relief build: " << r.name << "\n"
-      << "  network    " << n.roads << " roads, " << n.junctions << " junctions (" << n.intersections
+  out << "relief build: " << r.name << "\n";
+  print_gates(out, r);
+  out << "  network    " << n.roads << " roads, " << n.junctions << " junctions (" << n.intersections
       << " intersections, " << n.attribute_changes << " attribute changes), " << n.dead_ends << " dead ends, "
       << n.roundabouts << " roundabouts, " << n.traffic_signals << " signals, " << fixed(n.length_km, 2)
       << " km\n"
@@ -237,6 +255,23 @@ Runner add_build_command(CLI::App& app) {
       ->check(CLI::PositiveNumber);
   cmd->add_flag("--no-compare", args->no_compare,
                 "run only the chosen profile method (no comparison in the report)");
+  cmd->add_option("--max-ground-departure", args->max_ground_departure_m,
+                  "fit: a road on the ground stays within this of the DEM, m (0: no bound)")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_flag("--no-design-curves", args->no_design_curves,
+                "fit: no design-speed vertical curves on motorways..primary roads (physical bound only)");
+  cmd->add_option(
+      "--gate", args->gates, "quality gate threshold, NAME=VALUE (repeatable); names: " + [] {
+        std::string names;
+        for (const std::string& n : GateThresholds::names()) names += (names.empty() ? "" : ", ") + n;
+        return names;
+      }());
+  cmd->add_option("--gates", args->gate_mode,
+                  "enforce: exit with 4 when an output fails a quality gate (outputs are written); report: "
+                  "report failed gates but exit with 0")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"enforce", "report"}));
 
   return [args] {
     return run_reporting_errors([&] {
@@ -272,6 +307,22 @@ Runner add_build_command(CLI::App& app) {
       options.fit.clearance_m = args->clearance_m;
       options.fit.cutoff_wavelength_m = args->wavelength_m;
       options.fit.max_curvature_per_m = args->max_curvature;
+      options.fit.max_ground_departure_m = args->max_ground_departure_m;
+      options.fit.design_curves = !args->no_design_curves;
+      for (const std::string& item : args->gates) {
+        const std::size_t eq = item.find('=');
+        double value = 0.0;
+        try {
+          std::size_t used = 0;
+          value = std::stod(item.substr(eq == std::string::npos ? item.size() : eq + 1), &used);
+          if (eq == std::string::npos || used != item.size() - eq - 1) throw std::invalid_argument(item);
+        } catch (const std::exception&) {
+          throw CLI::ValidationError("--gate", "'" + item + "' is not NAME=VALUE");
+        }
+        if (!options.gates.set(item.substr(0, eq), value)) {
+          throw CLI::ValidationError("--gate", "'" + item.substr(0, eq) + "' is not a quality gate");
+        }
+      }
       options.compare_methods = !args->no_compare;
       options.opendrive_rev_minor = args->opendrive_minor;
       for (const std::string& item : args->vclass_max_grade) {
@@ -331,7 +382,8 @@ Runner add_build_command(CLI::App& app) {
       const BuildResult result = build(options, diagnostics, stderr_progress(args->quiet));
       if (!args->quiet) print_diagnostics_summary(diagnostics);
       print_summary(result);
-      return static_cast<int>(kOk);
+      const bool failed = !failed_gates(result.report.gates).empty();
+      return static_cast<int>(failed && args->gate_mode == "enforce" ? kGateFailed : kOk);
     });
   };
 }

@@ -9,7 +9,8 @@
 namespace relief::cli {
 
 /// Documented exit codes.
-enum ExitCode : int { kOk = 0, kInternalError = 1, kUsage = 2, kBadInput = 3 };
+/// 4: built, and every output written, but outputs failed quality gates (quality_gates.h).
+enum ExitCode : int { kOk = 0, kInternalError = 1, kUsage = 2, kBadInput = 3, kGateFailed = 4 };
 
 using Runner = std::function<int()>;
 

@@ -1,5 +1,6 @@
 // relief: elevation-aware 3D road networks from OpenStreetMap and DEMs.
-// Exit codes: 0 done, 1 internal error, 2 bad usage, 3 bad input.
+// Exit codes: 0 done, 1 internal error, 2 bad usage, 3 bad input, 4 built but outputs failed
+// quality gates.
 #include <iostream>
 
 #include "commands.h"
@@ -9,7 +10,8 @@ int main(int argc, char** argv) {
   using namespace relief::cli;
   CLI::App app{"relief " + relief::relief_version() +
                ": elevation-aware 3D road networks from OpenStreetMap and DEMs\n"
-               "Exit codes: 0 done, 1 internal error, 2 bad usage, 3 bad input."};
+               "Exit codes: 0 done, 1 internal error, 2 bad usage, 3 bad input, 4 built but outputs failed "
+               "quality gates."};
   app.set_version_flag("--version", relief::relief_version());
   app.require_subcommand(1);
   const Runner build = add_build_command(app);

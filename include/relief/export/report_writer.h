@@ -12,6 +12,7 @@
 #include "relief/geometry/geo_frame.h"
 #include "relief/geometry/mesh_quality.h"
 #include "relief/roads/profile_fit.h"
+#include "relief/roads/road_model_checks.h"
 #include "relief/roads/validation.h"
 #include "relief/terrain/dem_source.h"
 
@@ -101,6 +102,10 @@ struct SumoSummary {
   double max_internal_lane_grade_percent = 0.0;  ///< junction-internal lanes (connecting roads)
   double max_profile_grade_percent = 0.0;        ///< relief's profiles over the same roads
   std::size_t netconvert_warnings = 0;
+  std::size_t lanes_without_z = 0;  ///< lanes with a shape point without z
+  std::size_t height_steps = 0;     ///< steps along lanes and at hand-overs (sumo_checks.h)
+  std::string first_step_lane;
+  Vec3 first_step_point = Vec3::Zero();
   std::size_t routes = 0;  ///< vehicles in NAME.rou.xml (0: no demand asked for)
   double step_length_s = 0.0;
 };
@@ -132,6 +137,15 @@ struct MeshSummary {
   double terrain_max_cut_m = 0.0, terrain_max_fill_m = 0.0;
 };
 
+/// One quality gate's outcome (quality_gates.h).
+struct Gate {
+  std::string name;
+  double value = 0.0;
+  double threshold = 0.0;
+  bool passed = true;
+  std::string where;  ///< the place of the worst case, when known and failed
+};
+
 struct RunReport {
   std::string name;
   std::string created_utc;  ///< ISO 8601
@@ -156,8 +170,10 @@ struct RunReport {
   std::optional<PaperSummary> paper;
   GradeLimits grade_limits = GradeLimits::paper();
   std::optional<OpenDriveSummary> opendrive;
+  std::optional<ModelGrades> model_grades;  ///< the road model's elevation records vs the caps
   std::optional<SumoSummary> sumo;
   std::optional<MeshSummary> mesh;
+  std::vector<Gate> gates;
   std::vector<std::pair<std::string, double>> timings_s;  ///< stage -> seconds, in order
   double wall_s = 0.0;               ///< the whole run's wall time (stages may overlap); 0 when not measured
   std::vector<std::string> outputs;  ///< file names written

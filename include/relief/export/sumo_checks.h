@@ -42,6 +42,13 @@ struct SumoNetCheck {
   double max_lane_grade_percent = 0.0;           ///< steepest segment (>= 1 m) of a normal lane
   double max_internal_lane_grade_percent = 0.0;  ///< the same for junction-internal lanes
   std::size_t disallowed_lanes = 0;              ///< lanes with a `disallow` list
+  std::size_t lanes_without_z = 0;               ///< lanes with a shape point given without z
+  /// Height steps: more than 0.1 m of height within 0.5 m of plan distance and steeper than
+  /// 50 % there, along a lane (internal lanes included) or where one hands over to the next.
+  /// SF's real 35 % streets are no step; a lane climbing a kerb is.
+  std::size_t height_steps = 0;
+  std::string first_step_lane;  ///< lane of the first step found (empty: none)
+  Vec3 first_step_point = Vec3::Zero();
 };
 
 /// Parses `net_xml` (a .net.xml written from `model`; edge/connection params odr.road and

@@ -11,6 +11,7 @@
 
 #include "relief/core/diagnostics.h"
 #include "relief/export/mesh_writer.h"
+#include "relief/export/quality_gates.h"
 #include "relief/export/report_writer.h"
 #include "relief/export/sumo_network.h"
 #include "relief/export/sumo_tools.h"
@@ -72,6 +73,8 @@ struct BuildOptions {
   /// road's end edge where it enters a tunnel, so that the way in stays open.
   double tunnel_portal_height_m = 5.0;
   std::set<MeshFormat> mesh_formats = {MeshFormat::glb, MeshFormat::obj, MeshFormat::fbx};
+  /// Thresholds of the quality gates checked on the outputs (quality_gates.h).
+  GateThresholds gates;
   /// Besides the whole scene, the scene cut into tiles of this size (m) in every format, as
   /// NAME_Tile_X_Y (see split_into_tiles); 0: no tiles.
   double mesh_tile_size_m = 0.0;

@@ -21,6 +21,29 @@ struct LinkContinuity {
 /// borders of each linked lane pair (lane.predecessor / lane.successor) must meet.
 [[nodiscard]] LinkContinuity check_link_continuity(const RoadModel& model, double tolerance_m = 0.01);
 
+/// Grades of the elevation records against the caps (fraction, 0.35 for 35 %), roads and
+/// connecting roads apart (a connecting road runs along its lane's centre, so its record's grade
+/// is the grade a vehicle drives there).
+struct GradeCheck {
+  double max_grade_percent = 0.0;
+  double max_excess_percent = 0.0;  ///< largest grade minus the road's cap (0 when none over)
+  std::size_t roads_over = 0;       ///< roads with a grade over their cap + the tolerance
+  int worst_road = -1;              ///< OpenDRIVE id of the largest excess
+  double worst_s = 0.0;
+  Vec2 worst_xy = Vec2::Zero();
+};
+struct ModelGrades {
+  GradeCheck roads;
+  GradeCheck connecting_roads;
+};
+
+/// Samples every road's elevation record every `step_m` metres (the grade of each chord) and
+/// compares it with `cap[i]` for the road at index i (a connecting road: the largest cap of the
+/// two roads it joins, when given as a negative number the cap is taken from its links). Roads
+/// over cap + `tolerance` (fraction) are counted.
+[[nodiscard]] ModelGrades check_grades(const RoadModel& model, const std::vector<double>& cap,
+                                       double tolerance = 0.0, double step_m = 0.5);
+
 struct ModelDeviation {
   double max_xy_m = 0.0;
   double max_z_m = 0.0;
