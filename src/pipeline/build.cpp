@@ -139,8 +139,17 @@ BuildResult build(const BuildOptions& options, Diagnostics& diagnostics, const P
   });
   report.dems = dem.sources();
 
-  const ElevationSamples samples = timer.run(
+  ElevationSamples samples = timer.run(
       "sample elevation", [&] { return sample_elevation(network, dem, options.sampling, diagnostics); });
+  // Where the road as driven rounds a sharp OSM vertex it is shorter than the polyline: the fit
+  // takes grades and curvatures along the driven road.
+  timer.run("driven stations", [&] {
+    for (const Road& road : network.roads) {
+      RoadProfile& p = samples.profiles[road.id];
+      if (p.size() >= 2) p.driven_s = driven_stations(road, p, options.road_model);
+    }
+    return 0;
+  });
   report.samples = samples.samples;
   report.void_samples = samples.void_samples;
   report.uncovered_samples = samples.uncovered_samples;

@@ -106,6 +106,12 @@ double cross2(const Vec2& a, const Vec2& b) {
   return a.x() * b.y() - a.y() * b.x();
 }
 
+// Arc length of station i as driven (RoadProfile::driven_s), where grades and curvatures are
+// taken; the OSM polyline's when unknown.
+double driven(const RoadProfile& p, std::size_t i) {
+  return p.driven_s.empty() ? p.s[i] : p.driven_s[i];
+}
+
 bool is_structure(const Road& road) {
   return road.attributes.bridge || road.attributes.tunnel;
 }
@@ -471,7 +477,7 @@ ProfileFitResult fit_profiles(const RoadNetwork& network, const std::vector<Road
     // find their kinks one round at a time).
     const bool design = has_design_curves(network.roads[r], options) || separated[r];
     for (std::size_t i = 1; i + 1 < np; ++i) {
-      const double h1 = p.s[i] - p.s[i - 1], h2 = p.s[i + 1] - p.s[i];
+      const double h1 = driven(p, i) - driven(p, i - 1), h2 = driven(p, i + 1) - driven(p, i);
       const auto c = curvature_row(h1, h2);
       const double h = 0.5 * (std::max(h1, kMinCurvatureSpacing) + std::max(h2, kMinCurvatureSpacing));
       const double w = road_lambda * h;
@@ -530,7 +536,7 @@ ProfileFitResult fit_profiles(const RoadNetwork& network, const std::vector<Road
     for (std::size_t i = 0; i + 1 < p.size(); ++i) {
       const std::size_t a = vars.of(r, i, p.size()), b = vars.of(r, i + 1, p.size());
       if (a == b) continue;
-      const double ds = p.s[i + 1] - p.s[i];
+      const double ds = driven(p, i + 1) - driven(p, i);
       rows.add({{b, 1.0}, {a, -1.0}}, -g * ds, g * ds,
                {FitLimit::grade, static_cast<int>(r), static_cast<std::uint32_t>(i)});
     }
@@ -658,7 +664,7 @@ ProfileFitResult fit_profiles(const RoadNetwork& network, const std::vector<Road
           v.bound = options.max_ground_departure_m;
           break;
         case FitLimit::grade: {
-          const double ds = p.s[tag.station + 1] - p.s[tag.station];
+          const double ds = driven(p, tag.station + 1) - driven(p, tag.station);
           v.value = 100.0 * std::abs(value) / ds;
           v.bound = 100.0 * grade_limit(options, road.attributes.highway);
           v.s_m += 0.5 * ds;
@@ -669,8 +675,8 @@ ProfileFitResult fit_profiles(const RoadNetwork& network, const std::vector<Road
           v.bound = options.clearance_m;
           break;
         case FitLimit::vertical_curve: {
-          const double h1 = p.s[tag.station] - p.s[tag.station - 1];
-          const double h2 = p.s[tag.station + 1] - p.s[tag.station];
+          const double h1 = driven(p, tag.station) - driven(p, tag.station - 1);
+          const double h2 = driven(p, tag.station + 1) - driven(p, tag.station);
           const double h = 0.5 * (h1 + h2);
           v.value = value / (h * h);
           const auto [crest, sag] = curvature_bounds(road, options);

@@ -314,6 +314,12 @@ double outer_border_t(const WayAttributes& a) {
   return 0.5 * a.lane_width_m * (a.lanes_forward + (a.oneway ? 0 : a.lanes_backward));
 }
 
+// The smallest radius the reference line rounds a vertex by: the road's outer border plus a
+// margin, so that no lane border folds.
+double minimum_radius(const Road& road, const RoadModelOptions& options) {
+  return outer_border_t(road.attributes) + options.min_radius_margin_m;
+}
+
 double cross2(const Vec2& a, const Vec2& b) {
   return a.x() * b.y() - a.y() * b.x();
 }
@@ -386,6 +392,17 @@ double segment_polygon_distance(const Vec2& a, const Vec2& b, const Polyline2& p
 
 }  // namespace
 
+std::vector<double> driven_stations(const Road& road, const RoadProfile& profile,
+                                    const RoadModelOptions& options) {
+  std::vector<double> ref_s;
+  (void)fit_reference_line(road.points, {options.plan_tolerance_m, 1e-3, minimum_radius(road, options)},
+                           &ref_s, nullptr);
+  const std::vector<double> cumulative = cumulative_length(road.points);
+  std::vector<double> out(profile.size());
+  for (std::size_t i = 0; i < profile.size(); ++i) out[i] = map_station(cumulative, ref_s, profile.s[i]);
+  return out;
+}
+
 RoadModelBuild build_road_model(const RoadNetwork& network, const std::vector<RoadProfile>& profiles,
                                 const RoadModelOptions& options, Diagnostics& diagnostics) {
   if (profiles.size() != network.roads.size())
@@ -444,9 +461,7 @@ RoadModelBuild build_road_model(const RoadNetwork& network, const std::vector<Ro
     const double cap = options.max_trim_fraction * cumulative_of[road.id].back();
     trim[road.id] = {std::min(radius[road.start_junction], cap), std::min(radius[road.end_junction], cap)};
   }
-  const auto min_radius = [&](const Road& road) {
-    return outer_border_t(road.attributes) + options.min_radius_margin_m;
-  };
+  const auto min_radius = [&](const Road& road) { return minimum_radius(road, options); };
   const auto fit_part = [&](const Road& road, std::vector<double>& kept_s, std::vector<double>& ref_s,
                             ReferenceLineReport* report) {
     const std::vector<double>& cumulative = cumulative_of[road.id];

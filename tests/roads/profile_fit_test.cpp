@@ -81,6 +81,30 @@ TEST(ProfileFit, BumpSteeperThanTheLimitIsCappedUnderDesignAndKeptUnderFidelity)
   EXPECT_LE(max_grade_percent(kept.profiles), 35.0 + 1e-3);
 }
 
+TEST(ProfileFit, GradesAreTakenAlongTheRoadAsDriven) {
+  // A 10 % ramp as drawn; the road as driven is half as long (as around a rounded hairpin), so
+  // its grade as driven is 20 %, over a motorway's 8 % design cap: the fit must flatten it to
+  // 8 % as driven, 4 % as drawn.
+  const RoadNetwork net = test::make_network({{{0, 0}, {400, 0}}}, {with_class(HighwayClass::motorway)});
+  auto raw = drape(net, [](const Vec2& p) { return 0.1 * p.x(); });
+  raw[0].driven_s = raw[0].s;
+  for (double& s : raw[0].driven_s) s *= 0.5;
+  Diagnostics d;
+  ProfileFitOptions o;
+  o.policy = GradePolicy::design;
+  const ProfileFitResult fit = fit_profiles(net, raw, o, d);
+  const auto& p = fit.profiles[0];
+  double steepest_drawn = 0.0;
+  for (std::size_t i = 0; i + 1 < p.size(); ++i)
+    steepest_drawn = std::max(steepest_drawn, std::abs(p.z[i + 1] - p.z[i]) / (p.s[i + 1] - p.s[i]));
+  EXPECT_LE(steepest_drawn, 0.04 + 1e-4);
+  EXPECT_GT(steepest_drawn, 0.039);
+  // Without driven stations the drawn 10 % is over the cap only by 2 %: 8 % as drawn.
+  raw[0].driven_s.clear();
+  const ProfileFitResult plain = fit_profiles(net, raw, o, d);
+  EXPECT_NEAR(plain.profiles[0].z.back() - plain.profiles[0].z.front(), 32.0, 0.05);
+}
+
 TEST(ProfileFit, BridgeOverAValleyStaysASmoothDeck) {
   // Plateau at 50 m with a V-shaped valley 30 m deep between x = 150 and 350; the middle road
   // is the bridge.

@@ -386,5 +386,31 @@ TEST(RoadModelBuilder, TurnLanesDecideWhichLaneMakesWhichMovement) {
   EXPECT_LT(check_link_continuity(b.model).max_horizontal_m, 1e-6);
 }
 
+TEST(RoadModelBuilder, DrivenStationsFollowTheRoundedReferenceLine) {
+  // A straight road is driven as drawn.
+  const RoadNetwork line = test::make_network({{{0, 0}, {100, 0}}});
+  const std::vector<RoadProfile> lp = drape(line);
+  const std::vector<double> ls = driven_stations(line.roads[0], lp[0], {});
+  ASSERT_EQ(ls.size(), lp[0].size());
+  for (std::size_t i = 0; i < ls.size(); ++i) EXPECT_NEAR(ls[i], lp[0].s[i], 1e-6);
+
+  // A hairpin: 100 m out, 100 m back 20 m to the side. The reference line rounds the turn with
+  // a radius of at least the road's outer border plus the margin, so the road as driven is
+  // shorter than the polyline; its stations grow monotonically and start at 0.
+  const RoadNetwork pin = test::make_network({{{0, 0}, {100, 0}, {0, 20}}});
+  const std::vector<RoadProfile> pp = drape(pin);
+  const std::vector<double> ps = driven_stations(pin.roads[0], pp[0], {});
+  ASSERT_EQ(ps.size(), pp[0].size());
+  EXPECT_NEAR(ps.front(), 0.0, 1e-9);
+  for (std::size_t i = 1; i < ps.size(); ++i) EXPECT_GE(ps[i], ps[i - 1]);
+  const double drawn = pp[0].s.back();  // 100 + 101.98 m
+  EXPECT_NEAR(drawn, 100.0 + std::hypot(100.0, 20.0), 1e-6);
+  // Rounding a turn of 168.7 deg at radius r cuts 2 r tan(84.3 deg) - r (pi - 0.197) = 17.06 r
+  // of road; the smallest radius is the outer border 3 m plus the 0.5 m margin: 59.7 m, and a
+  // larger radius would cut more.
+  EXPECT_LT(ps.back(), drawn - 59.5);
+  EXPECT_GT(ps.back(), 0.0);
+}
+
 }  // namespace
 }  // namespace relief

@@ -35,7 +35,10 @@ struct RoadProfile {
   std::vector<double> z;              ///< metres
   std::vector<std::uint8_t> at_node;  ///< 1 where the sample is an OSM node of the road
   std::vector<std::uint8_t> filled;   ///< 1 where the DEM had no height and z was filled
-  bool has_height = true;             ///< false: no height could be found for any sample
+  /// Arc length along the road as driven at each station (road_model_builder.h,
+  /// driven_stations), when known; empty: s. The fit takes grades and curvatures along it.
+  std::vector<double> driven_s;
+  bool has_height = true;  ///< false: no height could be found for any sample
 
   [[nodiscard]] std::size_t size() const { return s.size(); }
 };

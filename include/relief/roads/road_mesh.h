@@ -18,8 +18,8 @@ struct RoadMeshOptions {
   /// Largest distance between the mesh and the OpenDRIVE surface S(road, s, t) (chord error
   /// of the sampling along s, in plan and in height).
   double tolerance_m = 0.02;
-  double max_spacing_m = 10.0;  ///< longest step along a road even where it is flat and straight
-  bool markings = true;         ///< Road_Marking strips from the lanes' road marks
+  double max_spacing_m = 10.0;    ///< longest step along a road even where it is flat and straight
+  bool markings = true;           ///< Road_Marking strips from the lanes' road marks
   double marking_lift_m = 0.005;  ///< markings float this far above the road (no z-fighting)
 };
 
@@ -30,7 +30,7 @@ struct RoadMeshes {
   /// Per triangle of `road`: the OpenDRIVE road id it belongs to, or -1 - junction id.
   std::vector<int> road_triangle_owner;
   std::size_t junctions_meshed = 0;
-  std::size_t junctions_failed = 0;  ///< reported as "mesh.junction_failed"; their area is left open
+  std::size_t junctions_failed = 0;      ///< reported as "mesh.junction_failed"; their area is left open
   double max_surface_deviation_m = 0.0;  ///< largest measured mesh-to-S(road, s, t) distance on roads
 };
 

@@ -78,6 +78,13 @@ struct RoadModelBuild {
   std::vector<int> model_road_of;  ///< per network road: its index in model.roads, or -1
 };
 
+/// Arc length along the road as driven (its reference line, the OSM polyline with every vertex
+/// rounded by the options' minimum radius) at each of the profile's stations, for the whole
+/// untrimmed road. Where a hairpin's OSM vertex is rounded the driven road is shorter than the
+/// polyline, and grades measured along it are steeper: the fit takes its grade limits there.
+[[nodiscard]] std::vector<double> driven_stations(const Road& road, const RoadProfile& profile,
+                                                  const RoadModelOptions& options);
+
 /// `profiles` are parallel to network.roads (stations with fitted z).
 [[nodiscard]] RoadModelBuild build_road_model(const RoadNetwork& network,
                                               const std::vector<RoadProfile>& profiles,
