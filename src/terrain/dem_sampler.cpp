@@ -442,7 +442,8 @@ void void_implausible_cells(std::vector<double>& z, const gdal::PixelWindow& win
                             (implausible.count == 1 ? " cell" : " cells") +
                             " outside the plausible heights " + format_number(options.plausible_min_m) +
                             " to " + format_number(options.plausible_max_m) +
-                            " m (fill values not flagged as nodata?) treated as voids: " +
+                            " m (fill values not flagged as nodata?) treated as " +
+                            (implausible.count == 1 ? "a void: " : "voids: ") +
                             describe_cells(implausible, window, grid, info));
   }
   if (!std::isfinite(options.spike_min_step_m)) return;

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "relief/core/errors.h"
 #include "support/synthetic.h"
 
@@ -102,6 +104,46 @@ TEST(ElevationSampling, RoadsOutsideTheDemAreACoverageError) {
   EXPECT_GT(s.uncovered_samples, 150u);
   EXPECT_EQ(d.count("elevation.uncovered"), 1u);
   EXPECT_TRUE(s.profiles[0].has_height);
+}
+
+TEST(ElevationSampling, ImplausibleDemCellsUnderARoadAreFilledLikeNodata) {
+  // A 1e30 cell and a +100 m spike on the road's line, without a nodata flag; and the same
+  // plane with those two cells flagged: the road gets the same heights from both.
+  const auto bad_cell = [](double x, double y, double at_x) {
+    return std::abs(x - at_x) < 1.0 && std::abs(y - 5.0) < 1.0;
+  };
+  const auto bad = [&](double x, double y) {
+    if (bad_cell(x, y, 45.0)) return plane(x, y) + 100.0;
+    if (bad_cell(x, y, -55.0)) return 1e30;
+    return plane(x, y);
+  };
+  const auto flagged = [&](double x, double y) {
+    return bad_cell(x, y, 45.0) || bad_cell(x, y, -55.0) ? -9999.0 : plane(x, y);
+  };
+  const RoadNetwork net = test::make_network({{{-150, 5}, {150, 5}}});
+  const Aabb2 area{Vec2(-150, 5), Vec2(150, 5)};
+  Diagnostics d, d_flagged;
+  const DemSampler bad_dem({test::write_local_dem("es_bad", 300, 10, bad)}, net.frame, area, {}, &d);
+  const DemSampler flagged_dem({test::write_local_dem("es_flagged", 300, 10, flagged, -9999.0)}, net.frame,
+                               area, {}, &d_flagged);
+  const ElevationSamples s = sample_elevation(net, bad_dem, {}, d);
+  const ElevationSamples f = sample_elevation(net, flagged_dem, {}, d_flagged);
+  EXPECT_EQ(d.count("dem.spike"), 1u);
+  EXPECT_EQ(d.count("dem.implausible_height"), 1u);
+  EXPECT_EQ(s.void_samples, f.void_samples);
+  EXPECT_GE(s.void_samples, 2u);  // the samples at the two cells' centres, filled along the road
+  EXPECT_EQ(d.count("elevation.void"), 1u);
+  EXPECT_EQ(d_flagged.count("elevation.void"), 1u);
+  const RoadProfile& p = s.profiles[0];
+  ASSERT_EQ(p.size(), f.profiles[0].size());
+  double worst = 0.0;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    EXPECT_NEAR(p.z[i], f.profiles[0].z[i], 1e-9) << p.s[i];
+    EXPECT_EQ(p.filled[i], f.profiles[0].filled[i]) << p.s[i];
+    worst = std::max(worst, std::abs(p.z[i] - plane(p.xy[i].x(), p.xy[i].y())));
+  }
+  // Renormalised bilinear next to a void: at most the gradient (0.05) times a cell (10 m).
+  EXPECT_LT(worst, 0.5);
 }
 
 TEST(ElevationSampling, ParseFillPolicy) {
