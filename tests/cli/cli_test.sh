@@ -205,6 +205,16 @@ check "mesh-report text as .glb message" stderr_has "x.glb"
 check "info" run 0 "" info --osm "$fix/hill.osm" --dem "$fix/hill_dem.asc"
 check "info coverage" grep -q "100.00 % with height" "$RELIEF_TMP/stdout"
 
+# A spacing whose samples would exhaust the machine: refused (bad usage) right after reading the
+# roads, naming the estimate and the spacing that fits, nothing written.
+out="$RELIEF_TMP/tiny_spacing"
+start=$SECONDS
+check "tiny spacing refused" run 2 "$out" build --osm "$fix/hill.osm" --dem "$fix/hill_dem.asc" --out "$out" --spacing 1e-6
+check "tiny spacing is refused at once" test $((SECONDS - start)) -le 10
+check "tiny spacing message" stderr_has "sample spacing 1e-06 m would take 3.8e+09 elevation samples"
+check "tiny spacing says what fits" stderr_has "use a spacing of at least"
+check "tiny spacing no outputs" no_outputs "$out"
+
 # Real data with hostile cells: the Potrero DEM copied with one cell under 24th Street set to
 # 1e30 (an unflagged fill value) and one under Carolina Street to 160 m (a spike ~110 m above
 # its neighbours). Both become voids, filled along the roads; without the checks the road RMSE

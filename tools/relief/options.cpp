@@ -70,6 +70,9 @@ int run_reporting_errors(const std::function<int()>& body) {
   } catch (const CLI::ValidationError& e) {
     std::cerr << "relief: bad usage: " << e.what() << "\n";
     return kUsage;
+  } catch (const OptionError& e) {
+    std::cerr << "\nrelief: bad usage: " << e.what() << "\n";
+    return kUsage;
   } catch (const InvalidInput& e) {
     std::cerr << "\nrelief: error: " << e.what() << "\n";
     return kBadInput;

@@ -31,7 +31,8 @@ struct InputArgs {
 [[nodiscard]] LonLatBox parse_bbox(const std::string& text);
 
 /// Runs `body`, mapping relief's exceptions to exit codes and printing their message:
-/// InvalidInput/IoError/ProjectionError -> 3, CLI::ValidationError -> 2, anything else -> 1.
+/// InvalidInput/IoError/ProjectionError -> 3, CLI::ValidationError and OptionError (an option
+/// value the input makes unusable) -> 2, anything else -> 1.
 int run_reporting_errors(const std::function<int()>& body);
 
 }  // namespace relief::cli
