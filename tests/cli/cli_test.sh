@@ -206,7 +206,7 @@ check "info" run 0 "" info --osm "$fix/hill.osm" --dem "$fix/hill_dem.asc"
 check "info coverage" grep -q "100.00 % with height" "$RELIEF_TMP/stdout"
 
 # A spacing whose samples would exhaust the machine: refused (bad usage) right after reading the
-# roads, naming the estimate and the spacing that fits, nothing written.
+# roads, naming the estimate and the spacing that fits, nothing written. Not a number > 0: exit 2.
 out="$RELIEF_TMP/tiny_spacing"
 start=$SECONDS
 check "tiny spacing refused" run 2 "$out" build --osm "$fix/hill.osm" --dem "$fix/hill_dem.asc" --out "$out" --spacing 1e-6
@@ -214,6 +214,10 @@ check "tiny spacing is refused at once" test $((SECONDS - start)) -le 10
 check "tiny spacing message" stderr_has "sample spacing 1e-06 m would take 3.8e+09 elevation samples"
 check "tiny spacing says what fits" stderr_has "use a spacing of at least"
 check "tiny spacing no outputs" no_outputs "$out"
+for bad in nan inf 0 -1; do
+  check "--spacing $bad" run 2 "" build --osm "$fix/hill.osm" --dem "$fix/hill_dem.asc" --out "$RELIEF_TMP/x" --spacing="$bad"
+  check "--spacing $bad message" stderr_has "not a finite number > 0"
+done
 
 # Real data with hostile cells: the Potrero DEM copied with one cell under 24th Street set to
 # 1e30 (an unflagged fill value) and one under Carolina Street to 160 m (a spike ~110 m above

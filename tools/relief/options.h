@@ -27,6 +27,10 @@ struct InputArgs {
   void apply_to(BuildOptions& options) const;
 };
 
+/// Accepts a finite number > 0 (CLI::PositiveNumber lets "nan" and "inf" through, and states
+/// its range as 0 to 1.8e308 written out in full).
+[[nodiscard]] const CLI::Validator& finite_positive();
+
 /// Parses "min_lon,min_lat,max_lon,max_lat".
 [[nodiscard]] LonLatBox parse_bbox(const std::string& text);
 
