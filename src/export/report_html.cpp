@@ -125,6 +125,10 @@ std::string dem_description(const DemInfo& d) {
   s += "<br/>transform: " + (d.transform_name.empty() ? std::string(kDash) : esc(d.transform_name));
   if (d.transform_accuracy_m) s += ", accuracy " + fixed(*d.transform_accuracy_m, 2) + " m";
   if (!d.missing_grids.empty()) s += "<br/>missing grids: " + esc(d.missing_grids);
+  if (d.implausible_cells > 0 || d.spike_cells > 0) {
+    s += "<br/>treated as voids: " + std::to_string(d.implausible_cells) + " cells of implausible height, " +
+         std::to_string(d.spike_cells) + " one-cell spikes or pits";
+  }
   return s;
 }
 

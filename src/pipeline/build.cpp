@@ -133,6 +133,8 @@ BuildResult build(const BuildOptions& options, Diagnostics& diagnostics, const P
   const RoadNetwork& network = loaded.network;
   report.frame = network.frame;
   report.network = network_stats(network);
+  // Options whose cost would exhaust the machine are refused before any DEM is read.
+  check_sample_budget(network, options.sampling);
 
   const DemSampler dem = timer.run("open DEM", [&] {
     return DemSampler(options.dem_paths, network.frame, network_bounds(network), options.dem, &diagnostics);

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iomanip>
 #include <sstream>
 
 #include "relief/core/errors.h"
@@ -61,7 +62,77 @@ bool fill_profile(RoadProfile& p, const std::vector<std::uint8_t>& valid, std::o
   return true;
 }
 
+// Working memory of a build per elevation sample (see SamplingOptions::max_samples).
+constexpr double kBytesPerSample = 700.0;
+
+void require_spacing(double spacing_m) {
+  if (!(std::isfinite(spacing_m) && spacing_m > 0.0)) {
+    std::ostringstream msg;
+    msg << "the sample spacing must be a finite number of metres > 0 (got " << spacing_m << ")";
+    throw OptionError(msg.str());
+  }
+}
+
+// `value` rounded up to 2 significant digits (for a bound the user must stay above).
+double round_up_2(double value) {
+  const double unit = std::pow(10.0, std::floor(std::log10(value)) - 1.0);
+  return std::ceil(value / unit - 1e-9) * unit;
+}
+
+// "91 TB": 2 significant digits in the largest unit not above the value.
+std::string format_bytes(double bytes) {
+  const char* units[] = {"kB", "MB", "GB", "TB", "PB", "EB"};
+  std::size_t u = 0;
+  double value = bytes / 1e3;
+  while (value >= 1e3 && u + 1 < std::size(units)) {
+    value /= 1e3;
+    ++u;
+  }
+  std::ostringstream out;
+  out << std::setprecision(2) << value << " " << units[u];
+  return out.str();
+}
+
 }  // namespace
+
+double estimate_sample_count(const RoadNetwork& network, double spacing_m) {
+  require_spacing(spacing_m);
+  double samples = 0.0;
+  for (const Road& road : network.roads) {
+    samples += length_m(road.points) / spacing_m + static_cast<double>(road.points.size());
+  }
+  return samples;
+}
+
+void check_sample_budget(const RoadNetwork& network, const SamplingOptions& options) {
+  require_spacing(options.spacing_m);
+  if (!(options.max_samples > 0.0)) {
+    std::ostringstream msg;
+    msg << "the sample limit must be > 0 (got " << options.max_samples << ")";
+    throw OptionError(msg.str());
+  }
+  const double samples = estimate_sample_count(network, options.spacing_m);
+  if (samples <= options.max_samples) return;
+  double length = 0.0;
+  double nodes = 0.0;
+  for (const Road& road : network.roads) {
+    length += length_m(road.points);
+    nodes += static_cast<double>(road.points.size());
+  }
+  std::ostringstream msg;
+  msg << std::setprecision(2) << "sample spacing " << options.spacing_m << " m would take " << samples
+      << " elevation samples for " << std::fixed << std::setprecision(1) << length / 1000.0
+      << " km of road and " << std::setprecision(0) << nodes << " OSM nodes, about "
+      << format_bytes(samples * kBytesPerSample) << " of memory (limit " << std::defaultfloat
+      << std::setprecision(2) << options.max_samples << " samples, "
+      << format_bytes(options.max_samples * kBytesPerSample) << "): ";
+  if (nodes < options.max_samples) {
+    msg << "use a spacing of at least " << round_up_2(length / (options.max_samples - nodes)) << " m";
+  } else {
+    msg << "the roads' nodes alone exceed it: build a smaller area (--bbox)";
+  }
+  throw OptionError(msg.str());
+}
 
 std::optional<NodataFill> parse_nodata_fill(std::string_view text) {
   if (text == "interpolate") return NodataFill::interpolate;
@@ -105,7 +176,7 @@ RoadProfile make_stations(const Road& road, double spacing_m) {
 
 ElevationSamples sample_elevation(const RoadNetwork& network, const DemSampler& dem,
                                   const SamplingOptions& options, Diagnostics& diagnostics) {
-  if (!(options.spacing_m > 0.0)) throw InvalidInput("sample spacing must be positive");
+  check_sample_budget(network, options);
   ElevationSamples result;
   result.profiles.reserve(network.roads.size());
   std::vector<std::size_t> offset(network.roads.size() + 1, 0);

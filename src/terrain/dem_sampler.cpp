@@ -9,6 +9,7 @@
 
 #include "relief/core/errors.h"
 #include "relief/geometry/crs_transform.h"
+#include "terrain/dem_sanity.h"
 #include "terrain/gdal_dataset.h"
 
 namespace relief {
@@ -339,6 +340,130 @@ void report_missing_grid(const DemInfo& info, const std::string& frame_crs, Diag
   diagnostics->report(Severity::warning, "dem.datum_grid_missing", message.str());
 }
 
+// Longer side (m) of the cells of each row of `window`: the larger distance in the frame's
+// metric CRS from a cell centre at the window's middle column to its neighbour along the row
+// and across it (a geographic raster's cells narrow away from the equator). Measured on one row
+// in max(1, rows / 64), the rows between taking the last measured size; rows PROJ cannot
+// measure take the nearest measured one. Empty when no row can be measured.
+std::vector<double> cell_sizes_m(const PixelGrid& grid, const gdal::PixelWindow& window,
+                                 const CrsTransform& to_raster) {
+  const int stride = std::max(1, window.rows / 64);
+  const double col = window.col0 + window.cols / 2;
+  const auto centre = [&](double c, double r) {
+    return Vec2(grid.x0 + (c + 0.5) * grid.dx, grid.y0 + (r + 0.5) * grid.dy);
+  };
+  std::vector<double> sizes(static_cast<std::size_t>(window.rows), kNaN);
+  bool any = false;
+  for (int r = 0; r < window.rows; r += stride) {
+    const double row = window.row0 + r;
+    try {
+      const Vec2 p = to_raster.apply_inverse(centre(col, row));
+      const double along = (to_raster.apply_inverse(centre(col + 1.0, row)) - p).norm();
+      const double across = (to_raster.apply_inverse(centre(col, row + 1.0)) - p).norm();
+      const double size = std::max(along, across);
+      if (!std::isfinite(size) || !(size > 0.0)) continue;
+      std::fill(sizes.begin() + r, sizes.begin() + std::min(r + stride, window.rows), size);
+      any = true;
+    } catch (const ProjectionError&) {
+      // Outside the operation's domain: filled from the nearest measured row.
+    }
+  }
+  if (!any) return {};
+  // Unmeasured rows: the size of the previous measured row, else of the next.
+  for (std::size_t r = 1; r < sizes.size(); ++r) {
+    if (std::isnan(sizes[r])) sizes[r] = sizes[r - 1];
+  }
+  for (std::size_t r = sizes.size() - 1; r-- > 0;) {
+    if (std::isnan(sizes[r])) sizes[r] = sizes[r + 1];
+  }
+  return sizes;
+}
+
+// Number of the first cells listed in a dem.implausible_height / dem.spike warning.
+constexpr std::size_t kCellsListed = 5;
+
+// "1e+30 m at lon -122.401003, lat 37.753312 (pixel 31, line 24)" for each listed cell, and
+// how many more there are.
+std::string describe_cells(const terrain_detail::VoidedCells& cells, const gdal::PixelWindow& window,
+                           const PixelGrid& grid, const DemInfo& info) {
+  std::optional<CrsTransform> to_lonlat;
+  try {
+    to_lonlat.emplace(info.crs_wkt, "EPSG:4326");
+  } catch (const ProjectionError&) {
+    // A CRS without a path to WGS84: the cells are given in the raster's own CRS.
+  }
+  std::ostringstream out;
+  for (std::size_t k = 0; k < cells.first.size(); ++k) {
+    const auto& cell = cells.first[k];
+    const int col = window.col0 + cell.col;
+    const int row = window.row0 + cell.row;
+    const Vec2 xy(grid.x0 + (col + 0.5) * grid.dx, grid.y0 + (row + 0.5) * grid.dy);
+    out << (k == 0 ? "" : "; ") << std::setprecision(6) << cell.height_m << " m";
+    if (!std::isnan(cell.around_m)) out << " where its neighbours' median is " << cell.around_m << " m,";
+    std::optional<Vec2> lonlat;
+    if (to_lonlat) {
+      try {
+        lonlat = to_lonlat->apply(xy);
+      } catch (const ProjectionError&) {
+        // Given in the raster's CRS below.
+      }
+    }
+    out << std::fixed << std::setprecision(6);
+    if (lonlat) {
+      out << " at lon " << lonlat->x() << ", lat " << lonlat->y() << " (pixel " << col << ", line " << row
+          << ")";
+    } else {
+      out << " at pixel " << col << ", line " << row << " (" << info.crs << " " << xy.x() << ", " << xy.y()
+          << ")";
+    }
+    out.unsetf(std::ios::floatfield);
+  }
+  if (cells.count > cells.first.size()) out << "; and " << cells.count - cells.first.size() << " more";
+  return out.str();
+}
+
+std::string format_number(double value) {
+  std::ostringstream out;
+  out << value;
+  return out.str();
+}
+
+// Makes the implausible heights and the one-cell spikes of a window voids (`z` in metres),
+// counts them in `info` and reports one warning per kind.
+void void_implausible_cells(std::vector<double>& z, const gdal::PixelWindow& window, const PixelGrid& grid,
+                            const CrsTransform& to_raster, const DemOptions& options, DemInfo& info,
+                            Diagnostics* diagnostics) {
+  const auto implausible = terrain_detail::void_implausible_heights(z, window.cols, options.plausible_min_m,
+                                                                    options.plausible_max_m, kCellsListed);
+  info.implausible_cells = implausible.count;
+  if (implausible.count > 0 && diagnostics != nullptr) {
+    diagnostics->report(Severity::warning, "dem.implausible_height",
+                        "DEM '" + info.path + "': " + std::to_string(implausible.count) +
+                            (implausible.count == 1 ? " cell" : " cells") +
+                            " outside the plausible heights " + format_number(options.plausible_min_m) +
+                            " to " + format_number(options.plausible_max_m) +
+                            " m (fill values not flagged as nodata?) treated as " +
+                            (implausible.count == 1 ? "a void: " : "voids: ") +
+                            describe_cells(implausible, window, grid, info));
+  }
+  if (!std::isfinite(options.spike_min_step_m)) return;
+  const std::vector<double> cell_m = cell_sizes_m(grid, window, to_raster);
+  if (cell_m.empty()) return;  // no row PROJ can measure: spikes cannot be told from slopes
+  const terrain_detail::SpikeCriteria criteria{options.spike_min_step_m, options.spike_step_per_cell,
+                                               options.spike_max_neighbour_spread};
+  const auto spikes = terrain_detail::void_spikes(z, window.cols, cell_m, criteria, kCellsListed);
+  info.spike_cells = spikes.count;
+  if (spikes.count > 0 && diagnostics != nullptr) {
+    diagnostics->report(
+        Severity::warning, "dem.spike",
+        "DEM '" + info.path + "': " + std::to_string(spikes.count) +
+            (spikes.count == 1 ? " one-cell spike or pit" : " one-cell spikes or pits") + " (more than max(" +
+            format_number(options.spike_min_step_m) + " m, " + format_number(options.spike_step_per_cell) +
+            " x the cell size) from the median of 8 neighbours that agree among themselves) treated as " +
+            (spikes.count == 1 ? "a void: " : "voids: ") + describe_cells(spikes, window, grid, info));
+  }
+}
+
 // Why a raster contributes nothing, for the error message when none contributes.
 enum class Unused { none, outside, all_nodata };
 
@@ -365,6 +490,7 @@ Opened open_raster(const std::string& path, const GeoFrame& frame, const Aabb2& 
   const gdal::PixelWindow window = window_over(grid, to_raster.transform_bounds(area_crs));
   if (window.empty()) return {info, std::nullopt, Unused::outside};
   std::vector<double> z = to_metres(dataset.read_window(window), info);
+  void_implausible_cells(z, window, grid, to_raster, options, info, diagnostics);
   if (std::all_of(z.begin(), z.end(), [](double v) { return std::isnan(v); })) {
     return {info, std::nullopt, Unused::all_nodata};
   }
@@ -393,15 +519,40 @@ Opened open_raster(const std::string& path, const GeoFrame& frame, const Aabb2& 
     throw CoverageError(dems + (paths.size() == 1 ? " does" : " do") + " not cover " + roads + extents,
                         100.0);
   }
+  // All nodata because every height was implausible: a raster in the wrong unit or scale.
+  const auto implausible = [](const DemInfo& s) {
+    return s.implausible_cells == 0
+               ? std::string()
+               : " (" + std::to_string(s.implausible_cells) +
+                     " cells there hold implausible heights: a wrong vertical unit or scale?)";
+  };
   if (paths.size() == 1) {
-    throw InvalidInput(dems + " is all nodata over " + roads);
+    throw InvalidInput(dems + " is all nodata over " + roads + implausible(sources[0]));
   }
   std::string reasons;
   for (std::size_t i = 0; i < sources.size(); ++i) {
     reasons += "; '" + sources[i].path + "' " +
-               (unused[i] == Unused::outside ? "does not reach it" : "is all nodata there");
+               (unused[i] == Unused::outside ? "does not reach it"
+                                             : "is all nodata there" + implausible(sources[i]));
   }
   throw InvalidInput(dems + " have no valid height over " + roads + reasons);
+}
+
+// Throws InvalidInput when DemOptions' plausible range or spike criteria are out of range.
+void check_sanity_options(const DemOptions& o) {
+  const auto require = [](bool ok, const std::string& message) {
+    if (!ok) throw InvalidInput("DEM options: " + message);
+  };
+  require(o.plausible_min_m < o.plausible_max_m, "the plausible heights " + format_number(o.plausible_min_m) +
+                                                     " to " + format_number(o.plausible_max_m) +
+                                                     " m are not a range (min < max)");
+  require(o.spike_min_step_m >= 0.0,
+          "spike_min_step_m must be >= 0 m (got " + format_number(o.spike_min_step_m) + ")");
+  require(std::isfinite(o.spike_step_per_cell) && o.spike_step_per_cell >= 0.0,
+          "spike_step_per_cell must be finite and >= 0 (got " + format_number(o.spike_step_per_cell) + ")");
+  require(o.spike_max_neighbour_spread > 0.0 && o.spike_max_neighbour_spread <= 1.0,
+          "spike_max_neighbour_spread must be in (0, 1] (got " + format_number(o.spike_max_neighbour_spread) +
+              ")");
 }
 
 }  // namespace
@@ -422,6 +573,7 @@ DemSampler::DemSampler(const std::vector<std::string>& paths, const GeoFrame& fr
   if (!(options.margin_m >= 0.0)) {
     throw InvalidInput("the DEM margin must be >= 0 m (got " + std::to_string(options.margin_m) + ")");
   }
+  check_sanity_options(options);
   impl_->origin = frame.origin();
   impl_->interpolation = options.interpolation;
 

@@ -212,5 +212,66 @@ check "mesh-report text as .glb message" stderr_has "x.glb"
 check "info" run 0 "" info --osm "$fix/hill.osm" --dem "$fix/hill_dem.asc"
 check "info coverage" grep -q "100.00 % with height" "$RELIEF_TMP/stdout"
 
+# A spacing whose samples would exhaust the machine: refused (bad usage) right after reading the
+# roads, naming the estimate and the spacing that fits, nothing written. Not a number > 0: exit 2.
+out="$RELIEF_TMP/tiny_spacing"
+start=$SECONDS
+check "tiny spacing refused" run 2 "$out" build --osm "$fix/hill.osm" --dem "$fix/hill_dem.asc" --out "$out" --spacing 1e-6
+check "tiny spacing is refused at once" test $((SECONDS - start)) -le 10
+check "tiny spacing message" stderr_has "sample spacing 1e-06 m would take 3.8e+09 elevation samples"
+check "tiny spacing says what fits" stderr_has "use a spacing of at least"
+check "tiny spacing no outputs" no_outputs "$out"
+for bad in nan inf 0 -1; do
+  check "--spacing $bad" run 2 "" build --osm "$fix/hill.osm" --dem "$fix/hill_dem.asc" --out "$RELIEF_TMP/x" --spacing="$bad"
+  check "--spacing $bad message" stderr_has "not a finite number > 0"
+done
+
+# Real data with hostile cells: the Potrero DEM copied with one cell under 24th Street set to
+# 1e30 (an unflagged fill value) and one under Carolina Street to 160 m (a spike ~110 m above
+# its neighbours). Both become voids, filled along the roads; without the checks the road RMSE
+# vs DEM was 3.7e26 m.
+shared="${RELIEF_SHARED_DATA:-$(cd "$RELIEF_SOURCE_DIR/.." && pwd)/shared/data}"
+potrero="$shared/sf-potrero"
+if [ -d "$potrero" ] && command -v gdal_rasterize >/dev/null; then
+  spiked="$RELIEF_TMP/potrero_spiked.tif"
+  gdal_translate -q "$potrero/USGS_13_n38w123-subsection-small-potrero.tif" "$spiked"
+  point() {  # point FILE LON LAT: a GeoJSON point
+    echo "{\"type\":\"FeatureCollection\",\"features\":[{\"type\":\"Feature\",\"properties\":{},\"geometry\":{\"type\":\"Point\",\"coordinates\":[$2,$3]}}]}" > "$1"
+  }
+  point "$RELIEF_TMP/fill.geojson" -122.4014972 37.7532932     # an OSM node of 24th Street
+  point "$RELIEF_TMP/spike.geojson" -122.3995141 37.7537644    # an OSM node of Carolina Street
+  gdal_rasterize -q -burn 1e30 "$RELIEF_TMP/fill.geojson" "$spiked"
+  gdal_rasterize -q -burn 160 "$RELIEF_TMP/spike.geojson" "$spiked"
+  out="$RELIEF_TMP/spiked"
+  check "spiked potrero builds" run 0 "$out" build --osm "$potrero/sf-potrero.osm.gz" --dem "$spiked" --out "$out" \
+    --outputs report
+  check "spiked potrero fill reported" stderr_has "dem.implausible_height"
+  check "spiked potrero spike reported" stderr_has "dem.spike"
+  check "spiked potrero figures" python3 - "$out/report.json" <<'PY'
+import json, sys
+r = json.load(open(sys.argv[1]))
+print("spiked potrero: RMSE vs DEM %.4f m, max grade %.2f %%, diagnostics %s"
+      % (r["elevation"]["vs_dem"]["rmse_m"], r["gradient"]["max_percent"], r["diagnostics"]["counts"]))
+assert r["elevation"]["vs_dem"]["rmse_m"] < 1.0, r["elevation"]
+assert r["gradient"]["max_percent"] <= 35.0, r["gradient"]
+counts = r["diagnostics"]["counts"]
+assert counts.get("dem.implausible_height") == 1 and counts.get("dem.spike") == 1, counts
+dem = r["inputs"]["dems"][0]
+assert dem["implausible_cells"] == 1 and dem["spike_cells"] == 1, dem
+PY
+  # Bilinear fills around a lone void from its valid corners; the nearest cell leaves the road
+  # samples inside both cells without a height: filled along the roads that meet there, reported.
+  out="$RELIEF_TMP/spiked_nearest"
+  check "spiked potrero nearest builds" run 0 "$out" build --osm "$potrero/sf-potrero.osm.gz" --dem "$spiked" \
+    --out "$out" --quiet --outputs report --interp nearest
+  check "spiked potrero nearest figures" python3 - "$out/report.json" <<'PY'
+import json, sys
+r = json.load(open(sys.argv[1]))
+assert r["elevation"]["vs_dem"]["rmse_m"] < 1.0 and r["gradient"]["max_percent"] <= 35.0, r["elevation"]
+assert r["diagnostics"]["counts"].get("elevation.void", 0) >= 2, r["diagnostics"]["counts"]
+assert r["elevation"]["void_samples"] >= 2, r["elevation"]
+PY
+fi
+
 echo "$passed passed, $failures failed"
 [ "$failures" -eq 0 ]

@@ -166,6 +166,19 @@ TEST(ReportHtml, EscapesTextFromTheData) {
   EXPECT_NE(html.find("misses &lt;node&gt; 7 &amp; \xEF\xBF\xBD \xEF\xBF\xBD bytes"), std::string::npos);
 }
 
+TEST(ReportHtml, DemCellsTreatedAsVoidsAppearWhenThereAreSome) {
+  World w = make_world();
+  DemInfo dem;
+  dem.path = "dem.tif";
+  w.report.dems = {dem};
+  EXPECT_EQ(render(input_of(w, true)).find("treated as voids"), std::string::npos);
+  w.report.dems[0].implausible_cells = 2;
+  w.report.dems[0].spike_cells = 1;
+  EXPECT_NE(render(input_of(w, true))
+                .find("treated as voids: 2 cells of implausible height, 1 one-cell spikes or pits"),
+            std::string::npos);
+}
+
 TEST(ReportHtml, OpenDriveFiguresAppearWhenAFileWasWritten) {
   World w = make_world();
   EXPECT_EQ(render(input_of(w, true)).find("OpenDRIVE"), std::string::npos);

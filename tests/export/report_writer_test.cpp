@@ -21,7 +21,15 @@ TEST(ReportWriter, CarriesTheDocumentedKeys) {
   Diagnostics d;
   d.report(Severity::warning, "osm.missing_node", "way 1 misses node 2");
   r.diagnostics = &d;
+  DemInfo dem;
+  dem.path = "dem.tif";
+  dem.implausible_cells = 2;
+  dem.spike_cells = 1;
+  r.dems = {dem};
   const auto j = nlohmann::json::parse(report_json(r));
+  EXPECT_EQ(j["inputs"]["dems"][0]["path"], "dem.tif");
+  EXPECT_EQ(j["inputs"]["dems"][0]["implausible_cells"], 2);
+  EXPECT_EQ(j["inputs"]["dems"][0]["spike_cells"], 1);
   EXPECT_EQ(j["network"]["roads"], 3);
   EXPECT_EQ(j["network"]["junctions"], 1);
   EXPECT_DOUBLE_EQ(j["network"]["length_km"].get<double>(), 0.3);

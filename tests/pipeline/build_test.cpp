@@ -189,6 +189,26 @@ TEST(Build, FailedRunLeavesNoOutputs) {
   EXPECT_TRUE(std::filesystem::is_empty(o.out_dir));
 }
 
+TEST(Build, SpacingThatWouldExhaustMemoryIsRefusedBeforeTheDemIsRead) {
+  BuildOptions o;
+  o.osm_path = test::fixture("hill/hill.osm");
+  // A DEM that does not exist: the refusal comes first, so it is never opened.
+  o.dem_paths = {(test::scratch_dir("build_tiny_spacing") / "missing.tif").string()};
+  o.out_dir = test::scratch_dir("build_tiny_spacing") / "out";
+  o.sampling.spacing_m = 1e-6;
+  Diagnostics d;
+  try {
+    (void)build(o, d);
+    FAIL() << "expected OptionError";
+  } catch (const OptionError& e) {
+    EXPECT_NE(std::string(e.what()).find("sample spacing 1e-06 m would take"), std::string::npos) << e.what();
+  }
+  EXPECT_FALSE(std::filesystem::exists(o.out_dir));
+  // `info` samples too: the same refusal.
+  o.dem_paths = {test::fixture("hill/hill_dem.asc").string()};
+  EXPECT_THROW((void)inspect(o, d), OptionError);
+}
+
 TEST(Info, DescribesPotreroWithoutWriting) {
   RELIEF_REQUIRE_SHARED_DATA();
   BuildOptions o = potrero_options("info_potrero");

@@ -6,7 +6,9 @@
 #include <cmath>
 #include <cstdint>
 #include <fstream>
+#include <functional>
 #include <iostream>
+#include <limits>
 #include <random>
 
 #include "relief/core/errors.h"
@@ -479,6 +481,205 @@ TEST(DemSampler, PreconditionsAreChecked) {
   EXPECT_THROW((void)sampler.gradient_at(local_at(50.0, -50.0), 0.0), InvalidInput);
   EXPECT_THROW(DemSampler({path}, GeoFrame("EPSG:999999", Vec2::Zero()), local_extent(grid)),
                ProjectionError);
+}
+
+// ---------------------------------------------------------------- implausible cells
+
+// A gentle plane (0.5 % fall line): bilinear fill-in next to a void errs by at most its
+// gradient times a cell (10 m), 5 cm: just beside a void's centre the renormalised weights put
+// all of the height on the nearest valid cell.
+double gentle(double x, double y) {
+  return 50.0 + 0.004 * x + 0.003 * y;
+}
+
+// Local coordinates of the centre of cell (col, row) of a grid_of() raster.
+Vec2 centre_of(int col, int row) {
+  return local_at((col + 0.5) * kPixel, -(row + 0.5) * kPixel);
+}
+
+TEST(DemSampler, UnflaggedFillValuesAndSpikesAreVoidsLikeNodata) {
+  const auto dir = test::scratch_dir("dem_sampler_implausible");
+  // No nodata value: 1e30 and -32768 are unflagged fills, one cell is a +100 m spike.
+  DemGrid bad = grid_of(40, 30, gentle);
+  const auto index = [&](int col, int row) { return static_cast<std::size_t>(row) * bad.width + col; };
+  bad.values[index(10, 10)] = 1e30;
+  bad.values[index(25, 8)] = -32768.0;
+  bad.values[index(30, 20)] += 100.0;
+  // The same plane with those three cells flagged as nodata: what the sampler must behave like.
+  DemGrid flagged = grid_of(40, 30, gentle);
+  flagged.nodata = -9999.0;
+  for (const auto& [col, row] : {std::pair{10, 10}, std::pair{25, 8}, std::pair{30, 20}}) {
+    flagged.values[index(col, row)] = -9999.0;
+  }
+  Diagnostics diagnostics;
+  const DemSampler sampler({write_dem(dir, "bad.tif", bad)}, utm_frame(), local_extent(bad), {},
+                           &diagnostics);
+  const DemSampler reference({write_dem(dir, "flagged.tif", flagged)}, utm_frame(), local_extent(flagged));
+
+  EXPECT_EQ(sampler.sources()[0].implausible_cells, 2U);
+  EXPECT_EQ(sampler.sources()[0].spike_cells, 1U);
+  EXPECT_EQ(reference.sources()[0].implausible_cells, 0U);
+  EXPECT_EQ(reference.sources()[0].spike_cells, 0U);
+  // One warning per kind, with the count and the cells' heights and places.
+  ASSERT_EQ(diagnostics.count("dem.implausible_height"), 1U);
+  ASSERT_EQ(diagnostics.count("dem.spike"), 1U);
+  for (const Diagnostic& d : diagnostics.kept()) {
+    EXPECT_EQ(d.severity, Severity::warning);
+    EXPECT_NE(d.message.find("bad.tif"), std::string::npos) << d.message;
+    EXPECT_NE(d.message.find("lon -122."), std::string::npos) << d.message;
+    if (d.code == "dem.implausible_height") {
+      EXPECT_NE(d.message.find("2 cells"), std::string::npos) << d.message;
+      EXPECT_NE(d.message.find("-32768 m at lon"), std::string::npos) << d.message;
+      EXPECT_NE(d.message.find("1e+30 m at lon"), std::string::npos) << d.message;
+      EXPECT_NE(d.message.find("(pixel 10, line 10)"), std::string::npos) << d.message;
+      EXPECT_NE(d.message.find("(pixel 25, line 8)"), std::string::npos) << d.message;
+    } else {
+      EXPECT_NE(d.message.find("1 one-cell spike"), std::string::npos) << d.message;
+      EXPECT_NE(d.message.find("(pixel 30, line 20)"), std::string::npos) << d.message;
+    }
+    std::cout << "[implausible] " << d.code << ": " << d.message << "\n";
+  }
+
+  // Exactly the heights of the flagged raster everywhere (the voids' centres too), and within
+  // 5 cm of the plane.
+  std::vector<Vec2> points;
+  for (double x = 1.0; x < 399.0; x += 1.7) {
+    for (double y = -1.0; y > -299.0; y -= 1.3) points.push_back(local_at(x, y));
+  }
+  for (const auto& [col, row] : {std::pair{10, 10}, std::pair{25, 8}, std::pair{30, 20}}) {
+    points.push_back(centre_of(col, row));
+  }
+  std::vector<std::optional<double>> z(points.size()), expected(points.size());
+  sampler.heights_at(points, z);
+  reference.heights_at(points, expected);
+  double worst = 0.0;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    ASSERT_EQ(z[i].has_value(), expected[i].has_value()) << points[i].transpose();
+    if (!z[i]) continue;
+    EXPECT_NEAR(*z[i], *expected[i], 1e-9) << points[i].transpose();
+    const Vec2 d = points[i] - local_at(0.0, 0.0);
+    worst = std::max(worst, std::abs(*z[i] - gentle(d.x(), d.y())));
+  }
+  std::cout << "[implausible] largest departure from the plane: " << worst << " m\n";
+  EXPECT_LT(worst, 0.05);
+  EXPECT_GT(worst, 1e-3);  // the fill-in near the voids is not the plane itself
+
+  // Nearest: a point inside a voided cell has no height.
+  DemOptions nearest;
+  nearest.interpolation = Interpolation::nearest;
+  const DemSampler by_cell({write_dem(dir, "bad.tif", bad)}, utm_frame(), local_extent(bad), nearest);
+  EXPECT_FALSE(by_cell.height_at(centre_of(30, 20) + Vec2(3.0, -2.0)));
+  EXPECT_TRUE(by_cell.height_at(centre_of(31, 20)));
+}
+
+TEST(DemSampler, SteepPlanesCliffsAndRidgesAreNotSpikes) {
+  const auto dir = test::scratch_dir("dem_sampler_steep");
+  // 90 m cells (an SRTM3 spacing), 20 x 20: 45 degrees is 90 m from cell to cell.
+  const auto grid90 = [](const Surface& f) {
+    return make_dem_grid("EPSG:32610", kX0, kY0, 90.0, 90.0, 20, 20,
+                         [&](double x, double y) { return f(x - kX0, y - kY0); });
+  };
+  struct Case {
+    std::string name;
+    DemGrid grid;
+  };
+  const std::vector<Case> cases{
+      {"plane45", grid90([](double x, double) { return 1000.0 + x; })},
+      {"diagonal70", grid90([](double x, double y) { return 4500.0 + 2.0 * x + 2.0 * y; })},
+      {"cliff", grid90([](double x, double) { return x < 900.0 ? 200.0 : 800.0; })},
+      // Knife ridge along the centres of column 9, flanks falling 270 m a cell (72 degrees).
+      {"ridge", grid90([](double x, double) { return 6000.0 - 3.0 * std::abs(x - 855.0); })},
+      // A 10 m DEM with a 1 km cliff and a wall one cell wide and 200 m high.
+      {"cliff10", make_dem_grid("EPSG:32610", kX0, kY0, 10.0, 10.0, 40, 40,
+                                [](double x, double y) {
+                                  const double dx = x - kX0;
+                                  return (dx < 200.0 ? 100.0 : 1100.0) +
+                                         (std::abs(dx - 105.0) < 5.0 ? 200.0 : 0.0) + 0.01 * (y - kY0);
+                                })},
+  };
+  for (const Case& c : cases) {
+    Diagnostics diagnostics;
+    const DemSampler sampler({write_dem(dir, c.name + ".tif", c.grid)}, utm_frame(), local_extent(c.grid), {},
+                             &diagnostics);
+    EXPECT_EQ(sampler.sources()[0].spike_cells, 0U) << c.name;
+    EXPECT_EQ(sampler.sources()[0].implausible_cells, 0U) << c.name;
+    EXPECT_EQ(diagnostics.total(), 0U) << c.name;
+    if (c.name == "ridge") {
+      EXPECT_NEAR(*sampler.height_at(local_at(855.0, -855.0)), 6000.0, 1e-6);
+    } else if (c.name == "cliff10") {
+      EXPECT_NEAR(*sampler.height_at(local_at(105.0, -5.0)), 299.95, 1e-6);  // the wall's top
+    }
+  }
+}
+
+TEST(DemSampler, SpikeThresholdUsesTheCellSizeInMetresOfAGeographicRaster) {
+  // 3" cells at lat 37.8: 92.6 m north-south, 73 m east-west: the step is 1.5 x 92.6 = 139 m.
+  // A +100 m one-cell peak is within what such a cell can hold; +200 m is not. (Read as
+  // degrees, the cell would be 0.0008 "m" and the +100 m peak a spike.)
+  const auto dir = test::scratch_dir("dem_sampler_geographic_spike");
+  const GeoFrame frame = utm_frame();
+  const Vec2 centre = CrsTransform(frame.crs(), "EPSG:4326").apply(frame.origin());
+  const double pixel = 3.0 / 3600.0;
+  const double x0 = centre.x() - 20.0 * pixel;
+  const double y0 = centre.y() + 20.0 * pixel;
+  for (const auto& [peak_m, expected] : {std::pair{100.0, 0U}, std::pair{200.0, 1U}}) {
+    DemGrid grid =
+        make_dem_grid("EPSG:4326", x0, y0, pixel, pixel, 40, 40, [](double, double) { return 300.0; });
+    grid.values[static_cast<std::size_t>(20) * 40 + 20] += peak_m;
+    Aabb2 area;
+    area.extend(Vec2(-1000.0, -1000.0));
+    area.extend(Vec2(1000.0, 1000.0));
+    Diagnostics diagnostics;
+    const DemSampler sampler({write_dem(dir, "peak.tif", grid)}, frame, area, {}, &diagnostics);
+    EXPECT_EQ(sampler.sources()[0].spike_cells, expected) << peak_m;
+    EXPECT_EQ(diagnostics.count("dem.spike"), expected) << peak_m;
+  }
+}
+
+TEST(DemSampler, SanityOptionsAreCheckedAndCanBeWidened) {
+  const auto dir = test::scratch_dir("dem_sampler_sanity_options");
+  DemGrid grid = grid_of(10, 10, plane);
+  grid.values[55] = -9999.0;  // unflagged
+  grid.values[22] += 300.0;   // a spike
+  const auto path = write_dem(dir, "g.tif", grid);
+  const auto throws = [&](const std::function<void(DemOptions&)>& set) {
+    DemOptions o;
+    set(o);
+    EXPECT_THROW(DemSampler({path}, utm_frame(), local_extent(grid), o), InvalidInput);
+  };
+  throws([](DemOptions& o) { o.plausible_min_m = 9000.0; });
+  throws([](DemOptions& o) { o.plausible_max_m = std::nan(""); });
+  throws([](DemOptions& o) { o.spike_min_step_m = -1.0; });
+  throws([](DemOptions& o) { o.spike_min_step_m = std::nan(""); });
+  throws([](DemOptions& o) { o.spike_step_per_cell = std::numeric_limits<double>::infinity(); });
+  throws([](DemOptions& o) { o.spike_max_neighbour_spread = 0.0; });
+  throws([](DemOptions& o) { o.spike_max_neighbour_spread = 1.5; });
+
+  // Widened: the range to infinity, the spike check off: both cells are heights again.
+  DemOptions wide;
+  wide.plausible_min_m = -std::numeric_limits<double>::infinity();
+  wide.spike_min_step_m = std::numeric_limits<double>::infinity();
+  Diagnostics diagnostics;
+  const DemSampler sampler({path}, utm_frame(), local_extent(grid), wide, &diagnostics);
+  EXPECT_EQ(diagnostics.total(), 0U);
+  EXPECT_NEAR(*sampler.height_at(centre_of(5, 5)), -9999.0, 1e-6);
+  EXPECT_NEAR(*sampler.height_at(centre_of(2, 2)), plane(25.0, -25.0) + 300.0, 1e-6);
+}
+
+TEST(DemSampler, AllImplausibleRasterSaysSo) {
+  // Heights in millimetres read as metres: all above 9000 m.
+  const auto dir = test::scratch_dir("dem_sampler_all_implausible");
+  const DemGrid grid = grid_of(10, 10, [](double x, double) { return 120000.0 + 10.0 * x; });
+  try {
+    DemSampler sampler({write_dem(dir, "mm.tif", grid)}, utm_frame(), local_extent(grid));
+    ADD_FAILURE() << "no throw";
+  } catch (const CoverageError& e) {
+    ADD_FAILURE() << "not a coverage problem: " << e.what();
+  } catch (const InvalidInput& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("is all nodata over the roads' area"), std::string::npos) << what;
+    EXPECT_NE(what.find("100 cells there hold implausible heights"), std::string::npos) << what;
+  }
 }
 
 // ---------------------------------------------------------------- /vsizip

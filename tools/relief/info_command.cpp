@@ -43,6 +43,8 @@ void print_info(const InfoResult& info) {
     if (!d.missing_grids.empty())
       std::cout << "  note     a more accurate shift needs grid(s) " << d.missing_grids << "\n";
     if (d.extent_wgs84) std::cout << "  extent   " << box_text(*d.extent_wgs84) << "\n";
+    std::cout << "  checks   " << d.implausible_cells << " cells of implausible height, " << d.spike_cells
+              << " one-cell spikes or pits (treated as voids)\n";
   }
   std::cout << "coverage   " << info.samples << " road samples: " << fixed(info.covered_percent, 2)
             << " % with height, " << fixed(info.void_percent, 2) << " % in voids, "

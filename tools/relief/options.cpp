@@ -1,5 +1,6 @@
 #include "options.h"
 
+#include <cmath>
 #include <iostream>
 #include <sstream>
 
@@ -7,6 +8,22 @@
 #include "relief/core/errors.h"
 
 namespace relief::cli {
+
+const CLI::Validator& finite_positive() {
+  static const CLI::Validator validator(
+      [](std::string& text) -> std::string {
+        try {
+          std::size_t used = 0;
+          const double value = std::stod(text, &used);
+          if (used == text.size() && std::isfinite(value) && value > 0.0) return {};
+        } catch (const std::exception&) {
+          // Not a number: the message below.
+        }
+        return "'" + text + "' is not a finite number > 0";
+      },
+      "FINITE > 0");
+  return validator;
+}
 
 void InputArgs::add_to(CLI::App& app) {
   app.add_option("--osm", osm, "OpenStreetMap file (.osm, .osm.gz, .osm.bz2, .osm.pbf)")->required();
@@ -22,7 +39,7 @@ void InputArgs::add_to(CLI::App& app) {
   app.add_flag("--include-paths", include_paths, "also build footways, paths, cycleways, steps, tracks");
   app.add_option("--spacing", spacing_m, "elevation sample spacing along roads, metres")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+      ->check(finite_positive());
 }
 
 LonLatBox parse_bbox(const std::string& text) {
@@ -69,6 +86,9 @@ int run_reporting_errors(const std::function<int()>& body) {
     return body();
   } catch (const CLI::ValidationError& e) {
     std::cerr << "relief: bad usage: " << e.what() << "\n";
+    return kUsage;
+  } catch (const OptionError& e) {
+    std::cerr << "\nrelief: bad usage: " << e.what() << "\n";
     return kUsage;
   } catch (const InvalidInput& e) {
     std::cerr << "\nrelief: error: " << e.what() << "\n";

@@ -27,11 +27,16 @@ struct InputArgs {
   void apply_to(BuildOptions& options) const;
 };
 
+/// Accepts a finite number > 0 (CLI::PositiveNumber lets "nan" and "inf" through, and states
+/// its range as 0 to 1.8e308 written out in full).
+[[nodiscard]] const CLI::Validator& finite_positive();
+
 /// Parses "min_lon,min_lat,max_lon,max_lat".
 [[nodiscard]] LonLatBox parse_bbox(const std::string& text);
 
 /// Runs `body`, mapping relief's exceptions to exit codes and printing their message:
-/// InvalidInput/IoError/ProjectionError -> 3, CLI::ValidationError -> 2, anything else -> 1.
+/// InvalidInput/IoError/ProjectionError -> 3, CLI::ValidationError and OptionError (an option
+/// value the input makes unusable) -> 2, anything else -> 1.
 int run_reporting_errors(const std::function<int()>& body);
 
 }  // namespace relief::cli

@@ -32,6 +32,14 @@ class ProjectionError : public Error {
   using Error::Error;
 };
 
+/// An option's value that this input makes unusable, e.g. a sample spacing that would need
+/// more samples than the memory limit allows: the call must change, not the data (a kind of
+/// InvalidInput; the CLI reports it as bad usage).
+class OptionError : public InvalidInput {
+ public:
+  using InvalidInput::InvalidInput;
+};
+
 /// The DEMs do not cover the roads (a kind of InvalidInput, with the uncovered share).
 class CoverageError : public InvalidInput {
  public:

@@ -87,7 +87,9 @@ struct BuildResult {
 
 /// Runs the whole job. Outputs are written to temporaries and renamed only when everything
 /// succeeded: a failed run leaves no output. Throws IoError, InvalidInput (incl.
-/// CoverageError), ProjectionError with messages that name the file and the problem.
+/// CoverageError), ProjectionError with messages that name the file and the problem;
+/// OptionError right after reading the roads when the sampling options would take more
+/// samples than sampling.max_samples (check_sample_budget), or a spacing that is not > 0.
 /// `diagnostics` collects data defects; `progress` is told each stage.
 [[nodiscard]] BuildResult build(const BuildOptions& options, Diagnostics& diagnostics,
                                 const ProgressFn& progress = {});

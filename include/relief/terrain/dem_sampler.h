@@ -23,6 +23,30 @@ struct DemOptions {
   Interpolation interpolation = Interpolation::bilinear;
   /// Extra margin around the requested area read from each raster (metres).
   double margin_m = 100.0;
+
+  /// Plausible heights (metres, after scale, offset and unit): a cell outside
+  /// [plausible_min_m, plausible_max_m] is a void. It catches fill values a raster does not
+  /// flag as nodata (-32768, -9999, 1e30, 3.4e38). The defaults hold every land surface (Dead
+  /// Sea shore -430 m, Everest 8849 m); lower plausible_min_m for a bathymetric raster. Either
+  /// may be infinite; plausible_min_m < plausible_max_m.
+  double plausible_min_m = -500.0;
+  double plausible_max_m = 9000.0;
+
+  /// One-cell spikes and pits are voids: a valid cell whose height differs from the median of
+  /// its valid 8-neighbours (at least 3) by d > max(spike_min_step_m, spike_step_per_cell *
+  /// cell size) while those neighbours agree among themselves (max - min <
+  /// spike_max_neighbour_spread * d). The cell size is the longer side of the cell in metres
+  /// (a geographic raster's degrees measured at the cell's latitude). With the defaults: a
+  /// 30 m step on a 10 m DEM, 135 m on a 90 m SRTM cell, i.e. a summit or a pit one cell wide
+  /// whose sides fall at over 72 degrees (10 m cells) or 56 degrees (cells of 20 m and more)
+  /// all round, which no terrain sampled at that resolution has. A plane of any slope (its
+  /// neighbours' median is the centre), a cliff, and a ridge or valley that runs on (the
+  /// neighbours along it agree with it) are never spikes, nor is any feature two cells wide.
+  /// spike_min_step_m >= 0 (infinity turns the check off), spike_step_per_cell >= 0,
+  /// 0 < spike_max_neighbour_spread <= 1.
+  double spike_min_step_m = 30.0;
+  double spike_step_per_cell = 1.5;
+  double spike_max_neighbour_spread = 1.0 / 3.0;
 };
 
 /// Heights in metres at points of the local frame.
@@ -41,7 +65,8 @@ struct DemOptions {
 /// - nearest: the cell containing the point.
 /// Within half a pixel of the raster border, the border cells are used (clamped). Outside the
 /// raster: no height. Heights are band values * scale + offset, converted to metres; the band's
-/// nodata value and NaN are voids.
+/// nodata value and NaN are voids, and so are the cells DemOptions finds implausible (outside
+/// the plausible range, one-cell spikes and pits).
 ///
 /// Only `area` + margin_m (+ 2 pixels) of each raster is read: a point farther out may have no
 /// height even where a raster covers it. Inside that area, frame -> raster CRS coordinates come
@@ -57,15 +82,20 @@ class DemSampler {
   /// - IoError: a missing or unreadable file ("cannot open DEM '<path>': <GDAL's reason>");
   /// - InvalidInput: a readable file that is not a raster GDAL knows (a text file named .tif),
   ///   no geotransform, no CRS, a rotated/sheared geotransform, a band unit type relief does not
-  ///   know (state options.unit), no path, an empty area, margin_m < 0; and when no raster has a
-  ///   valid height over the area because they are all nodata there ("... is all nodata over
-  ///   the roads' area");
+  ///   know (state options.unit), no path, an empty area, margin_m < 0, plausible or spike
+  ///   options out of their ranges (see DemOptions); and when no raster has a valid height over
+  ///   the area because they are all nodata there ("... is all nodata over the roads' area",
+  ///   naming the implausible cells when there are some: a wrong unit?);
   /// - CoverageError (uncovered_percent() == 100) when no raster intersects the area at all
   ///   (the message gives the DEM extents and the area in lon/lat);
   /// - ProjectionError: a CRS PROJ does not know, no transformation to a raster's CRS.
   /// Reports a warning "dem.datum_grid_missing" to `diagnostics` when a more accurate datum
   /// transformation needs a grid that is not installed (naming the grid and the accuracy of
-  /// the operation used instead).
+  /// the operation used instead). Reports one warning per raster and kind when cells of the
+  /// part read become voids: "dem.implausible_height" (outside the plausible range) and
+  /// "dem.spike" (one-cell spikes and pits), each with the count and the first cells' lon/lat,
+  /// pixel/line and height; their counts are in sources() (DemInfo::implausible_cells,
+  /// spike_cells).
   DemSampler(const std::vector<std::string>& paths, const GeoFrame& frame, const Aabb2& area,
              const DemOptions& options = {}, Diagnostics* diagnostics = nullptr);
   ~DemSampler();

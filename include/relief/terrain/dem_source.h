@@ -2,6 +2,7 @@
 // Description of one elevation raster as relief sees it: where it is, its CRS, grid, vertical
 // unit and nodata. Reading is done by DemSampler (dem_sampler.h); GDAL stays out of headers.
 
+#include <cstddef>
 #include <optional>
 #include <string>
 
@@ -44,6 +45,10 @@ struct DemInfo {
   std::string transform_name;
   std::optional<double> transform_accuracy_m;
   std::string missing_grids;  ///< grids of a more accurate operation that are not installed
+  /// Cells of the part read (area + margin) that DemSampler made voids (DemOptions): heights
+  /// outside the plausible range, and one-cell spikes and pits. 0 when no pixel was read.
+  std::size_t implausible_cells = 0;
+  std::size_t spike_cells = 0;
 };
 
 }  // namespace relief
