@@ -249,7 +249,14 @@ BuildResult build(const BuildOptions& options, Diagnostics& diagnostics, const P
   if (options.outputs.count(Output::xodr) || options.outputs.count(Output::sumo) ||
       options.outputs.count(Output::mesh)) {
     built = timer.run("build road model",
-                      [&] { return build_road_model(network, profiles, options.road_model, diagnostics); });
+                      [&] {
+      // The junction planes of relief's fit tilt the lanes at junctions onto them; the other
+      // methods have none and keep every cross-section level.
+      static const std::vector<Vec2> level;
+      const std::vector<Vec2>& planes =
+          options.profile_method == ProfileMethod::relief ? fit->junction_gradient : level;
+      return build_road_model(network, profiles, options.road_model, diagnostics, planes);
+    });
     built->model.name = report.name;
     // The elevation records' grades against the caps the fit applied (connecting roads: the
     // steeper road's they join).

@@ -201,6 +201,15 @@ std::string build_junction_surface(const RoadModel& model, const JunctionModel& 
   std::vector<JunctionEnd> sorted;
   for (const auto& [angle, k] : order) sorted.push_back(std::move(ends[k]));
 
+  // Whether p lies behind an end's edge (outside the junction), across from the edge itself.
+  const auto over_end = [&](const JunctionEnd& e, const Vec3& p) {
+    const Vec2 right = vertices[e.vertices.front()].head<2>(), left = vertices[e.vertices.back()].head<2>();
+    const Vec2 edge = left - right, q = p.head<2>() - right;
+    const double length = edge.norm();
+    if (!(length > 0.0)) return false;
+    const double along = edge.dot(q) / length, inward = (edge.x() * q.y() - edge.y() * q.x()) / length;
+    return inward < kKerbCornerGap && along > -kKerbCornerGap && along < length + kKerbCornerGap;
+  };
   std::vector<OutlineGap> gaps(sorted.size());
   for (std::size_t k = 0; k < sorted.size(); ++k) {
     const JunctionEnd& a = sorted[k];
@@ -208,6 +217,9 @@ std::string build_junction_surface(const RoadModel& model, const JunctionModel& 
     gaps[k].points = kerb_between(model, connecting_roads, end_key(a.road_index, a.at_start),
                                   end_key(b.road_index, b.at_start), centre, vertices[a.vertices.back()],
                                   vertices[b.vertices.front()], options);
+    // A kerb point behind the edge of either end (a tight turn's border bulging back over the
+    // road it leaves) lies over that road's mesh: the two surfaces would cross there.
+    std::erase_if(gaps[k].points, [&](const Vec3& p) { return over_end(a, p) || over_end(b, p); });
   }
   const std::string failed = triangulate_junction(sorted, gaps, junction.id, mesh);
   if (failed.empty()) return failed;

@@ -633,8 +633,12 @@ ProfileFitResult fit_profiles(const RoadNetwork& network, const std::vector<Road
       p.z[i] = solution.x[static_cast<Eigen::Index>(vars.of(r, i, p.size()))];
   }
   result.junction_z.resize(network.junctions.size());
-  for (std::size_t j = 0; j < network.junctions.size(); ++j) {
-    result.junction_z[j] = solution.x[static_cast<Eigen::Index>(vars.junction(static_cast<int>(j)))];
+  result.junction_gradient.assign(network.junctions.size(), Vec2::Zero());
+  for (const Junction& j : network.junctions) {
+    result.junction_z[j.id] = solution.x[static_cast<Eigen::Index>(vars.junction(j.id))];
+    if (j.ends.size() < 2) continue;
+    const auto g = static_cast<Eigen::Index>(vars.gradient(j.id));
+    result.junction_gradient[j.id] = Vec2(solution.x[g], solution.x[g + 1]);
   }
   update_clearances(result.separations, result.profiles);
   // The limits left violated: the worst place per road (or junction) and limit.

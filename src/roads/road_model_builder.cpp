@@ -186,6 +186,58 @@ std::pair<double, double> end_height(const ModelRoad& m, bool at_start, bool alo
   return {m.elevation.value(s), along_reference ? g : -g};
 }
 
+// Height and slope along the direction of travel of the centre of `lane` at a road end (the
+// roll eases to its end value with zero slope, so the slope is the reference line's).
+std::pair<double, double> lane_end_height(const ModelRoad& m, bool at_start, int lane) {
+  const double s = at_start ? 0.0 : m.length();
+  const auto [z, g] = end_height(m, at_start, /*along_reference=*/lane < 0);
+  return {surface_z(m, s, lane_centre_t(m, s, lane)), g};
+}
+
+// Superelevation (roll, radians) that lays a cross-section of the given heading on a plane of
+// gradient g: the surface rises by tan(roll) per metre to the left (road_surface.h).
+double plane_roll(const Vec2& g, double heading) {
+  return std::atan(g.dot(Vec2(-std::sin(heading), std::cos(heading))));
+}
+
+// A road's roll eases from its junction's to level over this length: a lane t metres from the
+// reference line climbs at most 1.5 t tan(roll) / kRollEase_m more than the road (0.45 % for a
+// 1.5 m lane centre at a 10 % cross-slope).
+constexpr double kRollEase_m = 50.0;
+constexpr double kRollStep_m = 0.5;          // roll samples along a road inside a junction
+constexpr double kRollTolerance_rad = 1e-5;  // 0.02 mm at 2 m from the reference line
+
+// A road's roll: at each end the roll r0, r1 of its junction's plane, eased to level with zero
+// slope at both ends of the ease within kRollEase_m; a road shorter than two eases turns from
+// r0 to r1 in one.
+CubicProfile end_rolls(double length, double r0, double r1) {
+  if (r0 == 0.0 && r1 == 0.0) return CubicProfile::constant(0.0);
+  if (length < 2.0 * kRollEase_m) return hermite_profile(length, r0, 0.0, r1, 0.0);
+  const double e = kRollEase_m;
+  const double e2 = e * e, e3 = e2 * e;
+  std::vector<CubicPiece> pieces{{0.0, Poly3{r0, 0.0, -3.0 * r0 / e2, 2.0 * r0 / e3}}};
+  if (length > 2.0 * e) pieces.push_back({e, Poly3{0.0, 0.0, 0.0, 0.0}});
+  pieces.push_back({length - e, Poly3{0.0, 0.0, 3.0 * r1 / e2, -2.0 * r1 / e3}});
+  return CubicProfile(std::move(pieces));
+}
+
+// Roll along a road inside a junction: at every station the roll that lays its cross-section
+// on the junction's plane, the gradient blended from g0 at its start to g1 at its end (they
+// differ where the ends belong to different intersections joined into one junction). Its ends
+// take exactly the rolls of the roads they join.
+CubicProfile plane_rolls(const PlanView& plan, const Vec2& g0, const Vec2& g1) {
+  if (g0.isZero(0.0) && g1.isZero(0.0)) return CubicProfile::constant(0.0);
+  const double len = plan.length();
+  const auto n = static_cast<std::size_t>(std::max(8.0, std::ceil(len / kRollStep_m)));
+  std::vector<double> s(n + 1), r(n + 1);
+  for (std::size_t i = 0; i <= n; ++i) {
+    s[i] = len * static_cast<double>(i) / static_cast<double>(n);
+    const double u = s[i] / len;
+    r[i] = plane_roll((1.0 - u) * g0 + u * g1, plan.at(s[i]).heading);
+  }
+  return fit_cubic_profile(s, r, kRollTolerance_rad);
+}
+
 void set_lane_link(ModelRoad& m, bool at_start, int lane, int other) {
   LaneSection& sec = at_start ? m.sections.front() : m.sections.back();
   for (auto* side : {&sec.left, &sec.right}) {
@@ -205,7 +257,8 @@ double width_or_zero(const ModelRoad& m, bool at_start, const std::vector<int>& 
 // ends only). Its right lanes carry the traffic from a to b, its left lanes the traffic back;
 // lanes missing on one side taper to width 0; the lane offset, heights and slopes blend from
 // a's to b's with cubics, so every linked lane border meets exactly.
-void add_transition_road(RoadModel& model, ModelRoad& a_ref, bool a_at_start, int b_id, bool b_at_start) {
+void add_transition_road(RoadModel& model, ModelRoad& a_ref, bool a_at_start, int b_id, bool b_at_start,
+                         const Vec2& gradient) {
   const ModelRoad a = a_ref;
   const ModelRoad b = model.roads[model.road_index(b_id)];
   ModelRoad t;
@@ -224,7 +277,7 @@ void add_transition_road(RoadModel& model, ModelRoad& a_ref, bool a_at_start, in
   const auto [z0, g0] = end_height(a, a_at_start, /*along_reference=*/!a_at_start);
   const auto [z1, g1] = end_height(b, b_at_start, /*along_reference=*/b_at_start);
   t.elevation = hermite_profile(len, z0, g0, z1, g1);
-  t.superelevation = CubicProfile::constant(0.0);
+  t.superelevation = plane_rolls(t.plan, gradient, gradient);
   const double off0 = a_at_start ? -a.lane_offset.value(0.0) : a.lane_offset.value(sa);
   const double off1 = b_at_start ? b.lane_offset.value(0.0) : -b.lane_offset.value(sb);
   t.lane_offset = hermite_profile(len, off0, 0.0, off1, 0.0);
@@ -404,9 +457,16 @@ std::vector<double> driven_stations(const Road& road, const RoadProfile& profile
 }
 
 RoadModelBuild build_road_model(const RoadNetwork& network, const std::vector<RoadProfile>& profiles,
-                                const RoadModelOptions& options, Diagnostics& diagnostics) {
+                                const RoadModelOptions& options, Diagnostics& diagnostics,
+                                const std::vector<Vec2>& junction_gradient) {
   if (profiles.size() != network.roads.size())
     throw InvalidInput("build_road_model: one profile per road is required");
+  if (!junction_gradient.empty() && junction_gradient.size() != network.junctions.size())
+    throw InvalidInput("build_road_model: one junction gradient per junction is required");
+  const auto gradient_of = [&](int junction) -> Vec2 {
+    return junction_gradient.empty() ? Vec2::Zero() : junction_gradient[junction];
+  };
+
   RoadModelBuild out;
   RoadModel& model = out.model;
   model.frame = network.frame;
@@ -658,7 +718,9 @@ RoadModelBuild build_road_model(const RoadNetwork& network, const std::vector<Ro
       out.stats.max_elevation_deviation_m =
           std::max(out.stats.max_elevation_deviation_m, std::abs(m.elevation.value(es[i]) - ez[i]));
     }
-    m.superelevation = CubicProfile::constant(0.0);
+    m.superelevation =
+        end_rolls(m.plan.length(), plane_roll(gradient_of(road.start_junction), m.plan.at(0.0).heading),
+                  plane_roll(gradient_of(road.end_junction), m.plan.at(m.plan.length()).heading));
     add_lanes(m, road.attributes);
     out.model_road_of[road.id] = static_cast<int>(model.roads.size());
     model.roads.push_back(std::move(m));
@@ -691,6 +753,11 @@ RoadModelBuild build_road_model(const RoadNetwork& network, const std::vector<Ro
     const auto model_of = [&](const EndRef& e) -> ModelRoad& {
       return model.roads[out.model_road_of[e.network_road]];
     };
+    // The network junction an end belongs to (a joined junction holds several).
+    const auto junction_of = [&](const EndRef& e) {
+      const Road& road = network.roads[e.network_road];
+      return e.at_start ? road.start_junction : road.end_junction;
+    };
 
     if (j.kind == JunctionKind::attribute_change && ends.size() == 2 && !has_passage(network, j)) {
       Diagnostic d;
@@ -707,7 +774,8 @@ RoadModelBuild build_road_model(const RoadNetwork& network, const std::vector<Ro
       continue;
     }
     if (transition[j.id] && ends.size() == 2) {
-      add_transition_road(model, model_of(ends[0]), ends[0].at_start, model_of(ends[1]).id, ends[1].at_start);
+      add_transition_road(model, model_of(ends[0]), ends[0].at_start, model_of(ends[1]).id, ends[1].at_start,
+                          gradient_of(j.id));
       ++out.stats.transition_roads;
       continue;
     }
@@ -832,10 +900,10 @@ RoadModelBuild build_road_model(const RoadNetwork& network, const std::vector<Ro
           const Pose2 dest = to_lane_centre(lane_inner_pose(b, to.at_start, lb), w1);
           c.plan = PlanView(corner_connector(from, dest));
           const double len = c.plan.length();
-          const auto [z0, g0] = end_height(a, in.at_start, /*along_reference=*/la < 0);
-          const auto [z1, g1] = end_height(b, to.at_start, /*along_reference=*/lb < 0);
+          const auto [z0, g0] = lane_end_height(a, in.at_start, la);
+          const auto [z1, g1] = lane_end_height(b, to.at_start, lb);
           c.elevation = hermite_profile(len, z0, g0, z1, g1);
-          c.superelevation = CubicProfile::constant(0.0);
+          c.superelevation = plane_rolls(c.plan, gradient_of(junction_of(in)), gradient_of(junction_of(to)));
           c.lane_offset = CubicProfile({CubicPiece{0.0, Poly3{0.5 * w0, 0.5 * (w1 - w0) / len, 0.0, 0.0}}});
           LaneSection sec;
           LaneModel lane;

@@ -207,6 +207,14 @@ TEST(ProfileFit, ANetworkOnAPlaneIsThePlaneWithinAMillimetre) {
     for (std::size_t i = 0; i < p.size(); ++i) worst = std::max(worst, std::abs(p.z[i] - plane(p.xy[i])));
   std::cout << "plane grid: " << fit.iterations << " iterations, worst departure " << worst << " m\n";
   EXPECT_LT(worst, 1e-3);
+  // Every junction of two roads or more has the plane as its tangent plane; corners (two
+  // perpendicular roads) pin it as well as crossings.
+  ASSERT_EQ(fit.junction_gradient.size(), net.junctions.size());
+  for (const Junction& j : net.junctions) {
+    if (j.ends.size() < 2) continue;
+    EXPECT_NEAR(fit.junction_gradient[j.id].x(), 0.06, 1e-4) << j.id;
+    EXPECT_NEAR(fit.junction_gradient[j.id].y(), -0.04, 1e-4) << j.id;
+  }
 }
 
 TEST(ProfileFit, AGradeCapOnEverySegmentGivesTheLineThroughTheDataCentroid) {

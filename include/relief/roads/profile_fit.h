@@ -91,6 +91,9 @@ struct FitViolation {
 struct ProfileFitResult {
   std::vector<RoadProfile> profiles;  ///< same stations as the input, fitted z
   std::vector<double> junction_z;     ///< height of each junction (m)
+  /// Gradient (dz/dx, dz/dy) of each junction's tangent plane, the plane every road leaves it
+  /// on; zero for a junction with fewer than two road ends.
+  std::vector<Vec2> junction_gradient;
   std::vector<GradeSeparation> separations;
   int iterations = 0;                    ///< interior-point iterations
   bool converged = false;                ///< the solver met its optimality tolerance

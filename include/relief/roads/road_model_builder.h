@@ -85,9 +85,15 @@ struct RoadModelBuild {
 [[nodiscard]] std::vector<double> driven_stations(const Road& road, const RoadProfile& profile,
                                                   const RoadModelOptions& options);
 
-/// `profiles` are parallel to network.roads (stations with fitted z).
+/// `profiles` are parallel to network.roads (stations with fitted z). `junction_gradient`
+/// (parallel to network.junctions, or empty) is each junction's tangent plane
+/// (ProfileFitResult::junction_gradient): the roads take the cross-slope of an intersection's (three ends or
+/// more) plane at their ends as superelevation, eased to level within 50 m (a road up to 100 m long turns
+/// from one end's to the other's), and the roads inside a junction lie across it, so that every lane at a
+/// junction lies on its plane. Without it every cross-section is level.
 [[nodiscard]] RoadModelBuild build_road_model(const RoadNetwork& network,
                                               const std::vector<RoadProfile>& profiles,
-                                              const RoadModelOptions& options, Diagnostics& diagnostics);
+                                              const RoadModelOptions& options, Diagnostics& diagnostics,
+                                              const std::vector<Vec2>& junction_gradient = {});
 
 }  // namespace relief
