@@ -8,6 +8,8 @@
 #include <optional>
 #include <sstream>
 
+#include <Eigen/Eigenvalues>
+
 #include "relief/core/errors.h"
 #include "relief/geometry/polyline.h"
 #include "relief/roads/road_surface.h"
@@ -204,8 +206,42 @@ double plane_roll(const Vec2& g, double heading) {
 // reference line climbs at most 1.5 t tan(roll) / kRollEase_m more than the road (0.45 % for a
 // 1.5 m lane centre at a 10 % cross-slope).
 constexpr double kRollEase_m = 50.0;
-constexpr double kRollStep_m = 0.5;          // roll samples along a road inside a junction
+constexpr double kRollStep_m = 0.5;
+// A direction of a junction's plane counts as determined by its roads when lambda, the sum of
+// the squared cosines of the roads' directions with it, is at least kPlaneDetermined (a T
+// junction: 2 along the through road, 1 across; a fork at 45 degrees: 0.5 across), and not at
+// all under kPlaneUndetermined (a road straight through: 0; a fork at 13 degrees: 0.05), a
+// smoothstep between.
+constexpr double kPlaneDetermined = 0.5;
+constexpr double kPlaneUndetermined = 0.05;  // roll samples along a road inside a junction
 constexpr double kRollTolerance_rad = 1e-5;  // 0.02 mm at 2 m from the reference line
+
+// The part of a junction's plane gradient its roads determine. The fit's plane is pinned only
+// along the roads' directions: across a road that runs straight through, or across the two
+// roads of a fork at a shallow angle, it is set by a few centimetres of height over a lateral
+// offset of a metre or by nothing at all, and tilting the lanes by it would twist a wide road
+// for no reason. With M = sum of u u^T over the roads' unit directions u leaving the junction,
+// each eigen-direction e of M (eigenvalue lambda) keeps the share of G . e that lambda says.
+Vec2 determined_gradient(const RoadNetwork& network, const Junction& j, const Vec2& g) {
+  Eigen::Matrix2d m = Eigen::Matrix2d::Zero();
+  for (const RoadEnd& e : j.ends) {
+    const Polyline2& pts = network.roads[e.road].points;
+    if (pts.size() < 2) continue;
+    const Vec2 d = e.at_start ? Vec2(pts[1] - pts[0]) : Vec2(pts[pts.size() - 2] - pts.back());
+    if (!(d.norm() > 0.0)) continue;
+    const Vec2 u = d.normalized();
+    m += u * u.transpose();
+  }
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(m);
+  Vec2 out = Vec2::Zero();
+  for (int k = 0; k < 2; ++k) {
+    const double x = std::clamp(
+        (eig.eigenvalues()[k] - kPlaneUndetermined) / (kPlaneDetermined - kPlaneUndetermined), 0.0, 1.0);
+    const Vec2 e = eig.eigenvectors().col(k);
+    out += x * x * (3.0 - 2.0 * x) * g.dot(e) * e;
+  }
+  return out;
+}
 
 // A road's roll: at each end the roll r0, r1 of its junction's plane, eased to level with zero
 // slope at both ends of the ease within kRollEase_m; a road shorter than two eases turns from
@@ -463,9 +499,12 @@ RoadModelBuild build_road_model(const RoadNetwork& network, const std::vector<Ro
     throw InvalidInput("build_road_model: one profile per road is required");
   if (!junction_gradient.empty() && junction_gradient.size() != network.junctions.size())
     throw InvalidInput("build_road_model: one junction gradient per junction is required");
-  const auto gradient_of = [&](int junction) -> Vec2 {
-    return junction_gradient.empty() ? Vec2::Zero() : junction_gradient[junction];
-  };
+  std::vector<Vec2> planes(network.junctions.size(), Vec2::Zero());
+  if (!junction_gradient.empty()) {
+    for (const Junction& j : network.junctions)
+      planes[j.id] = determined_gradient(network, j, junction_gradient[j.id]);
+  }
+  const auto gradient_of = [&](int junction) -> Vec2 { return planes[junction]; };
 
   RoadModelBuild out;
   RoadModel& model = out.model;
@@ -639,6 +678,10 @@ RoadModelBuild build_road_model(const RoadNetwork& network, const std::vector<Ro
       std::vector<int> roads;
       for (const RoadEnd* e : ends) roads.push_back(e->road);
       overlaps.emplace_back(static_cast<int>(j.id), roads);
+      // Road ends that still overlap would cross each other once tilted differently: the
+      // junction stays level.
+      for (const int m : clusters.members[j.id]) planes[m] = Vec2::Zero();
+      planes[j.id] = Vec2::Zero();
     }
   }
 
