@@ -178,7 +178,12 @@ BuildResult build(const BuildOptions& options, Diagnostics& diagnostics, const P
     fit = timer.run("fit profiles", [&] {
       ProfileFitOptions o = options.fit;
       o.limits = options.grade_limits;
-      return fit_profiles(network, raw, o, diagnostics);
+      // Where the road model will cut the roads for their junctions (plan only: a first pass
+      // on the raw profiles), so that the fit bounds the grades across each junction there.
+      Diagnostics first_pass;
+      const std::vector<std::array<double, 2>> trims =
+          build_road_model(network, raw, options.road_model, first_pass).end_trims;
+      return fit_profiles(network, raw, o, diagnostics, trims);
     });
     fit_seconds = timer.timings().back().second;
     FitSummary summary;
@@ -248,8 +253,7 @@ BuildResult build(const BuildOptions& options, Diagnostics& diagnostics, const P
   std::optional<RoadModelBuild> built;
   if (options.outputs.count(Output::xodr) || options.outputs.count(Output::sumo) ||
       options.outputs.count(Output::mesh)) {
-    built = timer.run("build road model",
-                      [&] {
+    built = timer.run("build road model", [&] {
       // The junction planes of relief's fit tilt the lanes at junctions onto them; the other
       // methods have none and keep every cross-section level.
       static const std::vector<Vec2> level;

@@ -11,6 +11,7 @@
 #include <numbers>
 #include <numeric>
 #include <sstream>
+#include <unordered_map>
 
 #include "relief/core/errors.h"
 #include "relief/geometry/soft_qp.h"
@@ -28,6 +29,7 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kPinnedReach = 30.0;      // m along a road under a crossing
 constexpr double kPinnedStiffness = 30.0;  // data weight factor there (a preference, far below any price)
 constexpr int kJunctionPlaneDirections = 8;
+constexpr double kJunctionRoomMargin_m = 2.0;  // a junction's room: its widest half-width plus this
 constexpr double kPlaneLevelWeight =
     0.01;  // per (grade)^2, see fit_profiles  // two-sided rows: |G| <= g / cos(pi / 16)
 
@@ -202,9 +204,13 @@ using Permutation = Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int
 // order would drag every station of the other along). AMD sees their couplings in P + A'A plus,
 // for every chain road, the clique of junction variables its elimination leaves behind. Running
 // AMD on the whole matrix gives the same fill but takes seconds on millions of stations.
+// `block_stations`: per road, interior stations that rows tie across the junction to another
+// road's (junction_pair_rows); they go to the block too, and split their road's chain in parts,
+// each eliminated in station order.
 Permutation elimination_order(const RoadNetwork& network, const std::vector<RoadProfile>& profiles,
                               const VariableMap& vars, const std::vector<GradeSeparation>& separations,
-                              const SpMat& P, const Eigen::SparseMatrix<double, Eigen::RowMajor>& A) {
+                              const std::vector<std::vector<std::size_t>>& block_stations, const SpMat& P,
+                              const Eigen::SparseMatrix<double, Eigen::RowMajor>& A) {
   const auto n = static_cast<int>(vars.count());
   const auto base = static_cast<int>(vars.junction_base());
   std::vector<std::uint8_t> tied(network.roads.size(), 0);
@@ -215,8 +221,13 @@ Permutation elimination_order(const RoadNetwork& network, const std::vector<Road
   int next = 0, blocks = 0;
   for (const Road& road : network.roads) {
     const std::size_t np = profiles[road.id].size();
+    for (const std::size_t i : block_stations[road.id]) {
+      const auto v = static_cast<std::size_t>(vars.of(road.id, i, np));
+      if (i >= 1 && i + 1 < np && block_of[v] < 0) block_of[v] = blocks++;
+    }
     for (std::size_t i = 1; i + 1 < np; ++i) {
       const auto v = static_cast<std::size_t>(vars.of(road.id, i, np));
+      if (block_of[v] >= 0) continue;
       if (tied[road.id]) {
         block_of[v] = blocks++;
       } else {
@@ -238,20 +249,50 @@ Permutation elimination_order(const RoadNetwork& network, const std::vector<Road
       for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator k(A, r); k; ++k)
         link(static_cast<int>(i.col()), static_cast<int>(k.col()));
   }
-  // The clique each chain road leaves among its junctions' variables.
+  // The clique each part of a chain road leaves among the variables beside it: two stations on
+  // each side (curvature rows span three), a junction's height, and its plane where the part
+  // holds the road's first or last interior station.
   std::vector<int> clique;
+  const auto add_junction = [&](int j) {
+    clique.push_back(static_cast<int>(vars.junction(j)));
+    if (network.junctions[j].ends.size() >= 2) {
+      clique.push_back(static_cast<int>(vars.gradient(j)));
+      clique.push_back(static_cast<int>(vars.gradient(j)) + 1);
+    }
+  };
   for (const Road& road : network.roads) {
     if (tied[road.id]) continue;
-    clique.clear();
-    for (const int j : {road.start_junction, road.end_junction}) {
-      clique.push_back(static_cast<int>(vars.junction(j)));
-      if (network.junctions[j].ends.size() >= 2) {
-        clique.push_back(static_cast<int>(vars.gradient(j)));
-        clique.push_back(static_cast<int>(vars.gradient(j)) + 1);
-      }
+    const std::size_t np = profiles[road.id].size();
+    if (np < 3) {
+      clique.clear();
+      add_junction(road.start_junction);
+      add_junction(road.end_junction);
+      for (const int a : clique)
+        for (const int b : clique) link(a, b);
+      continue;
     }
-    for (const int a : clique)
-      for (const int b : clique) link(a, b);
+    const auto in_chain = [&](std::size_t i) {
+      return order_of[static_cast<std::size_t>(vars.of(road.id, i, np))] >= 0;
+    };
+    std::size_t i = 1;
+    while (i + 1 < np) {
+      if (!in_chain(i)) {
+        ++i;
+        continue;
+      }
+      std::size_t last = i;
+      while (last + 2 < np && in_chain(last + 1)) ++last;
+      clique.clear();
+      if (i == 1) add_junction(road.start_junction);
+      if (last + 2 == np) add_junction(road.end_junction);
+      for (const std::size_t k : {i - 1, i >= 2 ? i - 2 : 0, last + 1, std::min(last + 2, np - 1)}) {
+        const auto v = static_cast<std::size_t>(vars.of(road.id, k, np));
+        if (block_of[v] >= 0) clique.push_back(static_cast<int>(v));
+      }
+      for (const int a : clique)
+        for (const int b : clique) link(a, b);
+      i = last + 1;
+    }
   }
   SpMat block_pattern(blocks, blocks);
   block_pattern.setFromTriplets(pattern.begin(), pattern.end());
@@ -378,7 +419,8 @@ struct Place {
 }  // namespace
 
 ProfileFitResult fit_profiles(const RoadNetwork& network, const std::vector<RoadProfile>& raw,
-                              const ProfileFitOptions& options, Diagnostics& diagnostics) {
+                              const ProfileFitOptions& options, Diagnostics& diagnostics,
+                              const std::vector<std::array<double, 2>>& end_trims) {
   if (raw.size() != network.roads.size())
     throw InvalidInput("fit_profiles: one profile per road is required");
   if (!(options.max_ground_departure_m >= 0.0) || !(options.clearance_m >= 0.0) ||
@@ -553,6 +595,57 @@ ProfileFitResult fit_profiles(const RoadNetwork& network, const std::vector<Road
     }
   }
 
+  // Across a junction the connecting roads run from one road's trimmed end to another's, and
+  // those ends can lie much closer together than their paths through the junction's centre (the
+  // two legs of a hairpin meeting a side road): between every two road ends, at the stations
+  // where the model cuts the roads (end_trims; else the junction's widest half-width plus 2 m),
+  // the height difference stays within the steeper road's cap over their plan distance, a lower
+  // bound of the connecting road's length. Those stations (and the next, as curvature rows span
+  // three) go to the elimination order's block.
+  std::unordered_map<std::size_t, std::pair<double, double>> pair_rows;  // row -> distance, cap
+  std::vector<std::vector<std::size_t>> block_stations(network.roads.size());
+  const auto half_width = [&](int road) {
+    const WayAttributes& a = network.roads[road].attributes;
+    return 0.5 * a.lane_width_m * (a.lanes_forward + a.lanes_backward);
+  };
+  for (const Junction& j : network.junctions) {
+    if (j.ends.size() < 3) continue;  // two ends: the road's own grade rows hold
+    double room = 0.0;
+    for (const RoadEnd& e : j.ends) room = std::max(room, half_width(e.road) + kJunctionRoomMargin_m);
+    std::vector<std::pair<int, std::size_t>> leaving;  // road, station
+    for (const RoadEnd& e : j.ends) {
+      const RoadProfile& p = raw[e.road];
+      if (!p.has_height || p.size() < 5) continue;
+      std::size_t k = 0;
+      const double cut = end_trims.empty() ? room : end_trims[e.road][e.at_start ? 0 : 1];
+      if (e.at_start) {
+        k = static_cast<std::size_t>(std::lower_bound(p.s.begin(), p.s.end(), cut) - p.s.begin());
+      } else {
+        const auto it = std::upper_bound(p.s.begin(), p.s.end(), p.s.back() - cut);
+        k = it == p.s.begin() ? 0 : static_cast<std::size_t>(it - p.s.begin()) - 1;
+      }
+      if (k < 1 || k + 2 >= p.size()) continue;  // no interior station that far out
+      leaving.emplace_back(e.road, k);
+      block_stations[e.road].push_back(k);
+      block_stations[e.road].push_back(e.at_start ? k + 1 : k - 1);
+    }
+    for (std::size_t x = 0; x < leaving.size(); ++x) {
+      for (std::size_t y = x + 1; y < leaving.size(); ++y) {
+        const auto [ra, ka] = leaving[x];
+        const auto [rb, kb] = leaving[y];
+        if (ra == rb) continue;  // a loop's two ends: its own grade rows hold
+        const RoadProfile& pa = raw[ra];
+        const RoadProfile& pb = raw[rb];
+        const double d = std::max((pa.xy[ka] - pb.xy[kb]).norm(), kMinCurvatureSpacing);
+        const double g = std::max(grade_limit(options, network.roads[ra].attributes.highway),
+                                  grade_limit(options, network.roads[rb].attributes.highway));
+        pair_rows[rows.size()] = {d, g};
+        rows.add({{vars.of(rb, kb, pb.size()), 1.0}, {vars.of(ra, ka, pa.size()), -1.0}}, -g * d, g * d,
+                 {FitLimit::junction_grade, ra, static_cast<std::uint32_t>(ka)});
+      }
+    }
+  }
+
   // Clearance rows where roads on different layers cross.
   const auto at = [&](int road, double s) {
     const RoadProfile& p = raw[road];
@@ -571,10 +664,6 @@ ProfileFitResult fit_profiles(const RoadNetwork& network, const std::vector<Road
     const RoadProfile& p = raw[road];
     const Vec2 d = p.xy[std::min(i + 1, p.size() - 1)] - p.xy[std::min(i, p.size() - 2)];
     return Vec2(d / std::max(d.norm(), 1e-9));
-  };
-  const auto half_width = [&](int road) {
-    const WayAttributes& a = network.roads[road].attributes;
-    return 0.5 * a.lane_width_m * (a.lanes_forward + a.lanes_backward);
   };
   for (const GradeSeparation& sep : result.separations) {
     if (!raw[sep.upper_road].has_height || !raw[sep.lower_road].has_height) continue;
@@ -611,7 +700,7 @@ ProfileFitResult fit_profiles(const RoadNetwork& network, const std::vector<Road
   rows.move_into(qp, n);
   SoftQpOptions solver;
   solver.max_iterations = options.max_iterations;
-  solver.ordering = elimination_order(network, raw, vars, result.separations, qp.P, qp.A);
+  solver.ordering = elimination_order(network, raw, vars, result.separations, block_stations, qp.P, qp.A);
   solver.trace = options.trace;
   const SoftQpResult solution = solve_soft_qp(qp, solver);
   result.iterations = solution.iterations;
@@ -687,8 +776,12 @@ ProfileFitResult fit_profiles(const RoadNetwork& network, const std::vector<Road
           v.bound = v.value < 0.0 ? -crest : sag;
           break;
         }
-        case FitLimit::junction_grade:
+        case FitLimit::junction_grade: {  // between two road ends across a junction
+          const auto [d, g] = pair_rows.at(r);
+          v.value = 100.0 * std::abs(value) / d;
+          v.bound = 100.0 * g;
           break;
+        }
       }
     } else {
       const Junction& j = network.junctions[tag.station];

@@ -685,6 +685,8 @@ RoadModelBuild build_road_model(const RoadNetwork& network, const std::vector<Ro
     }
   }
 
+  out.end_trims = trim;
+
   // Roads: trimmed, fitted reference line, elevation records, lanes.
   for (const Road& road : network.roads) {
     const RoadProfile& p = profiles[road.id];

@@ -105,6 +105,40 @@ TEST(ProfileFit, GradesAreTakenAlongTheRoadAsDriven) {
   EXPECT_NEAR(plain.profiles[0].z.back() - plain.profiles[0].z.front(), 32.0, 0.05);
 }
 
+TEST(ProfileFit, RoadEndsAcrossAJunctionKeepTheCapOverTheirDistance) {
+  // A hairpin meeting a side road: leg A leaves the junction east climbing 30 %, leg B leaves
+  // 5.7 degrees north of it descending 30 %, the side road leaves west. Each road keeps its own
+  // grade under the 35 % cap, but where the model cuts the legs 10 m out their ends lie 1 m
+  // apart and 6 m apart in height: a connecting road between them would climb 600 %.
+  const RoadNetwork net = test::make_network({{{0, 0}, {200, 0}}, {{0, 0}, {200, 20}}, {{0, 0}, {-200, 0}}});
+  const auto raw = drape(net, [](const Vec2& p) { return 0.3 * p.x() - 6.0 * p.y(); });
+  Diagnostics d;
+  const std::vector<std::array<double, 2>> trims(net.roads.size(), {10.0, 10.0});
+  const ProfileFitResult fit = fit_profiles(net, raw, {}, d, trims);
+  ASSERT_TRUE(fit.converged) << fit.solver_status;
+  EXPECT_TRUE(fit.violations.empty());
+  // The stations where the model cuts the two legs (the first at 10 m or more).
+  const auto at_cut = [&](int road) {
+    const RoadProfile& p = fit.profiles[road];
+    std::size_t k = 0;
+    while (p.s[k] < 10.0) ++k;
+    return std::make_pair(p.xy[k], p.z[k]);
+  };
+  const auto [xa, za] = at_cut(0);
+  const auto [xb, zb] = at_cut(1);
+  const double distance = (xa - xb).norm();
+  EXPECT_NEAR(distance, 1.0, 0.01);
+  EXPECT_LE(std::abs(za - zb), 0.35 * distance + 1e-3);
+  // Without trims the rows sit where the junction's room ends (its widest half-width + 2 m =
+  // 5 m out); beyond, the legs part again, and at 10 m they are over a metre apart in height.
+  const ProfileFitResult near = fit_profiles(net, raw, {}, d);
+  const RoadProfile& pa = near.profiles[0];
+  const RoadProfile& pb = near.profiles[1];
+  std::size_t k = 0;
+  while (pa.s[k] < 10.0) ++k;
+  EXPECT_GT(std::abs(pa.z[k] - pb.z[k]), 1.0);
+}
+
 TEST(ProfileFit, BridgeOverAValleyStaysASmoothDeck) {
   // Plateau at 50 m with a V-shaped valley 30 m deep between x = 150 and 350; the middle road
   // is the bridge.

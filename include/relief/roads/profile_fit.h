@@ -17,6 +17,7 @@
 // and its dual bounded, so it converges; the cost is linear in the number of samples (the
 // factor of a network of chains between junctions stays sparse).
 
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <optional>
@@ -114,7 +115,14 @@ struct ProfileFitResult {
 /// "fit.not_converged" when the solver did not meet its tolerance and "fit.limit_violated"
 /// (one per road and limit, with the place) when limits conflict, e.g. a clearance that no
 /// grade-limited ramp can reach.
+///
+/// `end_trims` (per road, or empty): the length the road model cuts off each road's ends for its
+/// junctions (RoadModelBuild::end_trims of a first pass on the raw profiles). The connecting
+/// roads across a junction run between those cut ends, and the fit keeps every two of them
+/// within the steeper road's grade cap over their plan distance; without trims it takes the
+/// junction's widest half-width plus 2 m.
 [[nodiscard]] ProfileFitResult fit_profiles(const RoadNetwork& network, const std::vector<RoadProfile>& raw,
-                                            const ProfileFitOptions& options, Diagnostics& diagnostics);
+                                            const ProfileFitOptions& options, Diagnostics& diagnostics,
+                                            const std::vector<std::array<double, 2>>& end_trims = {});
 
 }  // namespace relief

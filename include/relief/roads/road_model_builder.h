@@ -32,6 +32,9 @@
 //   centreline (one-ways have right lanes only).
 // - Elevation: C1 cubic pieces through the fitted profile within elevation_tolerance_m.
 
+#include <array>
+#include <vector>
+
 #include "relief/core/diagnostics.h"
 #include "relief/roads/elevation_sampling.h"
 #include "relief/roads/road_model.h"
@@ -76,6 +79,9 @@ struct RoadModelBuild {
   RoadModel model;
   RoadModelStats stats;
   std::vector<int> model_road_of;  ///< per network road: its index in model.roads, or -1
+  /// Per network road: the length of its OSM polyline cut off at its start and at its end for
+  /// the junctions there (the model road is what lies between).
+  std::vector<std::array<double, 2>> end_trims;
 };
 
 /// Arc length along the road as driven (its reference line, the OSM polyline with every vertex
