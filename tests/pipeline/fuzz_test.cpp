@@ -4,7 +4,7 @@
 // quality gate evaluated (the CLI then exits 0 or 4), junctions exactly continuous, and never
 // throw, crash or hang. 30 seeds in CI (about 5 s); more by hand:
 // RELIEF_FUZZ_SEEDS=200 build/tests/relief_pipeline_tests --gtest_filter="Fuzz*" (200 seeds: 35 s,
-// all built, every fit converged; 61 passed every gate, the others exited 4, most on
+// all built, every fit converged; 75 passed every gate, the others exited 4, most on
 // connecting roads steeper than their cap across steep junctions and SUMO height steps).
 #include <gtest/gtest.h>
 
