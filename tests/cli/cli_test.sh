@@ -240,6 +240,14 @@ for bad in nan inf 0 -1; do
   check "--spacing $bad" run 2 "" build --osm "$fix/hill.osm" --dem "$fix/hill_dem.asc" --out "$RELIEF_TMP/x" --spacing="$bad"
   check "--spacing $bad message" stderr_has "not a finite number > 0"
 done
+# Every numeric option refuses what is not a finite number in its range (CLI11's own
+# PositiveNumber let nan and inf through).
+for opt in --max-grade --clearance --smoothing-wavelength --mesh-tolerance --max-ground-departure --route-end; do
+  for bad in nan inf -1; do
+    check "$opt $bad" run 2 "" build --osm "$fix/hill.osm" --dem "$fix/hill_dem.asc" --out "$RELIEF_TMP/x" "$opt=$bad"
+    check "$opt $bad message" stderr_has "not a finite number"
+  done
+done
 
 # Real data with hostile cells: the Potrero DEM copied with one cell under 24th Street set to
 # 1e30 (an unflagged fill value) and one under Carolina Street to 160 m (a spike ~110 m above

@@ -206,22 +206,22 @@ Runner add_build_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--max-grade", args->max_grade_percent, "fidelity: grade cap for streets, percent")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+      ->check(finite_positive());
   cmd->add_option("--highway-max-grade", args->highway_max_grade_percent,
                   "fidelity: grade cap for motorways, trunks and their links, percent")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+      ->check(finite_positive());
   cmd->add_option("--clearance", args->clearance_m,
                   "minimum vertical clearance where roads on different layers cross, m")
       ->capture_default_str()
-      ->check(CLI::NonNegativeNumber);
+      ->check(finite_non_negative());
   cmd->add_option("--smoothing-wavelength", args->wavelength_m,
                   "height variations shorter than this are DEM noise to the fit, m")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+      ->check(finite_positive());
   cmd->add_option("--max-curvature", args->max_curvature, "bound on vertical curvature |z''|, 1/m (0: none)")
       ->capture_default_str()
-      ->check(CLI::NonNegativeNumber);
+      ->check(finite_non_negative());
   cmd->add_option("--opendrive-version", args->opendrive_minor, "OpenDRIVE 1.N to write: 4, 7 (default) or 8")
       ->capture_default_str()
       ->check(CLI::IsMember({4, 7, 8}));
@@ -233,32 +233,32 @@ Runner add_build_command(CLI::App& app) {
                   "NAME.sumocfg")
       ->check(CLI::NonNegativeNumber);
   cmd->add_option("--route-end", args->route_end_s, "SUMO: last departure, s (default: one per second)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(finite_non_negative());
   cmd->add_option("--seed", args->seed, "SUMO: random seed of the trips")->capture_default_str();
   cmd->add_option("--step-length", args->step_length_s, "SUMO: simulation step in NAME.sumocfg, s")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+      ->check(finite_positive());
   cmd->add_option("--mesh-formats", args->mesh_formats, "3D scene formats: comma-separated glb, obj, fbx")
       ->capture_default_str();
   cmd->add_flag("--no-terrain", args->no_terrain, "3D scene: roads only, no Terrain mesh");
   cmd->add_option("--mesh-tolerance", args->mesh_tolerance_m,
                   "3D scene: largest distance of the road mesh from the OpenDRIVE surface, m")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+      ->check(finite_positive());
   cmd->add_option("--terrain-tolerance", args->terrain_tolerance_m,
                   "3D scene: largest vertical error of the simplified terrain vs the DEM, m")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+      ->check(finite_positive());
   cmd->add_option("--mesh-tile-size", args->mesh_tile_size_m,
                   "3D scene: also write it cut into square tiles of this size, m, as NAME_Tile_X_Y "
                   "(CARLA large maps)")
-      ->check(CLI::PositiveNumber);
+      ->check(finite_positive());
   cmd->add_flag("--no-compare", args->no_compare,
                 "run only the chosen profile method (no comparison in the report)");
   cmd->add_option("--max-ground-departure", args->max_ground_departure_m,
                   "fit: a road on the ground stays within this of the DEM, m (0: no bound)")
       ->capture_default_str()
-      ->check(CLI::NonNegativeNumber);
+      ->check(finite_non_negative());
   cmd->add_flag("--no-design-curves", args->no_design_curves,
                 "fit: no design-speed vertical curves on motorways..primary roads (physical bound only)");
   cmd->add_option(

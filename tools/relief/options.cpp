@@ -25,6 +25,22 @@ const CLI::Validator& finite_positive() {
   return validator;
 }
 
+const CLI::Validator& finite_non_negative() {
+  static const CLI::Validator validator(
+      [](std::string& text) -> std::string {
+        try {
+          std::size_t used = 0;
+          const double value = std::stod(text, &used);
+          if (used == text.size() && std::isfinite(value) && value >= 0.0) return {};
+        } catch (const std::exception&) {
+          // Not a number: the message below.
+        }
+        return "'" + text + "' is not a finite number >= 0";
+      },
+      "FINITE >= 0");
+  return validator;
+}
+
 void InputArgs::add_to(CLI::App& app) {
   app.add_option("--osm", osm, "OpenStreetMap file (.osm, .osm.gz, .osm.bz2, .osm.pbf)")->required();
   app.add_option("--dem", dems, "DEM raster(s) GDAL can read; repeat for a mosaic (first valid wins)")

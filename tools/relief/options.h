@@ -30,6 +30,8 @@ struct InputArgs {
 /// Accepts a finite number > 0 (CLI::PositiveNumber lets "nan" and "inf" through, and states
 /// its range as 0 to 1.8e308 written out in full).
 [[nodiscard]] const CLI::Validator& finite_positive();
+/// Accepts a finite number >= 0.
+[[nodiscard]] const CLI::Validator& finite_non_negative();
 
 /// Parses "min_lon,min_lat,max_lon,max_lat".
 [[nodiscard]] LonLatBox parse_bbox(const std::string& text);
