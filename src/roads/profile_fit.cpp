@@ -608,6 +608,15 @@ ProfileFitResult fit_profiles(const RoadNetwork& network, const std::vector<Road
     const WayAttributes& a = network.roads[road].attributes;
     return 0.5 * a.lane_width_m * (a.lanes_forward + a.lanes_backward);
   };
+  // The centres of a road's outermost lanes and its middle at station k.
+  const auto lane_points = [&](int road, std::size_t k) {
+    const RoadProfile& p = raw[road];
+    const Vec2 d = p.xy[std::min(k + 1, p.size() - 1)] - p.xy[k == 0 ? 0 : k - 1];
+    const Vec2 n = Vec2(-d.y(), d.x()) / std::max(d.norm(), 1e-9);
+    const WayAttributes& a = network.roads[road].attributes;
+    const double t = std::max(half_width(road) - 0.5 * a.lane_width_m, 0.0);
+    return std::array<Vec2, 3>{p.xy[k] - t * n, p.xy[k], p.xy[k] + t * n};
+  };
   for (const Junction& j : network.junctions) {
     if (j.ends.size() < 3) continue;  // two ends: the road's own grade rows hold
     double room = 0.0;
@@ -636,7 +645,12 @@ ProfileFitResult fit_profiles(const RoadNetwork& network, const std::vector<Road
         if (ra == rb) continue;  // a loop's two ends: its own grade rows hold
         const RoadProfile& pa = raw[ra];
         const RoadProfile& pb = raw[rb];
-        const double d = std::max((pa.xy[ka] - pb.xy[kb]).norm(), kMinCurvatureSpacing);
+        // The connecting roads join lane centres: the nearest of the two cross-sections' lane
+        // centres (outermost either side and the middle) bound their length from below.
+        double d = kInf;
+        for (const Vec2& qa : lane_points(ra, ka))
+          for (const Vec2& qb : lane_points(rb, kb)) d = std::min(d, (qa - qb).norm());
+        d = std::max(d, kMinCurvatureSpacing);
         const double g = std::max(grade_limit(options, network.roads[ra].attributes.highway),
                                   grade_limit(options, network.roads[rb].attributes.highway));
         pair_rows[rows.size()] = {d, g};

@@ -137,8 +137,9 @@ check "feet dem without unit" run 0 "$out" build --osm "$fix/hill.osm" --dem "$R
 check "feet dem unstated is 3.28x steeper" python3 - "$out/report.json" <<'PY'
 import json, sys
 r = json.load(open(sys.argv[1]))
-# 3.28 x the metre DEM's 10 %; the roads bend a little near the junctions, whose planes are capped
-assert abs(r["gradient"]["max_percent"] - 32.81) < 2.0, r["gradient"]
+# 3.28 x the metre DEM's 10 % along the roads, flattened at the junctions (to keep the connecting
+# roads within the 35 % cap), so the roads climb up to the cap between them
+assert 32.0 < r["gradient"]["max_percent"] <= 35.0 + 1e-3, r["gradient"]
 assert all(g["passed"] for g in r["gates"].values()), r["gates"]
 assert r["gates"]["connecting_road_grade_over_cap_percent"]["value"] <= 2.0, r["gates"]
 PY
