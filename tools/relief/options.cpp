@@ -9,35 +9,35 @@
 
 namespace relief::cli {
 
-const CLI::Validator& finite_positive() {
-  static const CLI::Validator validator(
-      [](std::string& text) -> std::string {
+namespace {
+
+// A validator for a finite number above 0 (strictly) or from 0 on.
+CLI::Validator finite_from_zero(bool strictly) {
+  const std::string range = strictly ? "> 0" : ">= 0";
+  return CLI::Validator(
+      [strictly, range](std::string& text) -> std::string {
         try {
           std::size_t used = 0;
           const double value = std::stod(text, &used);
-          if (used == text.size() && std::isfinite(value) && value > 0.0) return {};
+          if (used == text.size() && std::isfinite(value) && (strictly ? value > 0.0 : value >= 0.0))
+            return {};
         } catch (const std::exception&) {
           // Not a number: the message below.
         }
-        return "'" + text + "' is not a finite number > 0";
+        return "'" + text + "' is not a finite number " + range;
       },
-      "FINITE > 0");
+      "FINITE " + range);
+}
+
+}  // namespace
+
+const CLI::Validator& finite_positive() {
+  static const CLI::Validator validator = finite_from_zero(true);
   return validator;
 }
 
 const CLI::Validator& finite_non_negative() {
-  static const CLI::Validator validator(
-      [](std::string& text) -> std::string {
-        try {
-          std::size_t used = 0;
-          const double value = std::stod(text, &used);
-          if (used == text.size() && std::isfinite(value) && value >= 0.0) return {};
-        } catch (const std::exception&) {
-          // Not a number: the message below.
-        }
-        return "'" + text + "' is not a finite number >= 0";
-      },
-      "FINITE >= 0");
+  static const CLI::Validator validator = finite_from_zero(false);
   return validator;
 }
 
