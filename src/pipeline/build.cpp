@@ -178,12 +178,9 @@ BuildResult build(const BuildOptions& options, Diagnostics& diagnostics, const P
     fit = timer.run("fit profiles", [&] {
       ProfileFitOptions o = options.fit;
       o.limits = options.grade_limits;
-      // Where the road model will cut the roads for their junctions (plan only: a first pass
-      // on the raw profiles), so that the fit bounds the grades across each junction there.
-      Diagnostics first_pass;
-      const std::vector<std::array<double, 2>> trims =
-          build_road_model(network, raw, options.road_model, first_pass).end_trims;
-      return fit_profiles(network, raw, o, diagnostics, trims);
+      // Where the road model will cut the roads for their junctions (plan only), so that the
+      // fit bounds the grades across each junction there.
+      return fit_profiles(network, raw, o, diagnostics, junction_end_trims(network, raw, options.road_model));
     });
     fit_seconds = timer.timings().back().second;
     FitSummary summary;

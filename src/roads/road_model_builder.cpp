@@ -492,9 +492,13 @@ std::vector<double> driven_stations(const Road& road, const RoadProfile& profile
   return out;
 }
 
-RoadModelBuild build_road_model(const RoadNetwork& network, const std::vector<RoadProfile>& profiles,
-                                const RoadModelOptions& options, Diagnostics& diagnostics,
-                                const std::vector<Vec2>& junction_gradient) {
+namespace {
+
+// build_road_model; with `trims_only` it returns once the road ends are trimmed for their
+// junctions (end_trims), before any road, lane or connecting road is built.
+RoadModelBuild build_model(const RoadNetwork& network, const std::vector<RoadProfile>& profiles,
+                           const RoadModelOptions& options, Diagnostics& diagnostics,
+                           const std::vector<Vec2>& junction_gradient, bool trims_only) {
   if (profiles.size() != network.roads.size())
     throw InvalidInput("build_road_model: one profile per road is required");
   if (!junction_gradient.empty() && junction_gradient.size() != network.junctions.size())
@@ -686,6 +690,7 @@ RoadModelBuild build_road_model(const RoadNetwork& network, const std::vector<Ro
   }
 
   out.end_trims = trim;
+  if (trims_only) return out;
 
   // Roads: trimmed, fitted reference line, elevation records, lanes.
   for (const Road& road : network.roads) {
@@ -992,6 +997,21 @@ RoadModelBuild build_road_model(const RoadNetwork& network, const std::vector<Ro
     ++out.stats.junctions;
   }
   return out;
+}
+
+}  // namespace
+
+RoadModelBuild build_road_model(const RoadNetwork& network, const std::vector<RoadProfile>& profiles,
+                                const RoadModelOptions& options, Diagnostics& diagnostics,
+                                const std::vector<Vec2>& junction_gradient) {
+  return build_model(network, profiles, options, diagnostics, junction_gradient, false);
+}
+
+std::vector<std::array<double, 2>> junction_end_trims(const RoadNetwork& network,
+                                                      const std::vector<RoadProfile>& profiles,
+                                                      const RoadModelOptions& options) {
+  Diagnostics ignored;  // build_road_model reports the same findings
+  return build_model(network, profiles, options, ignored, {}, true).end_trims;
 }
 
 }  // namespace relief

@@ -75,6 +75,14 @@ TEST(RoadModelBuilder, TJunctionOnASlope) {
     }
   }
   EXPECT_LT(b.stats.max_elevation_deviation_m, 1e-6);
+  // The trims alone, as the fit asks for them before the model exists: the junction's radius
+  // (3 m widest half-width + 2 m margin) at the junction end, nothing at the dead ends.
+  const std::vector<std::array<double, 2>> trims = junction_end_trims(net, drape(net), {});
+  ASSERT_EQ(trims.size(), b.end_trims.size());
+  for (std::size_t r = 0; r < trims.size(); ++r) {
+    EXPECT_EQ(trims[r], b.end_trims[r]) << r;
+    EXPECT_DOUBLE_EQ(trims[r][0] + trims[r][1], 5.0) << r;
+  }
 }
 
 TEST(RoadModelBuilder, LanesAtAJunctionLieOnItsPlane) {

@@ -91,6 +91,12 @@ struct RoadModelBuild {
 [[nodiscard]] std::vector<double> driven_stations(const Road& road, const RoadProfile& profile,
                                                   const RoadModelOptions& options);
 
+/// RoadModelBuild::end_trims alone: how much of each road's ends its junctions take (plan and
+/// attributes only; `profiles` say which roads have a height), without building the model.
+[[nodiscard]] std::vector<std::array<double, 2>> junction_end_trims(const RoadNetwork& network,
+                                                                    const std::vector<RoadProfile>& profiles,
+                                                                    const RoadModelOptions& options);
+
 /// `profiles` are parallel to network.roads (stations with fitted z). `junction_gradient`
 /// (parallel to network.junctions, or empty) is each junction's tangent plane
 /// (ProfileFitResult::junction_gradient): the roads take the cross-slope of an intersection's (three ends or
