@@ -28,10 +28,10 @@ constexpr double kMinCurvatureSpacing = 0.5;  // m; closer stations are not used
 constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kPinnedReach = 30.0;      // m along a road under a crossing
 constexpr double kPinnedStiffness = 30.0;  // data weight factor there (a preference, far below any price)
+// Two-sided rows on the junction plane's gradient G in this many directions: |G| <= g / cos(pi / 16).
 constexpr int kJunctionPlaneDirections = 8;
 constexpr double kJunctionRoomMargin_m = 2.0;  // a junction's room: its widest half-width plus this
-constexpr double kPlaneLevelWeight =
-    0.01;  // per (grade)^2, see fit_profiles  // two-sided rows: |G| <= g / cos(pi / 16)
+constexpr double kPlaneLevelWeight = 0.01;     // per (grade)^2, see fit_profiles
 
 // Prices of the soft limits per metre of violation, one level per priority (FitLimit order):
 // each level is 10x the next, and the lowest is far above any force the data term can exert
@@ -205,8 +205,8 @@ using Permutation = Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int
 // for every chain road, the clique of junction variables its elimination leaves behind. Running
 // AMD on the whole matrix gives the same fill but takes seconds on millions of stations.
 // `block_stations`: per road, interior stations that rows tie across the junction to another
-// road's (junction_pair_rows); they go to the block too, and split their road's chain in parts,
-// each eliminated in station order.
+// road's (the rows across junctions in fit_profiles); they go to the block too, and split
+// their road's chain in parts, each eliminated in station order.
 Permutation elimination_order(const RoadNetwork& network, const std::vector<RoadProfile>& profiles,
                               const VariableMap& vars, const std::vector<GradeSeparation>& separations,
                               const std::vector<std::vector<std::size_t>>& block_stations, const SpMat& P,

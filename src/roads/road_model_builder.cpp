@@ -192,7 +192,7 @@ std::pair<double, double> end_height(const ModelRoad& m, bool at_start, bool alo
 // roll eases to its end value with zero slope, so the slope is the reference line's).
 std::pair<double, double> lane_end_height(const ModelRoad& m, bool at_start, int lane) {
   const double s = at_start ? 0.0 : m.length();
-  const auto [z, g] = end_height(m, at_start, /*along_reference=*/lane < 0);
+  const double g = end_height(m, at_start, /*along_reference=*/lane < 0).second;
   return {surface_z(m, s, lane_centre_t(m, s, lane)), g};
 }
 
@@ -206,14 +206,14 @@ double plane_roll(const Vec2& g, double heading) {
 // reference line climbs at most 1.5 t tan(roll) / kRollEase_m more than the road (0.45 % for a
 // 1.5 m lane centre at a 10 % cross-slope).
 constexpr double kRollEase_m = 50.0;
-constexpr double kRollStep_m = 0.5;
+constexpr double kRollStep_m = 0.5;  // roll samples along a road inside a junction
 // A direction of a junction's plane counts as determined by its roads when lambda, the sum of
 // the squared cosines of the roads' directions with it, is at least kPlaneDetermined (a T
 // junction: 2 along the through road, 1 across; a fork at 45 degrees: 0.5 across), and not at
 // all under kPlaneUndetermined (a road straight through: 0; a fork at 13 degrees: 0.05), a
 // smoothstep between.
 constexpr double kPlaneDetermined = 0.5;
-constexpr double kPlaneUndetermined = 0.05;  // roll samples along a road inside a junction
+constexpr double kPlaneUndetermined = 0.05;
 constexpr double kRollTolerance_rad = 1e-5;  // 0.02 mm at 2 m from the reference line
 
 // The part of a junction's plane gradient its roads determine. The fit's plane is pinned only
