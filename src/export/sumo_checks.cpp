@@ -54,10 +54,10 @@ std::optional<Vec3> first_step(const Polyline3& line) {
       run += (line[j + 1] - line[j]).head<2>().norm();
       ++j;
     }
+    double along = 0.0;  // plan distance from point i to point k
     for (std::size_t k = i + 1; k <= j; ++k) {
+      along += (line[k] - line[k - 1]).head<2>().norm();
       const double dz = std::abs(line[k].z() - line[i].z());
-      double along = 0.0;
-      for (std::size_t q = i + 1; q <= k; ++q) along += (line[q] - line[q - 1]).head<2>().norm();
       if (dz > kStepRiseM && dz > kStepMinGrade * along) return line[i];
     }
     if (j > i) run -= (line[i + 1] - line[i]).head<2>().norm();

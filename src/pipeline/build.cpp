@@ -173,14 +173,16 @@ BuildResult build(const BuildOptions& options, Diagnostics& diagnostics, const P
     report.paper = PaperSummary{options.paper_max_iterations, paper->not_converged_roads.size(),
                                 paper->max_shift_m, paper->not_converged_roads};
   }
+  // The fit's options with the run's grade table (the caps the outputs are checked against too).
+  ProfileFitOptions fit_options = options.fit;
+  fit_options.limits = options.grade_limits;
   std::optional<ProfileFitResult> fit;
   if (wanted(ProfileMethod::relief)) {
     fit = timer.run("fit profiles", [&] {
-      ProfileFitOptions o = options.fit;
-      o.limits = options.grade_limits;
       // Where the road model will cut the roads for their junctions (plan only), so that the
       // fit bounds the grades across each junction there.
-      return fit_profiles(network, raw, o, diagnostics, junction_end_trims(network, raw, options.road_model));
+      return fit_profiles(network, raw, fit_options, diagnostics,
+                          junction_end_trims(network, raw, options.road_model));
     });
     fit_seconds = timer.timings().back().second;
     FitSummary summary;
@@ -262,12 +264,10 @@ BuildResult build(const BuildOptions& options, Diagnostics& diagnostics, const P
     // The elevation records' grades against the caps the fit applied (connecting roads: the
     // steeper road's they join).
     report.model_grades = timer.run("check road model grades", [&] {
-      ProfileFitOptions caps = options.fit;
-      caps.limits = options.grade_limits;
       std::vector<double> cap(built->model.roads.size(), -1.0);
       for (std::size_t i = 0; i < built->model.roads.size(); ++i) {
         const int source = built->model.roads[i].source_road;
-        if (source >= 0) cap[i] = grade_limit(caps, network.roads[source].attributes.highway);
+        if (source >= 0) cap[i] = grade_limit(fit_options, network.roads[source].attributes.highway);
       }
       return check_grades(built->model, cap);
     });
