@@ -241,6 +241,9 @@ for bad in nan inf 0 -1; do
   check "--spacing $bad" run 2 "" build --osm "$fix/hill.osm" --dem "$fix/hill_dem.asc" --out "$RELIEF_TMP/x" --spacing="$bad"
   check "--spacing $bad message" stderr_has "not a finite number > 0"
 done
+for bad in "ground_holes=nan" "ground_holes" "no_such_gate=1"; do
+  check "--gate $bad" run 2 "" build --osm "$fix/hill.osm" --dem "$fix/hill_dem.asc" --out "$RELIEF_TMP/x" --gate "$bad"
+done
 # Every numeric option refuses what is not a finite number in its range (CLI11's own
 # PositiveNumber let nan and inf through).
 for opt in --max-grade --clearance --smoothing-wavelength --mesh-tolerance --max-ground-departure --route-end; do

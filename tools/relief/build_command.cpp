@@ -1,4 +1,5 @@
 // `relief build`: parse, call relief::build, print the summary.
+#include <cmath>
 #include <iomanip>
 #include <iostream>
 #include <memory>
@@ -315,9 +316,10 @@ Runner add_build_command(CLI::App& app) {
         try {
           std::size_t used = 0;
           value = std::stod(item.substr(eq == std::string::npos ? item.size() : eq + 1), &used);
-          if (eq == std::string::npos || used != item.size() - eq - 1) throw std::invalid_argument(item);
+          if (eq == std::string::npos || used != item.size() - eq - 1 || !std::isfinite(value))
+            throw std::invalid_argument(item);
         } catch (const std::exception&) {
-          throw CLI::ValidationError("--gate", "'" + item + "' is not NAME=VALUE");
+          throw CLI::ValidationError("--gate", "'" + item + "' is not NAME=VALUE with a finite VALUE");
         }
         if (!options.gates.set(item.substr(0, eq), value)) {
           throw CLI::ValidationError("--gate", "'" + item.substr(0, eq) + "' is not a quality gate");
