@@ -1,5 +1,6 @@
 #include "relief/terrain/dem_writer.h"
 
+#include <cmath>
 #include <filesystem>
 #include <random>
 #include <system_error>
@@ -30,8 +31,29 @@ void remove_quietly(const std::string& path) {
   std::filesystem::remove(path + ".aux.xml", ec);  // GDAL's side-car, should it have made one
 }
 
+// Int16 holds whole values in -32768..32767: refuse what rounding cannot bring there (GDAL
+// would clamp it silently).
+void check_int16(const std::string& path, const DemGrid& grid) {
+  const auto fits = [](double v) {
+    return std::isfinite(v) && std::round(v) >= -32768.0 && std::round(v) <= 32767.0;
+  };
+  if (grid.nodata && !fits(*grid.nodata)) {
+    throw InvalidInput("Int16 DEM '" + path + "': nodata " + std::to_string(*grid.nodata) +
+                       " does not fit in -32768..32767");
+  }
+  for (std::size_t i = 0; i < grid.values.size(); ++i) {
+    if (!fits(grid.values[i])) {
+      throw InvalidInput("Int16 DEM '" + path + "': value " + std::to_string(grid.values[i]) + " at pixel " +
+                         std::to_string(i % static_cast<std::size_t>(grid.width)) + ", " +
+                         std::to_string(i / static_cast<std::size_t>(grid.width)) +
+                         " does not fit in -32768..32767");
+    }
+  }
+}
+
 void write_grid(const std::string& path, const DemGrid& grid) {
-  auto dataset = gdal::Dataset::create_geotiff(path, grid.width, grid.height);
+  auto dataset =
+      gdal::Dataset::create_geotiff(path, grid.width, grid.height, grid.data_type == DemDataType::int16);
   // North-up: row 0 at the north edge y0, rows going south by dy.
   dataset.set_geo_transform({grid.x0, grid.dx, 0.0, grid.y0, 0.0, -grid.dy});
   dataset.set_crs(grid.crs);
@@ -71,6 +93,7 @@ void write_geotiff(const std::string& path, const DemGrid& grid) {
                        " values for " + std::to_string(grid.width) + " x " + std::to_string(grid.height) +
                        " pixels");
   }
+  if (grid.data_type == DemDataType::int16) check_int16(path, grid);
   const std::string temporary = temporary_name(path);
   try {
     write_grid(temporary, grid);

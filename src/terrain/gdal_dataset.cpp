@@ -80,14 +80,14 @@ Dataset Dataset::open_raster(const std::string& path) {
   return dataset;
 }
 
-Dataset Dataset::create_geotiff(const std::string& path, int width, int height) {
+Dataset Dataset::create_geotiff(const std::string& path, int width, int height, bool int16) {
   ensure_registered();
   QuietErrors quiet;
   GDALDriverH driver = GDALGetDriverByName("GTiff");
   if (driver == nullptr) throw IoError("cannot write '" + path + "': GDAL has no GTiff driver");
   const char* options[] = {"COMPRESS=DEFLATE", nullptr};
-  GDALDatasetH handle =
-      GDALCreate(driver, path.c_str(), width, height, 1, GDT_Float64, const_cast<char**>(options));
+  GDALDatasetH handle = GDALCreate(driver, path.c_str(), width, height, 1, int16 ? GDT_Int16 : GDT_Float64,
+                                   const_cast<char**>(options));
   if (handle == nullptr) throw IoError("cannot create '" + path + "': " + last_error());
   return Dataset(handle, path);
 }

@@ -42,9 +42,10 @@ class Dataset {
   /// InvalidInput when it is readable but not a raster GDAL understands, or has no band.
   [[nodiscard]] static Dataset open_raster(const std::string& path);
 
-  /// Creates a one-band Float64 GeoTIFF of `width` x `height` pixels (GTiff driver chosen
-  /// explicitly, so the file name's extension does not matter). Throws IoError.
-  [[nodiscard]] static Dataset create_geotiff(const std::string& path, int width, int height);
+  /// Creates a one-band GeoTIFF of `width` x `height` pixels, Float64 or (int16) Int16 samples
+  /// (GTiff driver chosen explicitly, so the file name's extension does not matter). Throws IoError.
+  [[nodiscard]] static Dataset create_geotiff(const std::string& path, int width, int height,
+                                              bool int16 = false);
 
   ~Dataset();
   Dataset(Dataset&& other) noexcept;
@@ -75,7 +76,7 @@ class Dataset {
   void set_crs(const std::string& crs);
   void set_nodata(double nodata);
   void set_unit_type(const std::string& unit_type);
-  /// Writes all of band 1 (row-major, width*height values).
+  /// Writes all of band 1 (row-major, width*height values; GDAL rounds them to an integer band).
   void write_band(const std::vector<double>& values);
   /// Flushes and closes the file; throws IoError when GDAL reports an error while doing so.
   void close();

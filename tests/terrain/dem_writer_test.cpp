@@ -2,6 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <limits>
+
 #include "relief/core/errors.h"
 #include "relief/terrain/dem_sampler.h"
 #include "relief/terrain/dem_source.h"
@@ -79,6 +82,51 @@ TEST(WriteGeotiff, RoundTripsGridGeoreferencingNodataAndUnit) {
       }
     }
   }
+}
+
+TEST(WriteGeotiff, Int16LikeSrtmRoundsToWholeMetresAndKeepsItsVoids) {
+  const auto dir = test::scratch_dir("write_geotiff_int16");
+  DemGrid grid =
+      make_dem_grid("EPSG:32610", 550000.0, 4180000.0, 30.0, 30.0, 3, 2, [](double, double) { return 0.0; });
+  grid.values = {812.4, 812.6, -0.6, -32768.0, 32767.0, -32767.2};
+  grid.nodata = -32768.0;
+  grid.data_type = DemDataType::int16;
+  const auto path = (dir / "srtm.tif").string();
+  write_geotiff(path, grid);
+  EXPECT_EQ(inspect_dem(path).nodata, -32768.0);
+
+  const GeoFrame frame("EPSG:32610", Vec2(550000.0, 4180000.0));
+  DemOptions nearest;
+  nearest.interpolation = Interpolation::nearest;
+  nearest.plausible_min_m = -40000.0;  // read back the extremes of the type as they are
+  nearest.plausible_max_m = 40000.0;
+  nearest.spike_min_step_m = std::numeric_limits<double>::infinity();
+  Aabb2 area;
+  area.extend(Vec2(0.0, -60.0));
+  area.extend(Vec2(90.0, 0.0));
+  const DemSampler sampler({path}, frame, area, nearest);
+  const std::vector<std::optional<double>> expected = {812.0, 813.0, -1.0, std::nullopt, 32767.0, -32767.0};
+  for (int row = 0; row < 2; ++row) {
+    for (int col = 0; col < 3; ++col) {
+      EXPECT_EQ(sampler.height_at(grid.cell_centre(col, row) - frame.origin()),
+                expected[static_cast<std::size_t>(row * 3 + col)])
+          << col << ", " << row;
+    }
+  }
+}
+
+TEST(WriteGeotiff, Int16RefusesValuesOutsideItsRange) {
+  const auto dir = test::scratch_dir("write_geotiff_int16_range");
+  DemGrid grid = make_dem_grid("EPSG:32610", 0, 0, 1, 1, 2, 1, [](double, double) { return 1.0; });
+  grid.data_type = DemDataType::int16;
+  grid.values[1] = 32767.6;
+  EXPECT_THROW(write_geotiff((dir / "high.tif").string(), grid), InvalidInput);
+  grid.values[1] = std::nan("");
+  EXPECT_THROW(write_geotiff((dir / "nan.tif").string(), grid), InvalidInput);
+  grid.values[1] = 1.0;
+  grid.nodata = -9999999.0;
+  EXPECT_THROW(write_geotiff((dir / "nodata.tif").string(), grid), InvalidInput);
+  EXPECT_TRUE(files_in(dir).empty());
 }
 
 TEST(WriteGeotiff, OverwritesAnExistingFile) {
