@@ -191,11 +191,15 @@ Vec3 pair_site(const TriangleMesh& mesh, std::size_t s, std::size_t t) {
 
 struct PairCount {
   std::size_t pairs = 0;
-  std::vector<Vec3> sites;  // the first kMaxSites pairs'
+  std::vector<Vec3> sites;                                 // the first kMaxSites pairs'
+  std::vector<std::array<std::size_t, 2>> triangle_pairs;  // the same pairs' triangles
 
   void add(const TriangleMesh& mesh, std::size_t s, std::size_t t) {
     ++pairs;
-    if (sites.size() < kMaxSelfIntersectionSites) sites.push_back(pair_site(mesh, s, t));
+    if (sites.size() < kMaxSelfIntersectionSites) {
+      sites.push_back(pair_site(mesh, s, t));
+      triangle_pairs.push_back({std::min(s, t), std::max(s, t)});
+    }
   }
 };
 
@@ -445,6 +449,7 @@ MeshQuality analyse_mesh(const TriangleMesh& mesh, const MeshQualityOptions& opt
     if (!pairs) pairs = soup_intersections(mesh);
     q.self_intersecting_pairs = pairs->pairs;
     q.self_intersection_sites = std::move(pairs->sites);
+    q.self_intersection_triangles = std::move(pairs->triangle_pairs);
   }
   return q;
 }

@@ -30,6 +30,48 @@ std::string first_sites(const std::vector<Vec3>& sites) {
   return text;
 }
 
+// What a triangle of Road_Road belongs to: "road N (OSM way W)" or "junction J".
+std::string triangle_owner(int owner, const RoadModel& model) {
+  if (owner < 0) return "junction " + std::to_string(-1 - owner);
+  std::string text = "road " + std::to_string(owner);
+  const int index = model.road_index(owner);
+  if (index >= 0) {
+    const ModelRoad& road = model.roads[static_cast<std::size_t>(index)];
+    if (road.junction != -1) {
+      text += " (connecting, junction " + std::to_string(road.junction) + ")";
+    } else if (!road.osm_way_ids.empty()) {
+      text += " (OSM way " + std::to_string(road.osm_way_ids.front()) + ")";
+    }
+  }
+  return text;
+}
+
+// One warning naming the owners of the first self-intersecting Road_Road pairs, one line per
+// distinct pair of owners, so that a user finds them in the .xodr and in OSM.
+void report_self_intersections(const MeshQuality& road, const std::vector<int>& owner, const RoadModel& model,
+                               Diagnostics& diagnostics) {
+  std::string text;
+  std::vector<std::pair<int, int>> named;
+  for (std::size_t i = 0; i < road.self_intersection_triangles.size(); ++i) {
+    const auto [s, t] = road.self_intersection_triangles[i];
+    if (s >= owner.size() || t >= owner.size()) continue;
+    const std::pair<int, int> key{std::min(owner[s], owner[t]), std::max(owner[s], owner[t])};
+    if (std::find(named.begin(), named.end(), key) != named.end()) continue;
+    named.push_back(key);
+    const Vec3& p = road.self_intersection_sites[i];
+    text += "; " + triangle_owner(key.first, model) + " x " + triangle_owner(key.second, model) + " at (";
+    append_fixed(text, p.x(), 1);
+    text += ", ";
+    append_fixed(text, p.y(), 1);
+    text += ", ";
+    append_fixed(text, p.z(), 2);
+    text += ")";
+  }
+  diagnostics.report(Severity::warning, "mesh.road_self_intersections",
+                     std::to_string(road.self_intersecting_pairs) +
+                         " Road_Road triangle pair(s) intersect; the first pairs' owners" + text);
+}
+
 void report_plan_overlaps(const PlanOverlaps& overlaps, std::size_t under, Diagnostics& diagnostics) {
   const std::string sites = first_sites(overlaps.sites);
   diagnostics.report(
@@ -233,6 +275,9 @@ MeshSummary write_mesh_outputs(const MeshStageInput& in, OutputSet& files, Stage
   for (const MeshQuality& q : quality) {
     if (q.name == "Road_Road") summary.road = q;
     if (q.name == "Terrain") summary.terrain = q;
+  }
+  if (summary.road && summary.road->self_intersecting_pairs > 0) {
+    report_self_intersections(*summary.road, roads.road_triangle_owner, in.model, in.diagnostics);
   }
   MeshReportExtras extras;
   extras.file = in.name;

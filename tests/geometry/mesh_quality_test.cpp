@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <ctime>
@@ -104,6 +105,14 @@ TEST(MeshQuality, IntersectionsAcrossTwoSetsLeavePairsWithinEachOut) {
   EXPECT_EQ(q.self_intersecting_pairs, 1u);
   ASSERT_EQ(q.self_intersection_sites.size(), 1u);
   EXPECT_NEAR(q.self_intersection_sites[0].y(), (2.0 / 3.0 + 0.25) / 2.0, 1e-12);  // T0 and T2
+  ASSERT_EQ(q.self_intersection_triangles.size(), 1u);  // the pair's triangles, to name owners
+  EXPECT_EQ(q.self_intersection_triangles[0], (std::array<std::size_t, 2>{0, 2}));
+  const MeshQuality all = analyse_mesh(m);
+  ASSERT_EQ(all.self_intersection_triangles.size(), 2u);
+  for (const auto& [s, t] : all.self_intersection_triangles) {
+    EXPECT_EQ(s, 0u);
+    EXPECT_TRUE(t == 1u || t == 2u);
+  }
   across.intersections_across = {1, 0};
   EXPECT_THROW((void)analyse_mesh(m, across), InvalidInput);
 }

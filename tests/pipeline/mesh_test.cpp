@@ -115,6 +115,19 @@ void expect_structure_warning(const SceneBuild& b, const MeshSummary& m) {
   const auto it = b.diagnostics.find("mesh.structure_terrain_intersections");
   EXPECT_EQ(it == b.diagnostics.end() ? 0u : it->second,
             m.structure_terrain_intersecting_pairs > 0 ? 1u : 0u);
+  const auto road = b.diagnostics.find("mesh.road_self_intersections");
+  EXPECT_EQ(road == b.diagnostics.end() ? 0u : road->second,
+            m.road && m.road->self_intersecting_pairs > 0 ? 1u : 0u);
+}
+
+// The warning on Road_Road's self-intersections names the owners of the pairs (road and OSM
+// way, connecting road and junction, or junction) and where they are.
+std::string self_intersection_message(const SceneBuild& b) {
+  std::ifstream in(b.options.out_dir / "report.json");
+  const nlohmann::json report = nlohmann::json::parse(in);
+  for (const auto& d : report.at("diagnostics").at("messages"))
+    if (d.at("code") == "mesh.road_self_intersections") return d.at("message").get<std::string>();
+  return {};
 }
 
 struct Box {
@@ -270,6 +283,9 @@ TEST(MeshPipeline, NorthEastSceneFiguresAndReimport) {
                            // ground joins the rest only through road pieces off it (one opening more)
                            .ground_components = 2});
   expect_structure_warning(b, m);
+  const std::string named = self_intersection_message(b);
+  EXPECT_NE(named.find("(OSM way 8922640)"), std::string::npos) << named;  // Columbus Avenue
+  EXPECT_NE(named.find("at (1038."), std::string::npos) << named;
   expect_files_reimport(b);
 }
 

@@ -4,6 +4,7 @@
 // Mesh Processing, exact predicates), degenerate and sliver triangles, and the gap along the
 // seam between two meshes. CGAL stays in src/geometry/.
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <string>
@@ -59,6 +60,8 @@ struct MeshQuality {
   /// Where the first kMaxSelfIntersectionSites pairs are (the midpoint of the two triangles'
   /// centroids), to find them in a viewer.
   std::vector<Vec3> self_intersection_sites;
+  /// The triangles of the same pairs (indices into the mesh's triangles, smaller first).
+  std::vector<std::array<std::size_t, 2>> self_intersection_triangles;
   bool self_intersections_checked = false;  ///< false when MeshQualityOptions::self_intersections is off
   std::size_t degenerate_triangles = 0;
   std::size_t sliver_triangles = 0;
