@@ -18,7 +18,8 @@ int find(std::vector<int>& parent, int j) {
 
 JunctionClusters join_junctions(const RoadNetwork& network, const std::vector<double>& radius,
                                 const std::vector<double>& length,
-                                const std::vector<std::uint8_t>& has_height, double min_kept_length_m) {
+                                const std::vector<std::uint8_t>& has_height, double min_kept_length_m,
+                                const std::vector<std::uint8_t>& used_up) {
   const std::size_t n = network.junctions.size();
   JunctionClusters out;
   out.absorbed.assign(network.roads.size(), 0);
@@ -31,7 +32,8 @@ JunctionClusters join_junctions(const RoadNetwork& network, const std::vector<do
     const bool ia = network.junctions[a].kind == JunctionKind::intersection;
     const bool ib = network.junctions[b].kind == JunctionKind::intersection;
     if (!(ia || ib) || !(radius[a] > 0.0) || !(radius[b] > 0.0)) continue;
-    if (length[road.id] >= radius[a] + radius[b] + min_kept_length_m) continue;
+    const bool used = !used_up.empty() && used_up[road.id];
+    if (!used && length[road.id] >= radius[a] + radius[b] + min_kept_length_m) continue;
     out.absorbed[road.id] = 1;
     const int ra = find(parent, a), rb = find(parent, b);
     if (ra != rb) parent[std::max(ra, rb)] = std::min(ra, rb);

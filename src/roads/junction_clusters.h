@@ -30,10 +30,12 @@ struct JunctionClusters {
 /// than the two junctions' radii plus `min_kept_length_m`, where one is an intersection and the
 /// other an intersection or an attribute change that takes room (a bend or lane change, which
 /// then needs no transition road). `radius` is per network junction (0 where a junction takes no
-/// room); `length` and `has_height` per network road.
+/// room); `length` and `has_height` per network road. `used_up` (per network road, or empty)
+/// marks roads joined whatever their length: roads the junctions' trims used up.
 [[nodiscard]] JunctionClusters join_junctions(const RoadNetwork& network, const std::vector<double>& radius,
                                               const std::vector<double>& length,
                                               const std::vector<std::uint8_t>& has_height,
-                                              double min_kept_length_m);
+                                              double min_kept_length_m,
+                                              const std::vector<std::uint8_t>& used_up);
 
 }  // namespace relief::detail

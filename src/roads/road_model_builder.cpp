@@ -23,6 +23,9 @@ constexpr double kUTurn_rad = 5.0 * kPi / 6.0;
 constexpr double kMinRoadLength = 0.05;  // m left after trimming, else the road is skipped
 constexpr double kTrimStep = 0.5;        // m added to an overlapping road end's trim per pass
 constexpr int kMaxTrimPasses = 400;      // bounds the trims' growth at one junction
+constexpr int kMaxJoinRounds = 8;        // bounds the rounds of junctions joined by their trims
+constexpr double kMaxJoinGap =
+    10.0;  // m between two junctions' radii their trims may join (netconvert's join-dist)
 
 double wrap_angle(double a) {
   while (a > kPi) a -= 2.0 * kPi;
@@ -576,9 +579,10 @@ RoadModelBuild build_model(const RoadNetwork& network, const std::vector<RoadPro
     return profiles[road.id].has_height &&
            cumulative_of[road.id].back() - trim[road.id][0] - trim[road.id][1] >= kMinRoadLength;
   };
-  // Intersections too close for the road between them to hold both become one junction.
-  const detail::JunctionClusters clusters =
-      detail::join_junctions(network, radius, road_length, has_height, options.min_kept_length_m);
+  // Intersections too close for the road between them to hold both become one junction (more
+  // are joined below where the trims use a road up).
+  detail::JunctionClusters clusters =
+      detail::join_junctions(network, radius, road_length, has_height, options.min_kept_length_m, {});
   // The road ends at a junction; for a joined one, at any of its members but the absorbed roads'.
   const auto ends_of = [&](const Junction& j) {
     std::vector<const RoadEnd*> ends;
@@ -589,6 +593,115 @@ RoadModelBuild build_model(const RoadNetwork& network, const std::vector<RoadPro
     }
     return ends;
   };
+  // Trims grown where road ends at a junction overlap. A road whose trims leave it only
+  // min_kept_length_m while its ends still overlap others is used up: its two junctions are
+  // joined and the trims run again from the radii (a stub between two junctions cannot hold both).
+  std::vector<std::pair<int, std::vector<int>>> overlaps;  // junction, network roads
+  const std::vector<std::array<double, 2>> radius_trim = trim;
+  const std::vector<Vec2> given_planes = planes;
+  std::vector<std::uint8_t> used_up(network.roads.size(), 0);
+  // Both ends at one junction, or at two joined into one.
+  const auto loop = [&](const Road& road) {
+    return road.start_junction == road.end_junction ||
+           (road.start_junction >= 0 && road.end_junction >= 0 &&
+            clusters.representative[road.start_junction] == clusters.representative[road.end_junction]);
+  };
+  for (int round = 0;; ++round) {
+    trim = radius_trim;
+    planes = given_planes;
+    overlaps.clear();
+    std::size_t ends_trimmed = 0;
+    std::vector<std::uint8_t> stuck(network.roads.size(), 0);
+    for (const Junction& j : network.junctions) {
+      if (!(radius[j.id] > 0.0) || clusters.members[j.id].empty()) continue;
+      std::vector<const RoadEnd*> ends;
+      for (const RoadEnd* e : ends_of(j)) {
+        if (usable(network.roads[e->road])) ends.push_back(e);
+      }
+      if (ends.size() < 2) continue;
+      std::vector<std::optional<EndShape>> shape(ends.size());
+      const auto shape_of = [&](std::size_t k) -> const EndShape& {
+        if (!shape[k]) {
+          const Road& road = network.roads[ends[k]->road];
+          std::vector<double> kept_s, ref_s;
+          const PlanView plan = fit_part(road, kept_s, ref_s, nullptr);
+          // A loop's strip stops at its middle: the far half holds its other end, which would
+          // otherwise always overlap this one however far both are trimmed.
+          const double max_reach = loop(road) ? 0.5 * plan.length() : kStripLength;
+          shape[k] = end_shape(plan, outer_border_t(road.attributes), ends[k]->at_start, max_reach);
+        }
+        return *shape[k];
+      };
+      std::vector<std::uint8_t> grown(ends.size(), 0), capped(ends.size(), 0);
+      bool clear = false;
+      for (int pass = 0; pass < kMaxTrimPasses && !clear; ++pass) {
+        std::vector<std::uint8_t> grow(ends.size(), 0);
+        for (std::size_t a = 0; a < ends.size(); ++a) {
+          for (std::size_t b = a + 1; b < ends.size(); ++b) {
+            const EndShape& ea = shape_of(a);
+            const EndShape& eb = shape_of(b);
+            const double gap = std::min(segment_polygon_distance(ea.right, ea.left, eb.strip),
+                                        segment_polygon_distance(eb.right, eb.left, ea.strip));
+            if (gap >= options.junction_end_gap_m) continue;
+            grow[a] = grow[b] = 1;
+          }
+        }
+        clear = std::find(grow.begin(), grow.end(), 1) == grow.end();
+        bool any = false;
+        for (std::size_t k = 0; k < ends.size(); ++k) {
+          if (!grow[k]) continue;
+          const Road& road = network.roads[ends[k]->road];
+          const double length = cumulative_of[road.id].back();
+          double& t = trim[road.id][ends[k]->at_start ? 0 : 1];
+          // Both ends of a road draw on its length, leaving it min_kept_length_m; a loop's two
+          // ends overlap each other whatever is cut, so it keeps the per-end share.
+          const double cap =
+              loop(road) ? options.max_trim_fraction * length
+                         : length - trim[road.id][ends[k]->at_start ? 1 : 0] - options.min_kept_length_m;
+          const double next = std::min(t + kTrimStep, cap);
+          if (next - t < 1e-9) {
+            capped[k] = loop(road) ? 0 : 1;
+            continue;
+          }
+          t = next;
+          shape[k].reset();
+          grown[k] = 1;
+          any = true;
+        }
+        if (!any) break;
+      }
+      for (const std::uint8_t g : grown) ends_trimmed += g;
+      if (!clear) {
+        for (std::size_t k = 0; k < ends.size(); ++k) {
+          if (capped[k]) stuck[ends[k]->road] = 1;
+        }
+        std::vector<int> roads;
+        for (const RoadEnd* e : ends) roads.push_back(e->road);
+        overlaps.emplace_back(static_cast<int>(j.id), roads);
+        // Road ends that still overlap would cross each other once tilted differently: the
+        // junction stays level.
+        for (const int m : clusters.members[j.id]) planes[m] = Vec2::Zero();
+        planes[j.id] = Vec2::Zero();
+      }
+    }
+    out.stats.junction_ends_trimmed = ends_trimmed;
+    // A road the trims left no more than min_kept_length_m: the two junctions' areas meet
+    // across it (their kerb lines, their other roads' ends) and become one.
+    bool joined_more = false;
+    for (const Road& road : network.roads) {
+      if (loop(road) || used_up[road.id] || clusters.absorbed[road.id] || !has_height[road.id]) continue;
+      if (road_length[road.id] - trim[road.id][0] - trim[road.id][1] > options.min_kept_length_m + 1e-6)
+        continue;
+      if (!stuck[road.id] &&
+          road_length[road.id] - radius_trim[road.id][0] - radius_trim[road.id][1] > kMaxJoinGap)
+        continue;
+      used_up[road.id] = 1;
+      joined_more = true;
+    }
+    if (!joined_more || round + 1 == kMaxJoinRounds) break;
+    clusters =
+        detail::join_junctions(network, radius, road_length, has_height, options.min_kept_length_m, used_up);
+  }
   for (const Junction& j : network.junctions) {
     const std::vector<int>& members = clusters.members[j.id];
     if (members.size() < 2) continue;
@@ -618,76 +731,6 @@ RoadModelBuild build_model(const RoadNetwork& network, const std::vector<RoadPro
     }
   }
   for (const std::uint8_t a : clusters.absorbed) out.stats.roads_absorbed += a;
-
-  std::vector<std::pair<int, std::vector<int>>> overlaps;  // junction OSM node, network roads
-  for (const Junction& j : network.junctions) {
-    if (!(radius[j.id] > 0.0) || clusters.members[j.id].empty()) continue;
-    std::vector<const RoadEnd*> ends;
-    for (const RoadEnd* e : ends_of(j)) {
-      if (usable(network.roads[e->road])) ends.push_back(e);
-    }
-    if (ends.size() < 2) continue;
-    std::vector<std::optional<EndShape>> shape(ends.size());
-    const auto shape_of = [&](std::size_t k) -> const EndShape& {
-      if (!shape[k]) {
-        const Road& road = network.roads[ends[k]->road];
-        std::vector<double> kept_s, ref_s;
-        const PlanView plan = fit_part(road, kept_s, ref_s, nullptr);
-        // A loop's strip stops at its middle: the far half holds its other end, which would
-        // otherwise always overlap this one however far both are trimmed.
-        const double max_reach =
-            road.start_junction == road.end_junction ? 0.5 * plan.length() : kStripLength;
-        shape[k] = end_shape(plan, outer_border_t(road.attributes), ends[k]->at_start, max_reach);
-      }
-      return *shape[k];
-    };
-    std::vector<std::uint8_t> grown(ends.size(), 0);
-    bool clear = false;
-    for (int pass = 0; pass < kMaxTrimPasses && !clear; ++pass) {
-      std::vector<std::uint8_t> grow(ends.size(), 0);
-      for (std::size_t a = 0; a < ends.size(); ++a) {
-        for (std::size_t b = a + 1; b < ends.size(); ++b) {
-          const EndShape& ea = shape_of(a);
-          const EndShape& eb = shape_of(b);
-          const double gap = std::min(segment_polygon_distance(ea.right, ea.left, eb.strip),
-                                      segment_polygon_distance(eb.right, eb.left, ea.strip));
-          if (gap >= options.junction_end_gap_m) continue;
-          grow[a] = grow[b] = 1;
-        }
-      }
-      clear = std::find(grow.begin(), grow.end(), 1) == grow.end();
-      bool any = false;
-      for (std::size_t k = 0; k < ends.size(); ++k) {
-        if (!grow[k]) continue;
-        const Road& road = network.roads[ends[k]->road];
-        const double length = cumulative_of[road.id].back();
-        double& t = trim[road.id][ends[k]->at_start ? 0 : 1];
-        // Both ends of a road draw on its length, leaving it min_kept_length_m; a loop's two
-        // ends overlap each other whatever is cut, so it keeps the per-end share.
-        const double cap =
-            road.start_junction == road.end_junction
-                ? options.max_trim_fraction * length
-                : length - trim[road.id][ends[k]->at_start ? 1 : 0] - options.min_kept_length_m;
-        const double next = std::min(t + kTrimStep, cap);
-        if (next - t < 1e-9) continue;
-        t = next;
-        shape[k].reset();
-        grown[k] = 1;
-        any = true;
-      }
-      if (!any) break;
-    }
-    for (const std::uint8_t g : grown) out.stats.junction_ends_trimmed += g;
-    if (!clear) {
-      std::vector<int> roads;
-      for (const RoadEnd* e : ends) roads.push_back(e->road);
-      overlaps.emplace_back(static_cast<int>(j.id), roads);
-      // Road ends that still overlap would cross each other once tilted differently: the
-      // junction stays level.
-      for (const int m : clusters.members[j.id]) planes[m] = Vec2::Zero();
-      planes[j.id] = Vec2::Zero();
-    }
-  }
 
   out.end_trims = trim;
   if (trims_only) return out;

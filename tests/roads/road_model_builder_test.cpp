@@ -250,6 +250,38 @@ TEST(RoadModelBuilder, ShortForkBranchesGiveUpMoreThanTheRadiusShare) {
   }
 }
 
+TEST(RoadModelBuilder, AForkWhoseBranchesAreUsedUpJoinsTheJunctionsAtTheirEnds) {
+  // The 30 m fork above, its branches ending at intersections (5.2 m apart, a street north and
+  // one north-east from the upper, their mirror images from the lower): trimmed to their least
+  // length the branches' ends still overlap, and the junctions at both ends of a branch that
+  // the trims used up are one junction (they were left overlapping: a junction outline crossing
+  // itself, left open, or two junction surfaces through each other).
+  const double a = 5.0 * std::numbers::pi / 180.0;
+  const Vec2 up(30.0 * std::cos(a), 30.0 * std::sin(a)), down(30.0 * std::cos(a), -30.0 * std::sin(a));
+  const RoadNetwork net = test::make_network({{{-100, 0}, {0, 0}},
+                                              {{0, 0}, up},
+                                              {{0, 0}, down},
+                                              {up, up + Vec2(0, 100)},
+                                              {up, up + Vec2(70, 60)},
+                                              {down, down - Vec2(0, 100)},
+                                              {down, down + Vec2(70, -60)}},
+                                             std::vector<WayAttributes>(7, street(1, 1)));
+  ASSERT_EQ(net.junctions.size(), 8u);
+  Diagnostics d;
+  const RoadModelBuild b = build_road_model(net, drape(net), {}, d);
+  EXPECT_EQ(b.stats.junction_ends_overlap, 0u);
+  EXPECT_EQ(d.count("model.junction_ends_overlap"), 0u);
+  EXPECT_EQ(b.stats.roads_absorbed, 2u);
+  EXPECT_EQ(b.model_road_of[1], -1);
+  EXPECT_EQ(b.model_road_of[2], -1);
+  EXPECT_EQ(b.stats.junctions, 1u);
+  EXPECT_EQ(d.count("model.junctions_joined"), 1u);
+  const LinkContinuity c = check_link_continuity(b.model);
+  EXPECT_GT(c.borders_checked, 0u);
+  EXPECT_LT(c.max_horizontal_m, 1e-6);
+  EXPECT_LT(c.max_vertical_m, 1e-6);
+}
+
 TEST(RoadModelBuilder, ALoopBackToItsJunctionClearsItsOwnOtherEnd) {
   // A street ending in a 68 m triangular loop (a turnaround), both loop ends at one node 35.5
   // degrees apart: 6 m wide, they clear once trimmed 2 d sin 17.7° >= 6.5 m, d ~ 11 m. Each

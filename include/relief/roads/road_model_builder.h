@@ -22,8 +22,13 @@
 //   steps, until at each junction the end cross-sections (outermost left to outermost right
 //   lane border) of any two roads lie at least junction_end_gap_m apart and clear of each
 //   other's lanes, as long as the road keeps min_kept_length_m between its two trims (a loop
-//   road, both ends at one junction: max_trim_fraction per end); "model.junction_ends_overlap"
-//   where that is not possible.
+//   road, both ends at one junction or at two joined ones: max_trim_fraction per end). A road
+//   the trims leave no longer than min_kept_length_m between two junctions that take room (their
+//   areas would meet across it, or its ends still overlap others) joins them like a short road
+//   above, and the trims run again on the joined junctions (up to 8 rounds), when it is either
+//   stuck (its ends still overlap) or no more than 10 m longer than the two radii (longer roads
+//   used up at a sharp fork keep their junctions apart); "model.junction_ends_overlap" where
+//   the ends still overlap then.
 // - Reference lines: OSM centrelines rounded at their vertices within plan_tolerance_m, but with
 //   arcs no tighter than the road's outermost lane border plus min_radius_margin_m (lane
 //   borders fold back inside a tighter arc): a sharp corner then departs from the polyline by
