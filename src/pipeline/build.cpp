@@ -267,7 +267,7 @@ BuildResult build(const BuildOptions& options, Diagnostics& diagnostics, const P
       std::vector<double> cap(built->model.roads.size(), -1.0);
       for (std::size_t i = 0; i < built->model.roads.size(); ++i) {
         const int source = built->model.roads[i].source_road;
-        if (source >= 0) cap[i] = grade_limit(fit_options, network.roads[source].attributes.highway);
+        if (source >= 0) cap[i] = grade_limit(fit_options, network.roads[source].attributes);
       }
       return check_grades(built->model, cap);
     });

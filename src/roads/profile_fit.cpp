@@ -194,6 +194,64 @@ std::vector<std::uint8_t> roads_with_data(const RoadNetwork& network, Diagnostic
   return data;
 }
 
+// A span's own pull. The heights without data (anchored bridges and tunnels) take the tiny
+// regularising weight towards the straight line between their abutments, not towards the DEM
+// over them: over a 3 km base tunnel 1e-6 per metre towards the ridge above outweighs the
+// deck's smoothing and humps the tunnel up to the crest. The line is the harmonic interpolation
+// of the anchors' targets over the road graph (linear in distance along a chain; a junction
+// inside a span takes the distance-weighted mean of its arms), solved once (sparse LDL^T).
+// `free_weight` is the weight of a variable without data; a component without any anchor
+// keeps its target (the eps term).
+void span_targets(const std::vector<RoadProfile>& raw, const VariableMap& vars, const Vec& weight,
+                  double free_weight, Vec& target) {
+  constexpr double kEps = 1e-12;
+  const auto n = static_cast<Eigen::Index>(target.size());
+  std::vector<Eigen::Index> index(static_cast<std::size_t>(n), -1);
+  Eigen::Index count = 0;
+  for (std::size_t r = 0; r < raw.size(); ++r) {
+    const RoadProfile& p = raw[r];
+    if (!p.has_height) continue;
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      const std::size_t v = vars.of(r, i, p.size());
+      if (index[v] < 0 && weight[static_cast<Eigen::Index>(v)] <= free_weight) index[v] = count++;
+    }
+  }
+  if (count == 0) return;
+  std::vector<Eigen::Triplet<double>> entries;
+  Vec rhs = Vec::Zero(count);
+  for (std::size_t v = 0; v < index.size(); ++v) {
+    if (index[v] < 0) continue;
+    entries.emplace_back(index[v], index[v], kEps);
+    rhs[index[v]] += kEps * target[static_cast<Eigen::Index>(v)];
+  }
+  for (std::size_t r = 0; r < raw.size(); ++r) {
+    const RoadProfile& p = raw[r];
+    if (!p.has_height) continue;
+    for (std::size_t i = 0; i + 1 < p.size(); ++i) {
+      const std::size_t a = vars.of(r, i, p.size()), b = vars.of(r, i + 1, p.size());
+      if (a == b || (index[a] < 0 && index[b] < 0)) continue;
+      const double w = 1.0 / std::max(p.s[i + 1] - p.s[i], kMinCurvatureSpacing);
+      for (const auto& [x, y] : {std::pair{a, b}, std::pair{b, a}}) {
+        if (index[x] < 0) continue;
+        entries.emplace_back(index[x], index[x], w);
+        if (index[y] >= 0) {
+          entries.emplace_back(index[x], index[y], -w);
+        } else {
+          rhs[index[x]] += w * target[static_cast<Eigen::Index>(y)];
+        }
+      }
+    }
+  }
+  Eigen::SparseMatrix<double> laplacian(count, count);
+  laplacian.setFromTriplets(entries.begin(), entries.end());
+  const Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt(laplacian);
+  if (ldlt.info() != Eigen::Success) return;  // keep the DEM targets (never seen: L + eps I is SPD)
+  const Vec z = ldlt.solve(rhs);
+  for (std::size_t v = 0; v < index.size(); ++v) {
+    if (index[v] >= 0) target[static_cast<Eigen::Index>(v)] = z[index[v]];
+  }
+}
+
 using Permutation = Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int>;
 
 // Fill-reducing elimination order. The interiors of the roads come first, each road in station
@@ -327,6 +385,14 @@ double grade_limit(const ProfileFitOptions& options, HighwayClass cls) {
   return (highway ? options.fidelity_highway_max_grade_percent : options.fidelity_max_grade_percent) / 100.0;
 }
 
+double grade_limit(const ProfileFitOptions& options, const WayAttributes& attributes) {
+  const double cap = grade_limit(options, attributes.highway);
+  if (!attributes.tunnel) return cap;
+  // Not below the highways' physical cap: a freeway tunnel on a 9 % ramp is real.
+  const double table = options.limits.limit_for(attributes.highway) / 100.0;
+  return std::min(cap, std::max(table, options.fidelity_highway_max_grade_percent / 100.0));
+}
+
 std::string_view to_string(FitLimit limit) {
   switch (limit) {
     case FitLimit::ground_departure:
@@ -434,7 +500,8 @@ ProfileFitResult fit_profiles(const RoadNetwork& network, const std::vector<Road
 
   // Data term: trapezoidal weights (metres of road per sample), none on structures; a tiny
   // weight everywhere keeps P positive definite where a component has no ground at all.
-  Vec weight = Vec::Constant(static_cast<Eigen::Index>(n), 1e-6);
+  constexpr double kFreeWeight = 1e-6;
+  Vec weight = Vec::Constant(static_cast<Eigen::Index>(n), kFreeWeight);
   Vec target = Vec::Zero(static_cast<Eigen::Index>(n));
   Vec target_weight = Vec::Zero(static_cast<Eigen::Index>(n));
   Vec initial = Vec::Zero(static_cast<Eigen::Index>(n));
@@ -496,8 +563,10 @@ ProfileFitResult fit_profiles(const RoadNetwork& network, const std::vector<Road
   }
   for (Eigen::Index v = 0; v < static_cast<Eigen::Index>(n); ++v) {
     initial[v] /= std::max(1.0, initial_count[v]);
-    target[v] = weight[v] > 1e-6 ? (target_weight[v] + 1e-6 * initial[v]) / weight[v] : initial[v];
+    target[v] =
+        weight[v] > kFreeWeight ? (target_weight[v] + kFreeWeight * initial[v]) / weight[v] : initial[v];
   }
+  span_targets(raw, vars, weight, kFreeWeight, target);
 
   // Smoothness: lambda * sum (z'')^2 ds, with lambda from the cutoff wavelength; and the rows of
   // the vertical curve bounds on the same triples, scaled to metres (times the mean spacing^2).
@@ -512,7 +581,7 @@ ProfileFitResult fit_profiles(const RoadNetwork& network, const std::vector<Road
     const RoadProfile& p = raw[r];
     if (!p.has_height) continue;
     const std::size_t np = p.size();
-    const double road_lambda = is_structure(network.roads[r]) ? lambda_structure : lambda;
+    const double road_lambda = network.roads[r].attributes.bridge ? lambda_structure : lambda;
     const auto [crest, sag] = curvature_bounds(network.roads[r], options);
     // Rows that bind over long stretches are never screened out: a design speed's curves, and
     // the curves of roads that clearances push at single stations (screening by distance would
@@ -572,7 +641,7 @@ ProfileFitResult fit_profiles(const RoadNetwork& network, const std::vector<Road
   for (std::size_t r = 0; r < raw.size(); ++r) {
     const RoadProfile& p = raw[r];
     if (!p.has_height) continue;
-    const double g = grade_limit(options, network.roads[r].attributes.highway);
+    const double g = grade_limit(options, network.roads[r].attributes);
     for (const int j : {network.roads[r].start_junction, network.roads[r].end_junction})
       junction_cap[j] = std::max(junction_cap[j], g);
     for (std::size_t i = 0; i + 1 < p.size(); ++i) {
@@ -612,10 +681,10 @@ ProfileFitResult fit_profiles(const RoadNetwork& network, const std::vector<Road
   const auto lane_points = [&](int road, std::size_t k) {
     const RoadProfile& p = raw[road];
     const Vec2 d = p.xy[std::min(k + 1, p.size() - 1)] - p.xy[k == 0 ? 0 : k - 1];
-    const Vec2 n = Vec2(-d.y(), d.x()) / std::max(d.norm(), 1e-9);
+    const Vec2 normal = Vec2(-d.y(), d.x()) / std::max(d.norm(), 1e-9);
     const WayAttributes& a = network.roads[road].attributes;
     const double t = std::max(half_width(road) - 0.5 * a.lane_width_m, 0.0);
-    return std::array<Vec2, 3>{p.xy[k] - t * n, p.xy[k], p.xy[k] + t * n};
+    return std::array<Vec2, 3>{p.xy[k] - t * normal, p.xy[k], p.xy[k] + t * normal};
   };
   for (const Junction& j : network.junctions) {
     if (j.ends.size() < 3) continue;  // two ends: the road's own grade rows hold
@@ -651,8 +720,8 @@ ProfileFitResult fit_profiles(const RoadNetwork& network, const std::vector<Road
         for (const Vec2& qa : lane_points(ra, ka))
           for (const Vec2& qb : lane_points(rb, kb)) d = std::min(d, (qa - qb).norm());
         d = std::max(d, kMinCurvatureSpacing);
-        const double g = std::max(grade_limit(options, network.roads[ra].attributes.highway),
-                                  grade_limit(options, network.roads[rb].attributes.highway));
+        const double g = std::max(grade_limit(options, network.roads[ra].attributes),
+                                  grade_limit(options, network.roads[rb].attributes));
         pair_rows[rows.size()] = {d, g};
         rows.add({{vars.of(rb, kb, pb.size()), 1.0}, {vars.of(ra, ka, pa.size()), -1.0}}, -g * d, g * d,
                  {FitLimit::junction_grade, ra, static_cast<std::uint32_t>(ka)});
@@ -773,7 +842,7 @@ ProfileFitResult fit_profiles(const RoadNetwork& network, const std::vector<Road
         case FitLimit::grade: {
           const double ds = driven(p, tag.station + 1) - driven(p, tag.station);
           v.value = 100.0 * std::abs(value) / ds;
-          v.bound = 100.0 * grade_limit(options, road.attributes.highway);
+          v.bound = 100.0 * grade_limit(options, road.attributes);
           v.s_m += 0.5 * ds;
           break;
         }

@@ -40,12 +40,14 @@ struct BuiltRoad {
     return std::any_of(way_ids.begin(), way_ids.end(),
                        [&](std::int64_t w) { return std::find(ways.begin(), ways.end(), w) != ways.end(); });
   }
-  // Largest |grade| between consecutive samples (fraction).
+  // Largest |grade| between consecutive samples (fraction), over runs of 0.5 m or more: the
+  // GeoJSON rounds heights to 1 mm and positions to 1e-7 degrees (about 1 cm), which over a
+  // 5 cm run next to a road's end made a 10.0 % road read 10.5 %.
   [[nodiscard]] double max_grade() const {
     double g = 0.0;
     for (std::size_t i = 1; i < samples.size(); ++i) {
       const double run = (samples[i] - samples[i - 1]).head<2>().norm();
-      if (run > 0.05) g = std::max(g, std::abs(samples[i].z() - samples[i - 1].z()) / run);
+      if (run >= 0.5) g = std::max(g, std::abs(samples[i].z() - samples[i - 1].z()) / run);
     }
     return g;
   }
@@ -244,20 +246,20 @@ void check_mountain(double cell_m, const KnownFailures& failing) {
 }
 
 // Known failures (measured at this commit):
-// - tunnel_grade, tunnel_cover: the base tunnel, anchored at three portals and without a data
-//   term (profile_fit.cpp roads_with_data), still humps up from its 0.5 % line to 859 m under
-//   the 1112 m crest at 24 % grades, 4.6 m (30 m DEM) / 2.1 m (90 m) under the flank; no gate
-//   sees it (the ground gates skip structures). The same with the branch removed.
-// - roundabout_grade: the ring on the 12 % apron is split into four 39 m roads at its arms and
-//   climbs up to 21 % between them (junction planes at the arms; the cap of a secondary is 35 %).
+// - tunnel_grade: the base tunnel (designed at 0.5 % between portals on the ground) reaches its
+//   class's 12 % at a portal: the portal heights come from the ground roads meeting there, which
+//   follow the 30 m / 90 m DEM of the 35 % flank, metres off the designed portal, and the
+//   tunnel takes that step at its cap near the portal. Its line between the portals is straight now
+//   (it humped up to 859 m under the crest when the weak pull of a structure went to the DEM
+//   above it, and 18 m over its portals with a bridge deck's stiffness; cover now >= 7 m).
 // - ground_vs_dem_rmse_m (90 m only): a 90 m cell cannot show the trunk's platform, whose
 //   designed cut and fill reaches 23 m (RMS 12 m) where the hairpins turn on the 35 % flank; the
-//   fit holds the trunk to 10 % and so departs from the blurred DEM (RMSE 2.65 m over 2 m).
+//   fit holds the trunk to 10 % and so departs from the blurred DEM (RMSE 2.95 m over 2 m).
 TEST(Corpus, MountainAt30m) {
-  check_mountain(30.0, {{}, {"tunnel_grade", "tunnel_cover", "roundabout_grade"}});
+  check_mountain(30.0, {{}, {"tunnel_grade"}});
 }
 TEST(Corpus, MountainAt90m) {
-  check_mountain(90.0, {{"ground_vs_dem_rmse_m"}, {"tunnel_grade", "tunnel_cover", "roundabout_grade"}});
+  check_mountain(90.0, {{"ground_vs_dem_rmse_m"}, {"tunnel_grade"}});
 }
 TEST(Corpus, MountainAt1m) {
   check_mountain(1.0, {});

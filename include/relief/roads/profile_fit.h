@@ -51,8 +51,11 @@ struct ProfileFitOptions {
   /// Wavelength below which height variations are treated as DEM noise (m). The smoothing
   /// weight is lambda = (cutoff / 2 pi)^4, where a smoothing spline halves the amplitude.
   double cutoff_wavelength_m = 40.0;
-  /// The same for bridge and tunnel decks, which are stiff over hundreds of metres: a deck
-  /// arches smoothly over the roads it must clear instead of bumping up at each of them.
+  /// The same for bridge decks, which are stiff over hundreds of metres: a deck arches smoothly
+  /// over the roads it must clear instead of bumping up at each of them. Tunnels keep the
+  /// roads' wavelength: their vertical curves sit at the portals, where a tunnel meets an
+  /// approach road at its own grade, instead of carrying that grade hundreds of metres into the
+  /// mountain (a 3 km base tunnel humped 18 m over its portals with the deck's stiffness).
   double structure_cutoff_wavelength_m = 200.0;
   double max_curvature_per_m = 0.05;  ///< physical |z''| bound of every road (1/m); 0 disables it
   /// Roads of these classes (motorway ... the class named here, in HighwayClass order) keep the
@@ -107,6 +110,12 @@ struct ProfileFitResult {
 
 /// Grade limit (fraction, 0.12 for 12 %) that `options` applies to a road of class `cls`.
 [[nodiscard]] double grade_limit(const ProfileFitOptions& options, HighwayClass cls);
+/// The same for a road with these attributes: a tunnel also keeps the class table's limit, but
+/// not below the highways' physical cap (fidelity_highway_max_grade_percent), under the fidelity
+/// policy: nothing measures it (no data term) and it does not follow the terrain whose steepness
+/// the physical cap allows a street. Bridges keep the street's cap: a short deck on a steep
+/// street climbs with it.
+[[nodiscard]] double grade_limit(const ProfileFitOptions& options, const WayAttributes& attributes);
 
 /// Design speed (km/h) of a road for its vertical curves: maxspeed, else the class default.
 [[nodiscard]] double design_speed_kmh(const WayAttributes& attributes);
