@@ -9,6 +9,7 @@
 
 #include "relief/core/errors.h"
 #include "relief/export/sumo_checks.h"
+#include "relief/export/sumo_drape.h"
 #include "relief/geometry/polyline.h"
 
 namespace relief {
@@ -95,6 +96,7 @@ SumoJob start_sumo(const SumoStageInput& in) {
     r.run = run_netconvert(*r.plain, dir, name);
     r.seconds = seconds_since(t0);
     const auto t1 = std::chrono::steady_clock::now();
+    r.drape = drape_sumo_net(r.run.net_xml, model, name + ".net.xml");
     r.check = check_sumo_net(r.run.net_xml, model, name + ".net.xml");
     r.check_seconds = seconds_since(t1);
     return r;
@@ -121,7 +123,7 @@ SumoSummary finish_sumo(const SumoStageInput& in, SumoJob& job, OutputSet& files
   const NetconvertRun& nc = result.run;
   timer.add("build SUMO network (beside the meshes)", result.build_seconds);
   timer.add("netconvert (beside the meshes)", result.seconds);
-  timer.add("check SUMO network (after netconvert, beside the meshes)", result.check_seconds);
+  timer.add("drape and check SUMO network (after netconvert, beside the meshes)", result.check_seconds);
   timer.add("wait for netconvert",
             std::chrono::duration<double>(std::chrono::steady_clock::now() - t_wait).count());
   summary.netconvert_warnings = nc.warnings;
@@ -153,6 +155,9 @@ SumoSummary finish_sumo(const SumoStageInput& in, SumoJob& job, OutputSet& files
     summary.z_p99_m = check.z_p99_m;
     summary.z_max_lane = check.z_max_lane;
     summary.netconvert_lanes_z_max_m = check.netconvert_shape_z_max_m;
+    summary.draped_points_moved = result.drape.points_moved;
+    summary.drape_max_move_m = result.drape.max_move_m;
+    summary.drape_max_move_lane = result.drape.max_move_lane;
     summary.xy_max_m = check.xy_max_m;
     summary.xy_max_lane = check.xy_max_lane;
     summary.max_handover_step_m = check.max_handover_step_m;

@@ -13,6 +13,7 @@
 #include "relief/core/atomic_file.h"
 #include "relief/export/report_writer.h"
 #include "relief/export/sumo_checks.h"
+#include "relief/export/sumo_drape.h"
 #include "relief/export/sumo_tools.h"
 #include "relief/roads/road_model.h"
 
@@ -49,6 +50,7 @@ struct NetconvertResult {
   double build_seconds = 0.0;  ///< the plain network's
   NetconvertRun run;
   double seconds = 0.0;  ///< netconvert's wall time
+  SumoDrape drape;  ///< netconvert's lanes laid onto the OpenDRIVE surface
   SumoNetCheck check;
   double check_seconds = 0.0;
 };

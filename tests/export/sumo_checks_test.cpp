@@ -1,4 +1,5 @@
 #include "relief/export/sumo_checks.h"
+#include "relief/export/sumo_drape.h"
 
 #include <gtest/gtest.h>
 
@@ -145,6 +146,36 @@ TEST(SumoChecks, NamesTheLanesOfTheWorstPoints) {
   EXPECT_LT((check.z_max_point - Vec3(210.0, -1.7, 21.03)).norm(), 1e-9);
   EXPECT_NEAR(check.xy_max_m, 0.2, 1e-9);
   EXPECT_EQ(check.xy_max_lane, "3_0");
+}
+
+TEST(SumoDrape, LanePointsNetconvertLeftOffTheSurfaceTakeItsHeight) {
+  const RoadModel model = ramp_model();
+  std::string net = kNet;
+  // Lane 1_0 cut and interpolated by netconvert: its end 0.6 m high, a point in its middle
+  // 0.25 m low; the internal lane gains a point 0.5 m low and one without z.
+  const std::string end = "0,-1.5,0 100,-1.5,10\"";
+  net.replace(net.find(end), end.size(), "0,-1.5,0 50,-1.5,4.75 100,-1.5,10.6\"");
+  const std::string internal = "shape=\"100,-1.5,10 110,-1.5,11\"/>";
+  net.replace(net.find(internal), internal.size(), "shape=\"100,-1.5,10 104,-1.5,9.9 106,-1.5 110,-1.5,11\"/>");
+  EXPECT_GT(check_sumo_net(net, model, "ramp.net.xml").z_max_m, 0.59);
+  const SumoDrape drape = drape_sumo_net(net, model, "ramp.net.xml");
+  EXPECT_EQ(drape.points, 11u);
+  EXPECT_EQ(drape.points_unmapped, 0u);
+  EXPECT_EQ(drape.points_moved, 4u);  // 0.6, 0.25, 0.5 and the point without z (10.6 m)
+  EXPECT_NEAR(drape.max_move_m, 10.6, 1e-9);
+  EXPECT_EQ(drape.max_move_lane, ":J_0_0");
+  // x and y as they were, z on the plane z = 0.1 x (3 decimals), params kept: the check finds
+  // every point on the surface and every lane on its road.
+  EXPECT_NE(net.find("50,-1.5,5.000 "), std::string::npos) << net;
+  EXPECT_NE(net.find("106,-1.5,10.600 "), std::string::npos) << net;
+  const SumoNetCheck check = check_sumo_net(net, model, "ramp.net.xml");
+  EXPECT_EQ(check.points, 11u);
+  EXPECT_EQ(check.points_unmapped, 0u);
+  EXPECT_EQ(check.lanes_without_z, 0u);
+  EXPECT_LT(check.z_max_m, 5e-4);
+  EXPECT_LT(check.xy_max_m, 1e-9);
+  std::string not_a_net = "<osm/>";
+  EXPECT_THROW((void)drape_sumo_net(not_a_net, model, "x.net.xml"), InvalidInput);
 }
 
 TEST(SumoChecks, InternalLanesNetconvertDrewAreMeasuredApart) {

@@ -95,6 +95,12 @@ struct SumoSummary {
   double z_max_m = 0.0, z_p99_m = 0.0;           ///< lane points vs the OpenDRIVE surface
   std::string z_max_lane;                        ///< SUMO lane of the z_max_m point
   double netconvert_lanes_z_max_m = 0.0;         ///< the same for internal lanes netconvert drew
+  /// Lane points netconvert left off the surface (cut at its junction outlines), given the
+  /// surface height before the check (sumo_drape.h): how many moved by more than 1 mm, the
+  /// largest move and its lane.
+  std::size_t draped_points_moved = 0;
+  double drape_max_move_m = 0.0;
+  std::string drape_max_move_lane;
   double xy_max_m = 0.0;                         ///< lane centre points vs the OpenDRIVE lane centres
   std::string xy_max_lane;                       ///< SUMO lane of the xy_max_m point
   double max_handover_step_m = 0.0;              ///< lane <-> internal lane height step
@@ -194,6 +200,7 @@ struct RunReport {
 /// checked}, sumo{file, nodes, edges, connections, junctions, traffic_lights, lanes,
 /// internal_lanes, internal_lanes_by_netconvert, signals_mid_road, restricted_edges{class: n},
 /// max_grade_percent{class: %}, points_checked, z_max_m, z_p99_m, z_max_lane, netconvert_lanes_z_max_m,
+/// draped_points_moved, drape_max_move_m, drape_max_move_lane,
 /// xy_max_m, xy_max_lane, max_handover_step_m, max_lane_grade_percent, max_internal_lane_grade_percent,
 /// max_profile_grade_percent, netconvert_warnings, routes, step_length_s} | null, profiles{method, fit{...},
 /// paper{...}}, methods{raw|paper|relief: {vs_dem, vs_dem_ground, vs_dem_structures, vs_reference, gradient,

@@ -1,0 +1,30 @@
+#pragma once
+// The lanes of a .net.xml laid onto the OpenDRIVE surface they came from. netconvert cuts lanes
+// at the junction outlines it computes and interpolates their heights linearly between the
+// shape points it keeps (in a large joined junction, from a point metres inside it), so a lane
+// end can lie decimetres off the road surface (0.88 m on Liechtenstein). Every point of every
+// lane (internal lanes included) that maps to an OpenDRIVE road (sumo_checks.h: through the
+// net's params, else the model's junction connections) takes the surface height at its (x, y)
+// on that road; x and y are kept as netconvert wrote them.
+
+#include <cstddef>
+#include <string>
+
+#include "relief/roads/road_model.h"
+
+namespace relief {
+
+struct SumoDrape {
+  std::size_t points = 0;          ///< lane shape points given the surface height
+  std::size_t points_moved = 0;    ///< of those, points moved by more than 1 mm
+  std::size_t points_unmapped = 0;  ///< points whose OpenDRIVE road is unknown (left as they are)
+  double max_move_m = 0.0;         ///< largest height change
+  std::string max_move_lane;       ///< the lane of that change
+};
+
+/// Rewrites the z of every mapped lane shape point of `net_xml` (a .net.xml, named `file` in
+/// errors) with the surface of `model`, 3 decimals as SUMO writes them. Throws InvalidInput when
+/// `net_xml` is not a SUMO network.
+[[nodiscard]] SumoDrape drape_sumo_net(std::string& net_xml, const RoadModel& model, const std::string& file);
+
+}  // namespace relief

@@ -1,0 +1,72 @@
+#include "relief/export/sumo_drape.h"
+
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+#include <string_view>
+
+#include "export/sumo_lane_locator.h"
+#include "relief/roads/road_surface.h"
+
+namespace relief {
+namespace {
+
+// pugixml writes into a string.
+struct StringWriter : pugi::xml_writer {
+  std::string text;
+  void write(const void* data, size_t size) override { text.append(static_cast<const char*>(data), size); }
+};
+
+}  // namespace
+
+SumoDrape drape_sumo_net(std::string& net_xml, const RoadModel& model, const std::string& file) {
+  pugi::xml_document doc;
+  const pugi::xml_node net = detail::load_net(doc, net_xml, file);
+  detail::LaneLocator locator(net, model);
+  SumoDrape out;
+  char z_text[64];
+  for (pugi::xml_node edge : net.children("edge")) {
+    for (pugi::xml_node lane : edge.children("lane")) {
+      const std::string id = lane.attribute("id").as_string();
+      pugi::xml_attribute shape = lane.attribute("shape");
+      std::istringstream in(shape.as_string());
+      std::string rewritten;
+      bool changed = false;
+      for (std::string token; in >> token;) {
+        const std::size_t first = token.find(',');
+        const std::size_t second = first == std::string::npos ? first : token.find(',', first + 1);
+        if (first == std::string::npos) {
+          rewritten += (rewritten.empty() ? "" : " ") + token;
+          continue;
+        }
+        const std::string xy = token.substr(0, second);
+        const Vec2 p(std::stod(token.substr(0, first)), std::stod(token.substr(first + 1, second - first - 1)));
+        const auto at = locator.locate(id, p);
+        if (!at) {
+          ++out.points_unmapped;
+          rewritten += (rewritten.empty() ? "" : " ") + token;
+          continue;
+        }
+        const double z = surface_z(*at->road, at->s, at->t);
+        const double old_z = second == std::string::npos ? 0.0 : std::stod(token.substr(second + 1));
+        std::snprintf(z_text, sizeof z_text, "%.3f", z);
+        ++out.points;
+        const double move = std::abs(z - old_z);
+        if (move > 1e-3) ++out.points_moved;
+        if (move > out.max_move_m) {
+          out.max_move_m = move;
+          out.max_move_lane = id;
+        }
+        rewritten += (rewritten.empty() ? "" : " ") + xy + "," + z_text;
+        changed = true;
+      }
+      if (changed) shape.set_value(rewritten.c_str());
+    }
+  }
+  StringWriter writer;
+  doc.save(writer, "    ", pugi::format_default, pugi::encoding_utf8);
+  net_xml = std::move(writer.text);
+  return out;
+}
+
+}  // namespace relief

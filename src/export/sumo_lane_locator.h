@@ -1,0 +1,208 @@
+#pragma once
+// Private to the export module: reading a .net.xml written by netconvert from relief's plain
+// network. Lane shapes, params, and the LaneLocator that maps every lane (internal ones through
+// their connections) to its OpenDRIVE road and lane and projects lane points onto that road.
+// Shared by the checks of a net (sumo_checks.cpp) and the draping of its lanes onto the
+// OpenDRIVE surface (sumo_drape.cpp).
+
+#include <pugixml.hpp>
+
+#include <cmath>
+#include <limits>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <unordered_map>
+#include <vector>
+
+#include "relief/geometry/types.h"
+#include "relief/roads/road_model.h"
+
+namespace relief::detail {
+
+/// The points of a lane shape ("x,y[,z] ..."); `missing_z` is set when a point comes without z
+/// (taken as 0).
+[[nodiscard]] Polyline3 parse_shape(const char* text, bool* missing_z = nullptr);
+
+/// The integer value of <param key="key"> under `node`, if any.
+[[nodiscard]] std::optional<int> param_int(const pugi::xml_node& node, const char* key);
+
+/// Parses `net_xml` into `doc` and returns its <net> element. Throws InvalidInput (naming
+/// `file`) when it is not XML or not a SUMO network.
+pugi::xml_node load_net(pugi::xml_document& doc, std::string_view net_xml, const std::string& file);
+
+// Where a point lies on a road: station and offset, and how far it lies past the road's start
+// (negative) or end (positive) along the reference line (0 when it projects inside).
+struct Projection {
+  double s = 0.0, t = 0.0, beyond = 0.0;
+};
+
+// (s, t) of the point of `road`'s reference line nearest to p: a 1 m scan, then Newton steps.
+class RoadProjector {
+ public:
+  explicit RoadProjector(const ModelRoad& road) : road_(road) {
+    const double length = road.length();
+    const int n = std::max(1, static_cast<int>(std::ceil(length)));
+    for (int i = 0; i <= n; ++i) {
+      const double s = length * i / n;
+      stations_.push_back(s);
+      points_.push_back(road.plan.at(s).position);
+    }
+  }
+
+  [[nodiscard]] Projection project(const Vec2& p) const {
+    std::size_t best = 0;
+    double best_d = std::numeric_limits<double>::infinity();
+    for (std::size_t i = 0; i < points_.size(); ++i) {
+      const double d = (points_[i] - p).squaredNorm();
+      if (d < best_d) {
+        best_d = d;
+        best = i;
+      }
+    }
+    double s = stations_[best];
+    for (int it = 0; it < 20; ++it) {
+      // Newton on (p - o(s)) . T(s) = 0, whose derivative is -(1 - curvature t): on a tight
+      // bend the plain tangent step (the derivative taken as -1) overshoots on the outside and
+      // never settles.
+      const Pose2 pose = road_.plan.at(s);
+      const Vec2 d = p - pose.position;
+      const double along = d.dot(Vec2(std::cos(pose.heading), std::sin(pose.heading)));
+      const double across = d.dot(Vec2(-std::sin(pose.heading), std::cos(pose.heading)));
+      const double scale = 1.0 - pose.curvature * across;
+      const double ds = along / std::max(scale, 0.25);
+      s = std::clamp(s + ds, 0.0, road_.length());
+      if (std::abs(ds) < 1e-6) break;
+    }
+    const Pose2 pose = road_.plan.at(s);
+    const Vec2 d = p - pose.position;
+    const double along = d.dot(Vec2(std::cos(pose.heading), std::sin(pose.heading)));
+    const bool at_end = s <= 0.0 || s >= road_.length();
+    return {s, d.dot(Vec2(-std::sin(pose.heading), std::cos(pose.heading))), at_end ? along : 0.0};
+  }
+
+ private:
+  const ModelRoad& road_;
+  std::vector<double> stations_;
+  std::vector<Vec2> points_;
+};
+
+// OpenDRIVE road and lane of a SUMO lane.
+struct LaneRoad {
+  int road = -1;
+  std::optional<int> lane;
+  bool odr_shape = true;  ///< false: netconvert drew the lane itself (not on the OpenDRIVE lane centre)
+};
+
+// Where a point of a SUMO lane lies on its OpenDRIVE road.
+struct LanePoint {
+  const ModelRoad* road = nullptr;
+  double s = 0.0, t = 0.0;
+  LaneRoad lane;
+};
+
+
+/// The internal lane of a connection without params: the model's connecting road that joins the
+/// connection's lanes (from_road/from_lane -> to_road/to_lane); a direct road-to-road link (or
+/// the two halves of a split road) stays on the road it leaves.
+[[nodiscard]] std::optional<LaneRoad> connecting_lane(const RoadModel& model, const LaneRoad& from,
+                                                      const LaneRoad& to);
+
+// Every lane of a .net.xml mapped to its OpenDRIVE road and lane, and points of a lane
+// projected onto that road (one projector per road, made on first use).
+class LaneLocator {
+ public:
+  LaneLocator(const pugi::xml_node& net, const RoadModel& model) : model_(model) {
+    for (const pugi::xml_node& edge : net.children("edge")) {
+      if (std::string_view(edge.attribute("function").as_string()) == "internal") continue;
+      const auto road = param_int(edge, "odr.road");
+      if (!road) continue;
+      for (const pugi::xml_node& lane : edge.children("lane")) {
+        lanes_[lane.attribute("id").as_string()] = {*road, param_int(lane, "odr.lane"), true};
+      }
+    }
+    // Internal lanes take the OpenDRIVE road of the connection that runs through them.
+    for (const pugi::xml_node& c : net.children("connection")) {
+      const std::string via = c.attribute("via").as_string();
+      const std::string from = c.attribute("from").as_string();
+      if (via.empty() || from.empty() || from[0] == ':') continue;
+      const bool odr_shape = !c.attribute("shape").empty();
+      const auto road = param_int(c, "odr.road");
+      const auto lane = param_int(c, "odr.lane");
+      if (road && lane) {
+        lanes_[via] = {*road, *lane, odr_shape};
+        continue;
+      }
+      const auto a = lanes_.find(from + "_" + c.attribute("fromLane").as_string());
+      const auto b =
+          lanes_.find(std::string(c.attribute("to").as_string()) + "_" + c.attribute("toLane").as_string());
+      if (a == lanes_.end() || b == lanes_.end()) continue;
+      if (const auto mapped = connecting_lane(model, a->second, b->second)) {
+        lanes_[via] = *mapped;
+        if (mapped->road == a->second.road) {
+          lanes_[via].lane.reset();  // a link between road ends: short, beside no lane centre
+        } else {
+          lanes_[via].odr_shape = odr_shape;
+        }
+      }
+    }
+    // A connection's internal lane may be split (":J_0_0" -> ":J_1_0"): follow the chain.
+    for (bool changed = true; changed;) {
+      changed = false;
+      for (const pugi::xml_node& c : net.children("connection")) {
+        const std::string from = c.attribute("from").as_string();
+        const std::string via = c.attribute("via").as_string();
+        if (from.empty() || from[0] != ':' || via.empty() || lanes_.count(via)) continue;
+        const auto it = lanes_.find(from + "_" + c.attribute("fromLane").as_string());
+        if (it == lanes_.end()) continue;
+        lanes_[via] = it->second;
+        changed = true;
+      }
+    }
+  }
+
+  /// The OpenDRIVE road, lane and (s, t) of point p of SUMO lane `lane_id`; nullopt when the
+  /// lane has no road in the model. A point past an end of its road (netconvert stretches an
+  /// internal lane to where it cut the next lane) lies on the road linked there, if any: the
+  /// surface at that (x, y) is that road's.
+  [[nodiscard]] std::optional<LanePoint> locate(const std::string& lane_id, const Vec2& p) {
+    const auto it = lanes_.find(lane_id);
+    if (it == lanes_.end()) return std::nullopt;
+    const ModelRoad* road = road_of(it->second.road);
+    if (road == nullptr) return std::nullopt;
+    const Projection at = projector(*road).project(p);
+    if (std::abs(at.beyond) > kPastEnd_m) {
+      const std::optional<RoadLink>& link = at.beyond < 0.0 ? road->predecessor : road->successor;
+      const ModelRoad* next = link && link->element == RoadLink::Element::road ? road_of(link->id) : nullptr;
+      if (next != nullptr) {
+        const Projection on = projector(*next).project(p);
+        if (std::abs(on.beyond) <= kPastEnd_m) {
+          LaneRoad lane = it->second;
+          lane.lane.reset();  // not on this road's lane centre: height only
+          return LanePoint{next, on.s, on.t, lane};
+        }
+      }
+    }
+    return LanePoint{road, at.s, at.t, it->second};
+  }
+
+ private:
+  static constexpr double kPastEnd_m = 0.01;
+
+  [[nodiscard]] const ModelRoad* road_of(int id) const {
+    const int index = model_.road_index(id);
+    return index < 0 ? nullptr : &model_.roads[static_cast<std::size_t>(index)];
+  }
+
+  RoadProjector& projector(const ModelRoad& road) {
+    auto it = projectors_.find(road.id);
+    if (it == projectors_.end()) it = projectors_.emplace(road.id, RoadProjector(road)).first;
+    return it->second;
+  }
+
+  const RoadModel& model_;
+  std::unordered_map<std::string, LaneRoad> lanes_;
+  std::unordered_map<int, RoadProjector> projectors_;
+};
+
+}  // namespace relief::detail
