@@ -14,6 +14,7 @@
 #include "relief/geometry/polyline.h"
 #include "relief/roads/road_surface.h"
 #include "roads/junction_clusters.h"
+#include "roads/stray_ends.h"
 
 namespace relief {
 namespace {
@@ -731,6 +732,35 @@ RoadModelBuild build_model(const RoadNetwork& network, const std::vector<RoadPro
     }
   }
   for (const std::uint8_t a : clusters.absorbed) out.stats.roads_absorbed += a;
+
+  // Dead ends that stop on another road (ways closer than their widths, "almost junctions").
+  {
+    std::vector<double> widths(network.roads.size());
+    for (const Road& road : network.roads) widths[road.id] = half_width(road);
+    detail::StrayEndOptions stray;
+    stray.gap_m = options.junction_end_gap_m;
+    stray.min_kept_length_m = options.min_kept_length_m;
+    const std::vector<detail::StrayEnd> strays = detail::clear_stray_ends(network, profiles, widths, trim, stray);
+    for (const detail::StrayEnd& e : trims_only ? std::vector<detail::StrayEnd>{} : strays) {
+      const Road& road = network.roads[static_cast<std::size_t>(e.road)];
+      const Road& other = network.roads[static_cast<std::size_t>(e.other_road)];
+      const auto way = [](const Road& r) {
+        return r.osm_way_ids.empty() ? std::string("?") : std::to_string(r.osm_way_ids.front());
+      };
+      std::ostringstream msg;
+      msg.precision(1);
+      msg << std::fixed << "the dead end of OSM way " << way(road) << " lies on OSM way " << way(other)
+          << " (no shared node; ways closer than their widths): "
+          << (e.cleared ? "trimmed back " : "still there after trimming back ") << e.trimmed_m << " m";
+      Diagnostic d;
+      d.severity = e.cleared ? Severity::info : Severity::warning;
+      d.code = e.cleared ? "model.stray_end_trimmed" : "model.stray_end_overlap";
+      d.message = msg.str();
+      if (!road.osm_way_ids.empty()) d.osm_way_id = road.osm_way_ids.front();
+      diagnostics.report(std::move(d));
+      ++(e.cleared ? out.stats.stray_ends_trimmed : out.stats.stray_ends_left);
+    }
+  }
 
   out.end_trims = trim;
   if (trims_only) return out;

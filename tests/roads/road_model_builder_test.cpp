@@ -282,6 +282,29 @@ TEST(RoadModelBuilder, AForkWhoseBranchesAreUsedUpJoinsTheJunctionsAtTheirEnds) 
   EXPECT_LT(c.max_vertical_m, 1e-6);
 }
 
+TEST(RoadModelBuilder, ADeadEndOnAnotherRoadIsTrimmedOffItsPavement) {
+  // A west-east street 6 m wide (3 m each side of y = 0); a side road from the south stops at
+  // y = -1, on the street's pavement, without a shared node (an "almost junction"). Its end is
+  // trimmed back until its cross-section keeps the junction gap (0.5 m) from the street's edge:
+  // at y <= -3.5, 2.5 m or more, in 0.5 m steps. A bridge ending over the street 6 m higher
+  // is another level and keeps its end.
+  WayAttributes bridge = street(1, 1);
+  bridge.bridge = true;
+  const RoadNetwork net = test::make_network(
+      {{{-100, 0}, {100, 0}}, {{20, -60}, {20, -1}}, {{-20, -60}, {-20, -1}}}, {street(1, 1), street(1, 1), bridge});
+  std::vector<RoadProfile> profiles = drape(net);
+  for (double& z : profiles[2].z) z += 6.0;
+  Diagnostics d;
+  const RoadModelBuild b = build_road_model(net, profiles, {}, d);
+  EXPECT_EQ(b.stats.stray_ends_trimmed, 1u);
+  EXPECT_EQ(b.stats.stray_ends_left, 0u);
+  EXPECT_EQ(d.count("model.stray_end_trimmed"), 1u);
+  EXPECT_NEAR(b.end_trims[1][1], 2.5, 1e-9);
+  EXPECT_NEAR(b.end_trims[2][1], 0.0, 1e-9);
+  const ModelRoad& side = b.model.roads[static_cast<std::size_t>(b.model_road_of[1])];
+  EXPECT_NEAR(side.plan.at(side.length()).position.y(), -3.5, 1e-6);
+}
+
 TEST(RoadModelBuilder, ALoopBackToItsJunctionClearsItsOwnOtherEnd) {
   // A street ending in a 68 m triangular loop (a turnaround), both loop ends at one node 35.5
   // degrees apart: 6 m wide, they clear once trimmed 2 d sin 17.7° >= 6.5 m, d ~ 11 m. Each

@@ -29,6 +29,10 @@
 //   stuck (its ends still overlap) or no more than 10 m longer than the two radii (longer roads
 //   used up at a sharp fork keep their junctions apart); "model.junction_ends_overlap" where
 //   the ends still overlap then.
+// - A dead end that stops on another road's pavement at about its height, without a shared
+//   node (an OSM "almost junction", ways closer than their widths), is trimmed back in steps
+//   until its end cross-section clears that pavement by junction_end_gap_m
+//   ("model.stray_end_trimmed"; "model.stray_end_overlap" when its least length does not).
 // - Reference lines: OSM centrelines rounded at their vertices within plan_tolerance_m, but with
 //   arcs no tighter than the road's outermost lane border plus min_radius_margin_m (lane
 //   borders fold back inside a tighter arc): a sharp corner then departs from the polyline by
@@ -78,6 +82,8 @@ struct RoadModelStats {
   std::size_t junctions_joined = 0;       ///< intersections joined into a neighbour's junction
   std::size_t roads_absorbed = 0;         ///< roads inside joined junctions (no OpenDRIVE road)
   std::size_t ends_without_passage = 0;   ///< attribute changes between two arriving (leaving) one-ways
+  std::size_t stray_ends_trimmed = 0;     ///< dead ends trimmed off another road's pavement
+  std::size_t stray_ends_left = 0;        ///< dead ends still on another road at their least length
 };
 
 struct RoadModelBuild {
