@@ -40,7 +40,8 @@ SumoDrape drape_sumo_net(std::string& net_xml, const RoadModel& model, const std
           continue;
         }
         const std::string xy = token.substr(0, second);
-        const Vec2 p(std::stod(token.substr(0, first)), std::stod(token.substr(first + 1, second - first - 1)));
+        const Vec2 p(std::stod(token.substr(0, first)),
+                     std::stod(token.substr(first + 1, second - first - 1)));
         const auto at = locator.locate(id, p);
         if (!at) {
           ++out.points_unmapped;

@@ -101,7 +101,6 @@ struct LanePoint {
   LaneRoad lane;
 };
 
-
 /// The internal lane of a connection without params: the model's connecting road that joins the
 /// connection's lanes (from_road/from_lane -> to_road/to_lane); a direct road-to-road link (or
 /// the two halves of a split road) stays on the road it leaves.

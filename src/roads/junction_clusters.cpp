@@ -6,6 +6,8 @@
 namespace relief::detail {
 namespace {
 
+constexpr double kInsideSlack = 10.0;  // m more than a joined road a road inside a cluster may have
+
 int find(std::vector<int>& parent, int j) {
   while (parent[j] != j) {
     parent[j] = parent[parent[j]];
@@ -37,6 +39,15 @@ JunctionClusters join_junctions(const RoadNetwork& network, const std::vector<do
     out.absorbed[road.id] = 1;
     const int ra = find(parent, a), rb = find(parent, b);
     if (ra != rb) parent[std::max(ra, rb)] = std::min(ra, rb);
+  }
+  // A road between two members of one cluster, not much longer than a road joined for its
+  // length, lies inside the joined junction too: left out, it would be a loop through the
+  // junction whose two ends the outline cannot hold apart.
+  for (const Road& road : network.roads) {
+    const int a = road.start_junction, b = road.end_junction;
+    if (a < 0 || b < 0 || a == b || out.absorbed[road.id] || !has_height[road.id]) continue;
+    if (find(parent, a) != find(parent, b)) continue;
+    if (length[road.id] < radius[a] + radius[b] + min_kept_length_m + kInsideSlack) out.absorbed[road.id] = 1;
   }
   // The representative: the cluster's first intersection (a joined cluster has one).
   std::vector<int> first(n, -1);

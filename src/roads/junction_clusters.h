@@ -31,7 +31,9 @@ struct JunctionClusters {
 /// other an intersection or an attribute change that takes room (a bend or lane change, which
 /// then needs no transition road). `radius` is per network junction (0 where a junction takes no
 /// room); `length` and `has_height` per network road. `used_up` (per network road, or empty)
-/// marks roads joined whatever their length: roads the junctions' trims used up.
+/// marks roads joined whatever their length: roads the junctions' trims used up. A road between
+/// two members of one cluster shorter than their radii + min_kept_length_m + 10 m is absorbed
+/// too (left out, it would be a loop through the joined junction).
 [[nodiscard]] JunctionClusters join_junctions(const RoadNetwork& network, const std::vector<double>& radius,
                                               const std::vector<double>& length,
                                               const std::vector<std::uint8_t>& has_height,

@@ -740,7 +740,8 @@ RoadModelBuild build_model(const RoadNetwork& network, const std::vector<RoadPro
     detail::StrayEndOptions stray;
     stray.gap_m = options.junction_end_gap_m;
     stray.min_kept_length_m = options.min_kept_length_m;
-    const std::vector<detail::StrayEnd> strays = detail::clear_stray_ends(network, profiles, widths, trim, stray);
+    const std::vector<detail::StrayEnd> strays =
+        detail::clear_stray_ends(network, profiles, widths, trim, stray);
     for (const detail::StrayEnd& e : trims_only ? std::vector<detail::StrayEnd>{} : strays) {
       const Road& road = network.roads[static_cast<std::size_t>(e.road)];
       const Road& other = network.roads[static_cast<std::size_t>(e.other_road)];

@@ -13,7 +13,9 @@ namespace {
 
 constexpr double kCell = 25.0;  // m, grid cell of the segment index
 
-double cross(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
+double cross(const Vec2& a, const Vec2& b) {
+  return a.x() * b.y() - a.y() * b.x();
+}
 
 // Distance from p to segment ab, and the parameter (0..1) of the nearest point.
 std::pair<double, double> point_segment(const Vec2& p, const Vec2& a, const Vec2& b) {
@@ -27,7 +29,8 @@ std::pair<double, double> point_segment(const Vec2& p, const Vec2& a, const Vec2
 std::pair<double, double> segment_segment(const Vec2& p, const Vec2& q, const Vec2& a, const Vec2& b) {
   const double d1 = cross(q - p, a - p), d2 = cross(q - p, b - p);
   const double d3 = cross(b - a, p - a), d4 = cross(b - a, q - a);
-  if (((d1 > 0.0 && d2 < 0.0) || (d1 < 0.0 && d2 > 0.0)) && ((d3 > 0.0 && d4 < 0.0) || (d3 < 0.0 && d4 > 0.0))) {
+  if (((d1 > 0.0 && d2 < 0.0) || (d1 < 0.0 && d2 > 0.0)) &&
+      ((d3 > 0.0 && d4 < 0.0) || (d3 < 0.0 && d4 > 0.0))) {
     return {0.0, d1 / (d1 - d2)};  // they cross: at this parameter of ab
   }
   std::pair<double, double> best = point_segment(p, a, b);
@@ -40,7 +43,9 @@ std::pair<double, double> segment_segment(const Vec2& p, const Vec2& q, const Ve
   return best;
 }
 
-std::int64_t cell_key(long cx, long cy) { return (static_cast<std::int64_t>(cx) << 32) ^ (cy & 0xffffffffL); }
+std::int64_t cell_key(long cx, long cy) {
+  return (static_cast<std::int64_t>(cx) << 32) ^ (cy & 0xffffffffL);
+}
 
 // Point and unit direction of a polyline at arc length s.
 std::pair<Vec2, Vec2> pose_at(const Polyline2& points, const std::vector<double>& along, double s) {
@@ -57,7 +62,8 @@ std::pair<Vec2, Vec2> pose_at(const Polyline2& points, const std::vector<double>
 
 std::vector<StrayEnd> clear_stray_ends(const RoadNetwork& network, const std::vector<RoadProfile>& profiles,
                                        const std::vector<double>& half_width,
-                                       std::vector<std::array<double, 2>>& trim, const StrayEndOptions& options) {
+                                       std::vector<std::array<double, 2>>& trim,
+                                       const StrayEndOptions& options) {
   std::vector<StrayEnd> out;
   std::vector<std::vector<double>> along(network.roads.size());
   std::unordered_map<std::int64_t, std::vector<std::pair<int, std::uint32_t>>> grid;
@@ -70,8 +76,10 @@ std::vector<StrayEnd> clear_stray_ends(const RoadNetwork& network, const std::ve
     for (std::uint32_t k = 0; k + 1 < road.points.size(); ++k) {
       const Vec2 lo = road.points[k].cwiseMin(road.points[k + 1]) - Vec2::Constant(w);
       const Vec2 hi = road.points[k].cwiseMax(road.points[k + 1]) + Vec2::Constant(w);
-      for (long cx = std::lround(std::floor(lo.x() / kCell)); cx <= std::lround(std::floor(hi.x() / kCell)); ++cx)
-        for (long cy = std::lround(std::floor(lo.y() / kCell)); cy <= std::lround(std::floor(hi.y() / kCell)); ++cy)
+      for (long cx = std::lround(std::floor(lo.x() / kCell)); cx <= std::lround(std::floor(hi.x() / kCell));
+           ++cx)
+        for (long cy = std::lround(std::floor(lo.y() / kCell)); cy <= std::lround(std::floor(hi.y() / kCell));
+             ++cy)
           grid[cell_key(cx, cy)].emplace_back(road.id, k);
     }
   }
@@ -79,8 +87,10 @@ std::vector<StrayEnd> clear_stray_ends(const RoadNetwork& network, const std::ve
   const auto blocking = [&](int self, const Vec2& a, const Vec2& b, double z) {
     const Vec2 lo = a.cwiseMin(b) - Vec2::Constant(widest + options.gap_m);
     const Vec2 hi = a.cwiseMax(b) + Vec2::Constant(widest + options.gap_m);
-    for (long cx = std::lround(std::floor(lo.x() / kCell)); cx <= std::lround(std::floor(hi.x() / kCell)); ++cx) {
-      for (long cy = std::lround(std::floor(lo.y() / kCell)); cy <= std::lround(std::floor(hi.y() / kCell)); ++cy) {
+    for (long cx = std::lround(std::floor(lo.x() / kCell)); cx <= std::lround(std::floor(hi.x() / kCell));
+         ++cx) {
+      for (long cy = std::lround(std::floor(lo.y() / kCell)); cy <= std::lround(std::floor(hi.y() / kCell));
+           ++cy) {
         const auto it = grid.find(cell_key(cx, cy));
         if (it == grid.end()) continue;
         for (const auto& [other, k] : it->second) {
@@ -89,8 +99,8 @@ std::vector<StrayEnd> clear_stray_ends(const RoadNetwork& network, const std::ve
           const auto [d, u] = segment_segment(a, b, o.points[k], o.points[k + 1]);
           if (d - half_width[static_cast<std::size_t>(other)] >= options.gap_m) continue;
           const std::vector<double>& s = along[static_cast<std::size_t>(other)];
-          const double z_other = height_at_station(profiles[static_cast<std::size_t>(other)],
-                                                   s[k] + u * (s[k + 1] - s[k]));
+          const double z_other =
+              height_at_station(profiles[static_cast<std::size_t>(other)], s[k] + u * (s[k + 1] - s[k]));
           if (std::abs(z_other - z) <= options.max_height_difference_m) return other;
         }
       }

@@ -16,16 +16,16 @@
 namespace relief::detail {
 
 struct StrayEnd {
-  int road = -1;        ///< network road whose dead end was on another road
+  int road = -1;  ///< network road whose dead end was on another road
   bool at_start = false;
-  int other_road = -1;  ///< the road it lay on (the first found)
+  int other_road = -1;     ///< the road it lay on (the first found)
   double trimmed_m = 0.0;  ///< how far it was trimmed back
   bool cleared = false;    ///< false: trimming to the road's least length did not clear it
 };
 
 struct StrayEndOptions {
-  double gap_m = 0.5;             ///< the end cross-section keeps this far from the other pavement
-  double min_kept_length_m = 1.0;  ///< a road keeps this much between its two trims
+  double gap_m = 0.5;                    ///< the end cross-section keeps this far from the other pavement
+  double min_kept_length_m = 1.0;        ///< a road keeps this much between its two trims
   double max_height_difference_m = 2.0;  ///< farther apart in height: a crossing on another level
   double step_m = 0.5;                   ///< trims grow in these steps
 };

@@ -156,7 +156,8 @@ TEST(SumoDrape, LanePointsNetconvertLeftOffTheSurfaceTakeItsHeight) {
   const std::string end = "0,-1.5,0 100,-1.5,10\"";
   net.replace(net.find(end), end.size(), "0,-1.5,0 50,-1.5,4.75 100,-1.5,10.6\"");
   const std::string internal = "shape=\"100,-1.5,10 110,-1.5,11\"/>";
-  net.replace(net.find(internal), internal.size(), "shape=\"100,-1.5,10 104,-1.5,9.9 106,-1.5 110,-1.5,11\"/>");
+  net.replace(net.find(internal), internal.size(),
+              "shape=\"100,-1.5,10 104,-1.5,9.9 106,-1.5 110,-1.5,11\"/>");
   EXPECT_GT(check_sumo_net(net, model, "ramp.net.xml").z_max_m, 0.59);
   const SumoDrape drape = drape_sumo_net(net, model, "ramp.net.xml");
   EXPECT_EQ(drape.points, 11u);

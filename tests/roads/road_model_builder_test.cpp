@@ -290,8 +290,9 @@ TEST(RoadModelBuilder, ADeadEndOnAnotherRoadIsTrimmedOffItsPavement) {
   // is another level and keeps its end.
   WayAttributes bridge = street(1, 1);
   bridge.bridge = true;
-  const RoadNetwork net = test::make_network(
-      {{{-100, 0}, {100, 0}}, {{20, -60}, {20, -1}}, {{-20, -60}, {-20, -1}}}, {street(1, 1), street(1, 1), bridge});
+  const RoadNetwork net =
+      test::make_network({{{-100, 0}, {100, 0}}, {{20, -60}, {20, -1}}, {{-20, -60}, {-20, -1}}},
+                         {street(1, 1), street(1, 1), bridge});
   std::vector<RoadProfile> profiles = drape(net);
   for (double& z : profiles[2].z) z += 6.0;
   Diagnostics d;
@@ -303,6 +304,36 @@ TEST(RoadModelBuilder, ADeadEndOnAnotherRoadIsTrimmedOffItsPavement) {
   EXPECT_NEAR(b.end_trims[2][1], 0.0, 1e-9);
   const ModelRoad& side = b.model.roads[static_cast<std::size_t>(b.model_road_of[1])];
   EXPECT_NEAR(side.plan.at(side.length()).position.y(), -3.5, 1e-6);
+}
+
+TEST(RoadModelBuilder, AShortRoadBetweenTwoJoinedJunctionsLiesInsideTheJoinedJunction) {
+  // Crossings A (0, 0) and B (8, 0) joined by the 8 m road between them; a second road from A to
+  // B bends north over (4, 6) (14.4 m, longer than the two radii and min_kept_length_m, but by
+  // less than 10 m): it lies inside the joined junction as well. Left as a road, both its ends
+  // sat at the one junction, a loop whose ends the junction's outline could not keep apart
+  // (Portland's junction 748, left open).
+  const RoadNetwork net = test::make_network({{{0, 0}, {8, 0}},
+                                              {{0, 0}, {4, 6}, {8, 0}},
+                                              {{-100, 0}, {0, 0}},
+                                              {{0, -100}, {0, 0}},
+                                              {{8, 0}, {108, 0}},
+                                              {{8, -100}, {8, 0}}},
+                                             std::vector<WayAttributes>(6, street(1, 1)));
+  Diagnostics d;
+  const RoadModelBuild b = build_road_model(net, drape(net), {}, d);
+  EXPECT_EQ(b.stats.junctions, 1u);
+  EXPECT_EQ(b.stats.roads_absorbed, 2u);
+  EXPECT_EQ(b.model_road_of[0], -1);
+  EXPECT_EQ(b.model_road_of[1], -1);
+  for (const ModelRoad& r : b.model.roads) {
+    if (r.junction != -1 || !r.predecessor || !r.successor) continue;
+    EXPECT_FALSE(r.predecessor->element == RoadLink::Element::junction &&
+                 r.successor->element == RoadLink::Element::junction && r.predecessor->id == r.successor->id)
+        << "road " << r.id << " is a loop through its junction";
+  }
+  const LinkContinuity c = check_link_continuity(b.model);
+  EXPECT_LT(c.max_horizontal_m, 1e-6);
+  EXPECT_LT(c.max_vertical_m, 1e-6);
 }
 
 TEST(RoadModelBuilder, ALoopBackToItsJunctionClearsItsOwnOtherEnd) {

@@ -15,11 +15,11 @@
 namespace relief {
 
 struct SumoDrape {
-  std::size_t points = 0;          ///< lane shape points given the surface height
-  std::size_t points_moved = 0;    ///< of those, points moved by more than 1 mm
+  std::size_t points = 0;           ///< lane shape points given the surface height
+  std::size_t points_moved = 0;     ///< of those, points moved by more than 1 mm
   std::size_t points_unmapped = 0;  ///< points whose OpenDRIVE road is unknown (left as they are)
-  double max_move_m = 0.0;         ///< largest height change
-  std::string max_move_lane;       ///< the lane of that change
+  double max_move_m = 0.0;          ///< largest height change
+  std::string max_move_lane;        ///< the lane of that change
 };
 
 /// Rewrites the z of every mapped lane shape point of `net_xml` (a .net.xml, named `file` in
