@@ -25,8 +25,7 @@ constexpr double kMinRoadLength = 0.05;  // m left after trimming, else the road
 constexpr double kTrimStep = 0.5;        // m added to an overlapping road end's trim per pass
 constexpr int kMaxTrimPasses = 400;      // bounds the trims' growth at one junction
 constexpr int kMaxJoinRounds = 8;        // bounds the rounds of junctions joined by their trims
-constexpr double kMaxJoinGap =
-    10.0;  // m between two junctions' radii their trims may join (netconvert's join-dist)
+constexpr double kMaxJoinGap = 10.0;     // m beyond two radii a used-up road joins (netconvert's join-dist)
 
 double wrap_angle(double a) {
   while (a > kPi) a -= 2.0 * kPi;
