@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <functional>
 #include <map>
+#include <sstream>
 
 namespace relief {
 namespace {
@@ -89,8 +90,17 @@ std::vector<Gate> evaluate_gates(const RunReport& r, const GateThresholds& t) {
   }
   for (const MethodReport& m : r.methods) {
     if (m.method != r.profile_method) continue;
-    at_most("ground_vs_dem_rmse_m", m.ground.vs_dem.rmse_m, t.ground_vs_dem_rmse_m);
-    at_most("ground_vs_dem_max_m", m.ground.vs_dem.max_m, t.ground_vs_dem_max_m);
+    // The largest departure names the place for both: where to look first.
+    std::string where;
+    if (m.ground.max_road >= 0) {
+      std::ostringstream text;
+      text.precision(1);
+      text << std::fixed << "largest at OSM way " << m.ground.max_osm_way << " " << at_xy(m.ground.max_xy)
+           << ", road " << std::showpos << m.ground.max_error_m << " m from the DEM";
+      where = text.str();
+    }
+    at_most("ground_vs_dem_rmse_m", m.ground.vs_dem.rmse_m, t.ground_vs_dem_rmse_m, where);
+    at_most("ground_vs_dem_max_m", m.ground.vs_dem.max_m, t.ground_vs_dem_max_m, where);
   }
   if (r.model_grades) {
     const auto where = [](const GradeCheck& g) {

@@ -40,6 +40,10 @@ MethodReport evaluate(std::string method, const RoadNetwork& network,
   const std::vector<std::uint8_t> structures = ground_mask(network, true);
   m.all = validator.validate(profiles);
   m.ground = validator.validate(profiles, ground);
+  if (m.ground.max_road >= 0) {
+    const Road& road = network.roads[static_cast<std::size_t>(m.ground.max_road)];
+    if (!road.osm_way_ids.empty()) m.ground.max_osm_way = road.osm_way_ids.front();
+  }
   m.structures = validator.validate(profiles, structures);
   m.gradient = grade_stats(network, profiles, options.grade_limits);
   m.junctions = junction_gaps(network, profiles);

@@ -54,7 +54,10 @@ ErrorStats error_stats(std::span<const double> values, std::span<const std::opti
     sum += e;
     sum_abs += std::abs(e);
     sum_sq += e * e;
-    s.max_m = std::max(s.max_m, std::abs(e));
+    if (s.n == 0 || std::abs(e) > s.max_m) {
+      s.max_m = std::abs(e);
+      s.max_at = i;
+    }
     ++s.n;
   }
   if (s.n > 0) {
@@ -313,6 +316,7 @@ HeightValidation HeightValidator::validate(const std::vector<RoadProfile>& profi
   HeightValidation v;
   std::vector<double> mid_z, ref_z;
   std::vector<std::optional<double>> mid_dem, ref;
+  std::vector<std::pair<int, Vec2>> mid_at;  // road and plan position of each midpoint
   double sum3d = 0.0;
   std::size_t n3d = 0;
   for (std::size_t r = 0; r < profiles.size(); ++r) {
@@ -323,6 +327,7 @@ HeightValidation HeightValidator::validate(const std::vector<RoadProfile>& profi
       const double z = 0.5 * (p.z[i] + p.z[i + 1]);
       mid_z.push_back(z);
       mid_dem.push_back(dem_mid_[m]);
+      mid_at.emplace_back(static_cast<int>(r), 0.5 * (p.xy[i] + p.xy[i + 1]));
       if (dem_mid_[m] && gradient_mid_[m]) {
         const double d = std::abs(z - *dem_mid_[m]) / std::sqrt(1.0 + gradient_mid_[m]->squaredNorm());
         sum3d += d;
@@ -337,6 +342,12 @@ HeightValidation HeightValidator::validate(const std::vector<RoadProfile>& profi
     }
   }
   v.vs_dem = error_stats(mid_z, mid_dem);
+  if (v.vs_dem.n > 0) {
+    const std::size_t k = v.vs_dem.max_at;
+    v.max_road = mid_at[k].first;
+    v.max_xy = mid_at[k].second;
+    v.max_error_m = mid_z[k] - *mid_dem[k];
+  }
   v.error_3d_mean_m = n3d > 0 ? sum3d / static_cast<double>(n3d) : 0.0;
   if (has_reference_) v.vs_reference = error_stats(ref_z, ref);
   return v;

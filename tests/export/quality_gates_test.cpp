@@ -53,6 +53,10 @@ TEST(QualityGates, EachFailureIsNamedWithItsValueThresholdAndPlace) {
   v.bound = 5.0;
   r.fit->violations = {v};
   r.methods[0].ground.vs_dem.rmse_m = 2.5;
+  r.methods[0].ground.max_road = 7;
+  r.methods[0].ground.max_osm_way = 4242;
+  r.methods[0].ground.max_xy = Vec2(10.0, -20.0);
+  r.methods[0].ground.max_error_m = -3.04;
   r.sumo->z_max_m = 0.2;
   r.sumo->z_max_lane = "17_0";
   r.sumo->height_steps = 2;
@@ -69,6 +73,8 @@ TEST(QualityGates, EachFailureIsNamedWithItsValueThresholdAndPlace) {
       std::string::npos);
   EXPECT_DOUBLE_EQ(gate(failed, "ground_vs_dem_rmse_m").value, 2.5);
   EXPECT_DOUBLE_EQ(gate(failed, "ground_vs_dem_rmse_m").threshold, 2.0);
+  EXPECT_EQ(gate(failed, "ground_vs_dem_rmse_m").where,
+            "largest at OSM way 4242 (10.0, -20.0), road -3.0 m from the DEM");
   EXPECT_EQ(gate(failed, "sumo_lane_z_max_m").where, "lane 17_0");
   EXPECT_NE(gate(failed, "sumo_height_steps").where.find(":J3_0_0"), std::string::npos);
   EXPECT_NE(gate(failed, "connecting_road_grade_over_cap_percent").where.find("road 1550"),

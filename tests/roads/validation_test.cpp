@@ -30,6 +30,7 @@ TEST(Validation, ErrorStats) {
   EXPECT_NEAR(e.rmse_m, std::sqrt((0.25 + 4.0) / 3.0), 1e-12);
   EXPECT_NEAR(e.max_m, 2.0, 1e-12);
   EXPECT_NEAR(e.bias_m, (-0.5 + 2.0) / 3.0, 1e-12);
+  EXPECT_EQ(e.max_at, 3u);  // the value of the largest error
 }
 
 TEST(Validation, PaperGradeLimitsAndOverrides) {
@@ -136,6 +137,29 @@ TEST(Validation, ThreeDErrorIsThePointToSurfaceDistance) {
   EXPECT_NEAR(v.vs_dem.max_m, 1.0, 1e-9);
   EXPECT_NEAR(v.error_3d_max_m, 1.0 / std::sqrt(2.0), 1e-9);
   EXPECT_FALSE(v.vs_reference);
+  // The largest error's place: every midpoint is 1 m off, the first counts.
+  EXPECT_EQ(v.max_road, 0);
+  EXPECT_NEAR(v.max_error_m, 1.0, 1e-9);
+  EXPECT_NEAR((v.max_xy - Vec2(0.0, 0.5)).norm(), 0.0, 1e-12);
+}
+
+TEST(Validation, TheLargestDepartureFromTheDemIsPlaced) {
+  // A flat DEM at 0; the second road dips 2.5 m at its 4th midpoint.
+  const std::string dem = test::write_local_dem("val_flat", 300, 10, [](double, double) { return 0.0; });
+  std::vector<RoadProfile> roads(2);
+  for (int r = 0; r < 2; ++r) {
+    for (int i = 0; i <= 10; ++i) {
+      roads[static_cast<std::size_t>(r)].s.push_back(i);
+      roads[static_cast<std::size_t>(r)].xy.emplace_back(10.0 * r, i);
+      roads[static_cast<std::size_t>(r)].z.push_back(r == 1 && (i == 3 || i == 4) ? -2.5 : 0.0);
+    }
+  }
+  const DemSampler d({dem}, test::synthetic_frame(), Aabb2{Vec2(-50, -50), Vec2(50, 50)});
+  const HeightValidation v = HeightValidator(roads, d, nullptr).validate(roads);
+  EXPECT_NEAR(v.vs_dem.max_m, 2.5, 1e-9);
+  EXPECT_EQ(v.max_road, 1);
+  EXPECT_NEAR(v.max_error_m, -2.5, 1e-9);
+  EXPECT_NEAR((v.max_xy - Vec2(10.0, 3.5)).norm(), 0.0, 1e-12);
 }
 
 }  // namespace

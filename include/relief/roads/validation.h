@@ -23,6 +23,7 @@ struct ErrorStats {
   double max_m = 0.0;   ///< largest absolute error
   double bias_m = 0.0;  ///< mean signed error (road minus reference)
   std::size_t n = 0;
+  std::size_t max_at = 0;  ///< index (into the values) of the largest absolute error
 };
 
 /// Statistics of `values[i] - reference[i]` over pairs where both are present.
@@ -103,6 +104,12 @@ struct HeightValidation {
   double error_3d_max_m = 0.0;
   /// Road samples against an independent reference DEM, when one is given.
   std::optional<ErrorStats> vs_reference;
+  /// Where vs_dem's largest error lies: the road (index into the profiles; -1 when none), the
+  /// midpoint, and the road minus the DEM there.
+  int max_road = -1;
+  Vec2 max_xy = Vec2::Zero();
+  double max_error_m = 0.0;
+  std::int64_t max_osm_way = 0;  ///< that road's first OSM way (set by the caller that knows it)
 };
 
 /// Validates profiles that share the stations of `stations` (every method of making the
