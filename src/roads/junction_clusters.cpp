@@ -69,6 +69,26 @@ JunctionClusters join_junctions(const RoadNetwork& network, const std::vector<do
   return out;
 }
 
+bool join_leaves_loop(const RoadNetwork& network, const JunctionClusters& clusters,
+                      const std::vector<double>& radius, const std::vector<double>& length,
+                      const std::vector<std::uint8_t>& has_height, double min_kept_length_m,
+                      const Road& road) {
+  if (road.start_junction < 0 || road.end_junction < 0) return false;
+  const int ra = clusters.representative[road.start_junction];
+  const int rb = clusters.representative[road.end_junction];
+  for (const int m : clusters.members[ra]) {
+    for (const RoadEnd& e : network.junctions[m].ends) {
+      const Road& other = network.roads[e.road];
+      if (other.id == road.id || clusters.absorbed[other.id] || !has_height[other.id]) continue;
+      const int far = e.at_start ? other.end_junction : other.start_junction;
+      if (far < 0 || clusters.representative[far] != rb) continue;
+      const double inside = radius[other.start_junction] + radius[other.end_junction] + min_kept_length_m;
+      if (length[other.id] >= inside + kInsideSlack) return true;
+    }
+  }
+  return false;
+}
+
 bool JunctionClusters::reachable(const RoadNetwork& network, int from, int to) const {
   if (from == to) return true;
   const std::vector<int>& cluster = members[representative[from]];

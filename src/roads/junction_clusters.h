@@ -40,4 +40,13 @@ struct JunctionClusters {
                                               double min_kept_length_m,
                                               const std::vector<std::uint8_t>& used_up);
 
+/// Whether joining the two junctions at the ends of `road` would leave another road between
+/// them too long to lie inside the joined junction (see join_junctions): a loop through it
+/// whose two ends its outline cannot hold apart. Arguments as for join_junctions, `clusters`
+/// its current result.
+[[nodiscard]] bool join_leaves_loop(const RoadNetwork& network, const JunctionClusters& clusters,
+                                    const std::vector<double>& radius, const std::vector<double>& length,
+                                    const std::vector<std::uint8_t>& has_height, double min_kept_length_m,
+                                    const Road& road);
+
 }  // namespace relief::detail

@@ -11,6 +11,7 @@
 #include <Eigen/Eigenvalues>
 
 #include "relief/core/errors.h"
+#include "relief/geometry/polygon.h"
 #include "relief/geometry/polyline.h"
 #include "relief/roads/road_surface.h"
 #include "roads/junction_clusters.h"
@@ -569,9 +570,10 @@ RoadModelBuild build_model(const RoadNetwork& network, const std::vector<RoadPro
   }
   const auto min_radius = [&](const Road& road) { return minimum_radius(road, options); };
   const auto fit_part = [&](const Road& road, std::vector<double>& kept_s, std::vector<double>& ref_s,
-                            ReferenceLineReport* report) {
+                            ReferenceLineReport* report, std::array<bool, 2> untrimmed = {false, false}) {
     const std::vector<double>& cumulative = cumulative_of[road.id];
-    const double s0 = trim[road.id][0], s1 = cumulative.back() - trim[road.id][1];
+    const double s0 = untrimmed[0] ? 0.0 : trim[road.id][0];
+    const double s1 = cumulative.back() - (untrimmed[1] ? 0.0 : trim[road.id][1]);
     const Polyline2 part = cut(road.points, cumulative, s0, s1, kept_s);
     return fit_reference_line(part, {options.plan_tolerance_m, 1e-3, min_radius(road)}, &ref_s, report);
   };
@@ -606,6 +608,32 @@ RoadModelBuild build_model(const RoadNetwork& network, const std::vector<RoadPro
            (road.start_junction >= 0 && road.end_junction >= 0 &&
             clusters.representative[road.start_junction] == clusters.representative[road.end_junction]);
   };
+  // The outline of a road end's first metres (its kerb lines and the line across its end) with
+  // the current trims.
+  const auto end_shape_at = [&](const RoadEnd& end) {
+    const Road& road = network.roads[end.road];
+    std::vector<double> kept_s, ref_s;
+    // Where the street only carries on at the far end (a lane or tag change, a bend), the
+    // road's area runs on to that node: its trimmed-off part is a transition road's or
+    // the next road's, which this junction's ends must clear as well.
+    const int far = end.at_start ? road.end_junction : road.start_junction;
+    const bool carries_on = far >= 0 && !loop(road) &&
+                            network.junctions[far].kind != JunctionKind::intersection &&
+                            clusters.members[far].size() == 1;
+    std::array<bool, 2> untrimmed{false, false};
+    untrimmed[end.at_start ? 1 : 0] = carries_on;
+    const PlanView plan = fit_part(road, kept_s, ref_s, nullptr, untrimmed);
+    // A loop's strip stops at its middle: the far half holds its other end, which would
+    // otherwise always overlap this one however far both are trimmed.
+    const double max_reach = loop(road) ? 0.5 * plan.length() : kStripLength;
+    return end_shape(plan, outer_border_t(road.attributes), end.at_start, max_reach);
+  };
+  // Whether two road ends come closer than the junction gap (either's end line on the other's
+  // outline).
+  const auto ends_overlap = [&](const EndShape& a, const EndShape& b) {
+    return std::min(segment_polygon_distance(a.right, a.left, b.strip),
+                    segment_polygon_distance(b.right, b.left, a.strip)) < options.junction_end_gap_m;
+  };
   for (int round = 0;; ++round) {
     trim = radius_trim;
     planes = given_planes;
@@ -621,15 +649,7 @@ RoadModelBuild build_model(const RoadNetwork& network, const std::vector<RoadPro
       if (ends.size() < 2) continue;
       std::vector<std::optional<EndShape>> shape(ends.size());
       const auto shape_of = [&](std::size_t k) -> const EndShape& {
-        if (!shape[k]) {
-          const Road& road = network.roads[ends[k]->road];
-          std::vector<double> kept_s, ref_s;
-          const PlanView plan = fit_part(road, kept_s, ref_s, nullptr);
-          // A loop's strip stops at its middle: the far half holds its other end, which would
-          // otherwise always overlap this one however far both are trimmed.
-          const double max_reach = loop(road) ? 0.5 * plan.length() : kStripLength;
-          shape[k] = end_shape(plan, outer_border_t(road.attributes), ends[k]->at_start, max_reach);
-        }
+        if (!shape[k]) shape[k] = end_shape_at(*ends[k]);
         return *shape[k];
       };
       std::vector<std::uint8_t> grown(ends.size(), 0), capped(ends.size(), 0);
@@ -638,11 +658,7 @@ RoadModelBuild build_model(const RoadNetwork& network, const std::vector<RoadPro
         std::vector<std::uint8_t> grow(ends.size(), 0);
         for (std::size_t a = 0; a < ends.size(); ++a) {
           for (std::size_t b = a + 1; b < ends.size(); ++b) {
-            const EndShape& ea = shape_of(a);
-            const EndShape& eb = shape_of(b);
-            const double gap = std::min(segment_polygon_distance(ea.right, ea.left, eb.strip),
-                                        segment_polygon_distance(eb.right, eb.left, ea.strip));
-            if (gap >= options.junction_end_gap_m) continue;
+            if (!ends_overlap(shape_of(a), shape_of(b))) continue;
             grow[a] = grow[b] = 1;
           }
         }
@@ -685,6 +701,46 @@ RoadModelBuild build_model(const RoadNetwork& network, const std::vector<RoadPro
       }
     }
     out.stats.junction_ends_trimmed = ends_trimmed;
+    // Whether the roads at one junction of a road reach into its other junction's area (the
+    // hull of its road ends' end lines, this road's own end there included): the trims at the
+    // first pushed them past the road between (roads meeting at a small angle), and the two
+    // junctions' surfaces would overlap. A far end that only carries the street on is covered
+    // by the end strips reaching to it.
+    const auto junctions_meet = [&](const Road& road) {
+      const int ja = road.start_junction, jb = road.end_junction;
+      if (ja < 0 || jb < 0 || network.junctions[ja].kind != JunctionKind::intersection ||
+          network.junctions[jb].kind != JunctionKind::intersection)
+        return false;
+      struct Side {
+        std::vector<EndShape> others;
+        Polyline2 area;
+      };
+      const auto side = [&](int junction) {
+        Side out;
+        Polyline2 corners;
+        for (const RoadEnd* e : ends_of(network.junctions[clusters.representative[junction]])) {
+          if (!usable(network.roads[e->road])) continue;
+          EndShape shape = end_shape_at(*e);
+          corners.push_back(shape.right);
+          corners.push_back(shape.left);
+          if (e->road != road.id) out.others.push_back(std::move(shape));
+        }
+        out.area = convex_hull(std::move(corners));
+        return out;
+      };
+      const auto reaches = [&](const Side& from, const Side& into) {
+        for (std::size_t i = 0; i < into.area.size(); ++i) {
+          const Vec2& p = into.area[i];
+          const Vec2& q = into.area[(i + 1) % into.area.size()];
+          for (const EndShape& e : from.others) {
+            if (segment_polygon_distance(p, q, e.strip) < options.junction_end_gap_m) return true;
+          }
+        }
+        return false;
+      };
+      const Side a = side(ja), b = side(jb);
+      return reaches(a, b) || reaches(b, a);
+    };
     // A road the trims left no more than min_kept_length_m: the two junctions' areas meet
     // across it (their kerb lines, their other roads' ends) and become one.
     bool joined_more = false;
@@ -693,7 +749,9 @@ RoadModelBuild build_model(const RoadNetwork& network, const std::vector<RoadPro
       if (road_length[road.id] - trim[road.id][0] - trim[road.id][1] > options.min_kept_length_m + 1e-6)
         continue;
       if (!stuck[road.id] &&
-          road_length[road.id] - radius_trim[road.id][0] - radius_trim[road.id][1] > kMaxJoinGap)
+          road_length[road.id] - radius_trim[road.id][0] - radius_trim[road.id][1] > kMaxJoinGap &&
+          !(junctions_meet(road) && !detail::join_leaves_loop(network, clusters, radius, road_length,
+                                                              has_height, options.min_kept_length_m, road)))
         continue;
       used_up[road.id] = 1;
       joined_more = true;

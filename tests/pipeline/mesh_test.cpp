@@ -9,6 +9,7 @@
 #include <iostream>
 #include <map>
 #include <optional>
+#include <regex>
 #include <sstream>
 #include <stdexcept>
 #include <vector>
@@ -263,12 +264,10 @@ TEST(MeshPipeline, NorthEastSceneFiguresAndReimport) {
   // data's edge, it followed the DEM); alongside separations now lift it. Before forks could trim
   // from the whole road, close junctions were joined and two arriving one-ways stopped getting a
   // hairpin transition road: 6 junctions open, 16 pairs, 85 upside-down triangles, 58 holes.
-  // 6 Road_Road pairs at (1038, 525): the end of Columbus Avenue at junction 105 lies over
-  // Montgomery Street (roads 1141 and 2231, ways closer than their widths); since road ends take
-  // their junction's cross-slope, Columbus's end is tilted 4 % across and crosses Montgomery's
-  // level surface (the quality gate road_self_intersections reports it).
+  // 6 Road_Road pairs at (1038, 525) until the junction's ends cleared the transition road
+  // beyond Montgomery Street's short end (Columbus Avenue's end lay over it).
   expect_scene_figures(m, {.junctions_failed = 0,
-                           .self_intersecting_pairs = 6,
+                           .self_intersecting_pairs = 0,
                            .upside_down_triangles = 0,
                            .ground_triangles_under_roads = 175,
                            // 11 before the road ends took their junctions' cross-slope, 13
@@ -283,9 +282,6 @@ TEST(MeshPipeline, NorthEastSceneFiguresAndReimport) {
                            // ground joins the rest only through road pieces off it (one opening more)
                            .ground_components = 2});
   expect_structure_warning(b, m);
-  const std::string named = self_intersection_message(b);
-  EXPECT_NE(named.find("(OSM way 8922640)"), std::string::npos) << named;  // Columbus Avenue
-  EXPECT_NE(named.find("at (1038."), std::string::npos) << named;
   expect_files_reimport(b);
 }
 
@@ -428,6 +424,38 @@ TEST(MeshPipeline, StraightRoadOnAPlaneIsExact) {
   }
   EXPECT_LE(worst_m, 1e-6 + 2e-6);  // plus the float rounding of the file (z ~ 20 m: 1e-6)
   EXPECT_LE(m.xodr_surface_max_distance_m, 1e-6);
+}
+
+// Two ways crossing without a shared node (a data defect) on a plane: their surfaces cross at
+// the same height. The warning names both roads' OSM ways and the place; the gate fails.
+TEST(MeshPipeline, WaysCrossingWithoutANodeAreNamedInTheSelfIntersectionWarning) {
+  const test::OsmSketch sketch = test::OsmSketch(R"(
+      A-------C
+      D-------B
+  )",
+                                                 10.0, synthetic_origin_lonlat())
+                                     .way("AB", {{"highway", "residential"}}, 71)
+                                     .way("CD", {{"highway", "residential"}}, 72);
+  const auto plane = [](double x, double y) { return 20.0 + 0.03 * x + 0.02 * y; };
+  const SceneBuild b = build_scene(synthetic_options("crossing", sketch, plane));
+  const MeshSummary& m = summary(b);
+  ASSERT_TRUE(m.road);
+  EXPECT_GT(m.road->self_intersecting_pairs, 0u);
+  const std::string named = self_intersection_message(b);
+  EXPECT_NE(named.find("(OSM way 71)"), std::string::npos) << named;
+  EXPECT_NE(named.find("(OSM way 72)"), std::string::npos) << named;
+  // The first pair lies at the crossing, halfway along both ways (within a lane width).
+  const Vec2 shift = b.result.report.frame.origin() - test::synthetic_frame().origin();
+  const Vec2 mid = 0.5 * (synthetic_local(sketch, 'A') + synthetic_local(sketch, 'B')) - shift;
+  std::smatch at;
+  ASSERT_TRUE(std::regex_search(named, at, std::regex(R"(at \((-?[0-9.]+), (-?[0-9.]+),)"))) << named;
+  EXPECT_LT((Vec2(std::stod(at[1]), std::stod(at[2])) - mid).norm(), 3.0)
+      << named << " vs " << mid.transpose();
+  const auto& gates = b.result.report.gates;
+  const auto gate = std::find_if(gates.begin(), gates.end(),
+                                 [](const Gate& g) { return g.name == "road_self_intersections"; });
+  ASSERT_NE(gate, gates.end());
+  EXPECT_FALSE(gate->passed);
 }
 
 TEST(MeshPipeline, TJunctionOnAPlaneIsOneCleanSurface) {
