@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <deque>
 #include <numbers>
+#include <optional>
 #include <string>
 #include <unordered_set>
 #include <utility>
@@ -23,6 +24,7 @@
 #include "relief/core/errors.h"
 #include "relief/roads/road_surface.h"
 #include "roads/lane_loft.h"
+#include "roads/outline_order.h"
 
 namespace relief::detail {
 
@@ -225,7 +227,19 @@ std::string build_junction_surface(const RoadModel& model, const JunctionModel& 
   if (failed.empty()) return failed;
   // A kerb line that cuts across a neighbouring road end (a sharp fork): straight gaps instead.
   for (OutlineGap& gap : gaps) gap.points.clear();
-  return triangulate_junction(sorted, gaps, junction.id, mesh).empty() ? std::string() : failed;
+  if (triangulate_junction(sorted, gaps, junction.id, mesh).empty()) return {};
+  // Ends reaching past one another (a joined junction, a road end across a neighbour's): the
+  // ends in another order around the junction, one whose outline is simple.
+  std::vector<Polyline2> chains;
+  for (const JunctionEnd& e : sorted) {
+    Polyline2& chain = chains.emplace_back();
+    for (const std::uint32_t v : e.vertices) chain.push_back(vertices[v].head<2>());
+  }
+  const std::optional<std::vector<std::size_t>> simple = simple_outline_order(chains);
+  if (!simple) return failed;
+  std::vector<JunctionEnd> reordered;
+  for (const std::size_t k : *simple) reordered.push_back(sorted[k]);
+  return triangulate_junction(reordered, gaps, junction.id, mesh).empty() ? std::string() : failed;
 }
 
 std::string triangulate_junction(const std::vector<JunctionEnd>& ends, const std::vector<OutlineGap>& gaps,
