@@ -12,6 +12,7 @@
 #include "relief/core/errors.h"
 #include "relief/geometry/crs_transform.h"
 #include "relief/geometry/polyline.h"
+#include "roads/way_crossings.h"
 
 namespace relief {
 
@@ -297,7 +298,9 @@ void build_junctions(RoadNetwork& network, const OsmRoads& osm, const NodeTable&
 
 }  // namespace
 
-RoadNetwork build_network(const OsmRoads& osm, const GeoFrame& frame, Diagnostics& diagnostics) {
+RoadNetwork build_network(const OsmRoads& input, const GeoFrame& frame, Diagnostics& diagnostics) {
+  OsmRoads osm = input;
+  (void)detail::join_crossing_ways(osm, diagnostics);
   NodeTable table = collect_nodes(osm);
   project_nodes(table, osm, frame);
   const std::vector<Piece> pieces = split_ways(osm, table, diagnostics);

@@ -426,9 +426,9 @@ TEST(MeshPipeline, StraightRoadOnAPlaneIsExact) {
   EXPECT_LE(m.xodr_surface_max_distance_m, 1e-6);
 }
 
-// Two ways crossing without a shared node (a data defect) on a plane: their surfaces cross at
-// the same height. The warning names both roads' OSM ways and the place; the gate fails.
-TEST(MeshPipeline, WaysCrossingWithoutANodeAreNamedInTheSelfIntersectionWarning) {
+// Two ways crossing without a shared node (a data defect): a node is put at the crossing, which
+// becomes a junction meshed like any other; nothing intersects.
+TEST(MeshPipeline, WaysCrossingWithoutANodeMeetAtAJunction) {
   const test::OsmSketch sketch = test::OsmSketch(R"(
       A-------C
       D-------B
@@ -438,6 +438,30 @@ TEST(MeshPipeline, WaysCrossingWithoutANodeAreNamedInTheSelfIntersectionWarning)
                                      .way("CD", {{"highway", "residential"}}, 72);
   const auto plane = [](double x, double y) { return 20.0 + 0.03 * x + 0.02 * y; };
   const SceneBuild b = build_scene(synthetic_options("crossing", sketch, plane));
+  const MeshSummary& m = summary(b);
+  ASSERT_TRUE(m.road);
+  EXPECT_EQ(b.diagnostics.count("osm.crossing_without_node"), 1u);
+  EXPECT_EQ(m.junctions_meshed, 1u);
+  EXPECT_EQ(m.junctions_failed, 0u);
+  EXPECT_EQ(m.road->self_intersecting_pairs, 0u);
+  EXPECT_EQ(m.road->holes, 0u);
+}
+
+// Two ways crossing on different layers (no bridge tagged) draped as they are (raw profiles, no
+// fit to lift one over the other): their surfaces, level across on a sloped plane, cross. The
+// warning names both roads' OSM ways and the place; the gate fails.
+TEST(MeshPipeline, SelfIntersectionsAreNamedInTheirWarningAndFailTheGate) {
+  const test::OsmSketch sketch = test::OsmSketch(R"(
+      A-------C
+      D-------B
+  )",
+                                                 10.0, synthetic_origin_lonlat())
+                                     .way("AB", {{"highway", "residential"}, {"layer", "1"}}, 71)
+                                     .way("CD", {{"highway", "residential"}}, 72);
+  const auto plane = [](double x, double y) { return 20.0 + 0.03 * x + 0.02 * y; };
+  BuildOptions o = synthetic_options("layers", sketch, plane);
+  o.profile_method = ProfileMethod::raw;
+  const SceneBuild b = build_scene(o);
   const MeshSummary& m = summary(b);
   ASSERT_TRUE(m.road);
   EXPECT_GT(m.road->self_intersecting_pairs, 0u);
