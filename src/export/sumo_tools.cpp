@@ -8,6 +8,7 @@
 #include "relief/core/number_format.h"
 #include "relief/core/subprocess.h"
 #include "relief/core/xml_writer.h"
+#include "relief/export/sumo_plain_xml.h"
 
 namespace relief {
 namespace {

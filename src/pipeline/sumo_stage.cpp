@@ -10,6 +10,8 @@
 #include "relief/core/errors.h"
 #include "relief/export/sumo_checks.h"
 #include "relief/export/sumo_drape.h"
+#include "relief/export/sumo_mapping.h"
+#include "relief/export/sumo_plain_xml.h"
 #include "relief/geometry/polyline.h"
 
 namespace relief {
