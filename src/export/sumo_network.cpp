@@ -1,4 +1,5 @@
 #include "relief/export/sumo_network.h"
+#include "relief/core/diagnostic_codes.h"
 
 #include <algorithm>
 #include <cmath>
@@ -247,7 +248,7 @@ SumoPlainNetwork build_sumo_network(const RoadModel& model, const std::vector<Su
     if (node_of.at(static_cast<int>(r), 0) != node_of.at(static_cast<int>(r), 1)) continue;
     if (road.length() < options.min_loop_length_m) {
       split[r] = 2;  // a turning loop too short to split into two edges that netconvert keeps whole
-      diagnostics.report({Severity::info, "sumo.loop_skipped",
+      diagnostics.report({Severity::info, std::string(codes::kSumoLoopSkipped),
                           "road " + std::to_string(road.id) + " (" + road.name + ") is a loop of " +
                               std::to_string(static_cast<int>(std::round(road.length()))) +
                               " m back to its own junction; SUMO gets no edge for it",
@@ -427,7 +428,7 @@ SumoPlainNetwork build_sumo_network(const RoadModel& model, const std::vector<Su
       net.nodes.begin(), net.nodes.end(), [](const SumoNode& n) { return n.type == "traffic_light"; }));
   for (const int j : options.signalled_junctions) {
     if (!node_index.count("J" + std::to_string(j))) {
-      diagnostics.report(Severity::warning, "sumo.signal_without_node",
+      diagnostics.report(Severity::warning, codes::kSumoSignalWithoutNode,
                          "junction " + std::to_string(j) + " has a traffic signal but no SUMO node");
     }
   }

@@ -1,4 +1,5 @@
 #include "relief/roads/network_builder.h"
+#include "relief/core/diagnostic_codes.h"
 
 #include <algorithm>
 #include <array>
@@ -115,7 +116,7 @@ std::vector<Piece> split_ways(const OsmRoads& osm, const NodeTable& table, Diagn
       if (piece.nodes.size() < 2 || piece_length_m(piece, table) < kMinPieceLength_m) {
         Diagnostic d;
         d.severity = Severity::warning;
-        d.code = "network.degenerate_way";
+        d.code = codes::kNetworkDegenerateWay;
         d.message = "way " + std::to_string(way.id) + ": the piece from node " +
                     std::to_string(way.node_ids[start]) + " to node " + std::to_string(way.node_ids[i]) +
                     " is shorter than 1 cm; dropped";

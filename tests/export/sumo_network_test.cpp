@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "relief/core/diagnostic_codes.h"
 #include "relief/core/errors.h"
 #include "support/sumo_ramp.h"
 
@@ -129,7 +130,7 @@ TEST(SumoNetwork, SignalledJunctionsGetTrafficLights) {
   const SumoPlainNetwork net = build_sumo_network(ramp_model(), {}, options, diagnostics);
   EXPECT_EQ(node(net, "J100").type, "traffic_light");
   EXPECT_EQ(net.stats.traffic_lights, 1u);
-  EXPECT_EQ(diagnostics.count("sumo.signal_without_node"), 1u);
+  EXPECT_EQ(diagnostics.count(codes::kSumoSignalWithoutNode), 1u);
 }
 
 // Road classes set the edge type, priority and speed (road speed first, class default else).
