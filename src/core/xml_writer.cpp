@@ -99,7 +99,7 @@ void XmlWriter::declaration() {
 void XmlWriter::comment(std::string_view text) {
   if (text.find("--") != std::string_view::npos || (!text.empty() && text.back() == '-'))
     misuse("a comment may not contain \"--\" or end with '-'");
-  begin_content("a comment");
+  begin_content("a comment", {});
   indent(open_.size());
   out_ += "<!-- ";
   out_ += text;
@@ -109,7 +109,7 @@ void XmlWriter::comment(std::string_view text) {
 void XmlWriter::start(std::string_view name) {
   if (!valid_name(name)) misuse("'" + std::string(name) + "' is not an element name");
   if (open_.empty() && has_root_) misuse("a second root element <" + std::string(name) + ">");
-  begin_content("element <" + std::string(name) + ">");
+  begin_content("element", name);
   indent(open_.size());
   out_ += '<';
   out_ += name;
@@ -207,8 +207,11 @@ void XmlWriter::begin_attribute(std::string_view name) {
 }
 
 // Before a child element or comment: the parent's start tag ends its line; no text before it.
-void XmlWriter::begin_content(const std::string& what) {
-  if (has_text_) misuse(what + " after text (mixed content is not supported)");
+void XmlWriter::begin_content(const char* what, std::string_view name) {
+  if (has_text_) {
+    misuse(std::string(what) + (name.empty() ? "" : " <" + std::string(name) + ">") +
+           " after text (mixed content is not supported)");
+  }
   close_start_tag(true);
 }
 

@@ -85,7 +85,7 @@ class XmlWriter {
   void close_start_tag(bool line_break);
   void indent(std::size_t depth);
   void begin_attribute(std::string_view name);
-  void begin_content(const std::string& what);
+  void begin_content(const char* what, std::string_view name);
 
   std::string& out_;
   Options options_;
