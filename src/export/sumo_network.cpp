@@ -1,5 +1,4 @@
 #include "relief/export/sumo_network.h"
-#include "relief/core/diagnostic_codes.h"
 
 #include <algorithm>
 #include <cmath>
@@ -8,6 +7,7 @@
 #include <unordered_map>
 
 #include "export/sumo_shapes.h"
+#include "relief/core/diagnostic_codes.h"
 #include "relief/core/errors.h"
 #include "relief/roads/road_surface.h"
 

@@ -1,5 +1,4 @@
 #include "relief/pipeline/build.h"
-#include "relief/core/diagnostic_codes.h"
 
 #include <ctime>
 #include <iomanip>
@@ -9,6 +8,7 @@
 #include "pipeline/stages.h"
 #include "pipeline/sumo_stage.h"
 #include "relief/core/atomic_file.h"
+#include "relief/core/diagnostic_codes.h"
 #include "relief/core/errors.h"
 #include "relief/export/geojson_writer.h"
 #include "relief/export/opendrive_writer.h"

@@ -1,11 +1,11 @@
 #include "relief/roads/elevation_sampling.h"
-#include "relief/core/diagnostic_codes.h"
 
 #include <algorithm>
 #include <cmath>
 #include <iomanip>
 #include <sstream>
 
+#include "relief/core/diagnostic_codes.h"
 #include "relief/core/errors.h"
 #include "relief/geometry/polyline.h"
 

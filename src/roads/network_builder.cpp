@@ -1,5 +1,4 @@
 #include "relief/roads/network_builder.h"
-#include "relief/core/diagnostic_codes.h"
 
 #include <algorithm>
 #include <array>
@@ -10,6 +9,7 @@
 #include <sstream>
 #include <unordered_map>
 
+#include "relief/core/diagnostic_codes.h"
 #include "relief/core/errors.h"
 #include "relief/geometry/crs_transform.h"
 #include "relief/geometry/polyline.h"

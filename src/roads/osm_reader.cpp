@@ -1,5 +1,4 @@
 #include "relief/roads/osm_reader.h"
-#include "relief/core/diagnostic_codes.h"
 
 #include <algorithm>
 #include <map>
@@ -19,6 +18,7 @@
 #include <osmium/osm/way.hpp>
 #include <osmium/visitor.hpp>
 
+#include "relief/core/diagnostic_codes.h"
 #include "relief/core/errors.h"
 
 namespace relief {

@@ -1,5 +1,4 @@
 #include "relief/roads/profile_fit.h"
-#include "relief/core/diagnostic_codes.h"
 
 #include <Eigen/OrderingMethods>
 #include <Eigen/Sparse>
@@ -14,6 +13,7 @@
 #include <sstream>
 #include <unordered_map>
 
+#include "relief/core/diagnostic_codes.h"
 #include "relief/core/errors.h"
 #include "relief/geometry/soft_qp.h"
 #include "relief/roads/vertical_curves.h"

@@ -1,5 +1,4 @@
 #include "relief/roads/road_mesh.h"
-#include "relief/core/diagnostic_codes.h"
 
 #include <algorithm>
 #include <cmath>
@@ -10,6 +9,7 @@
 #include <utility>
 #include <vector>
 
+#include "relief/core/diagnostic_codes.h"
 #include "relief/core/errors.h"
 #include "roads/junction_surface.h"
 #include "roads/lane_loft.h"

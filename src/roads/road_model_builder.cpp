@@ -1,5 +1,4 @@
 #include "relief/roads/road_model_builder.h"
-#include "relief/core/diagnostic_codes.h"
 
 #include <algorithm>
 #include <array>
@@ -11,6 +10,7 @@
 
 #include <Eigen/Eigenvalues>
 
+#include "relief/core/diagnostic_codes.h"
 #include "relief/core/errors.h"
 #include "relief/geometry/polyline.h"
 #include "relief/roads/road_surface.h"

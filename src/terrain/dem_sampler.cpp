@@ -1,5 +1,4 @@
 #include "relief/terrain/dem_sampler.h"
-#include "relief/core/diagnostic_codes.h"
 
 #include <algorithm>
 #include <array>
@@ -8,6 +7,7 @@
 #include <limits>
 #include <sstream>
 
+#include "relief/core/diagnostic_codes.h"
 #include "relief/core/errors.h"
 #include "relief/geometry/crs_transform.h"
 #include "terrain/dem_sanity.h"
