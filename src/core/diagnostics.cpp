@@ -21,10 +21,10 @@ void Diagnostics::report(Diagnostic diagnostic) {
   if (n <= max_kept_per_code_) kept_.push_back(std::move(diagnostic));
 }
 
-void Diagnostics::report(Severity severity, std::string code, std::string message) {
+void Diagnostics::report(Severity severity, std::string_view code, std::string message) {
   Diagnostic d;
   d.severity = severity;
-  d.code = std::move(code);
+  d.code = code;
   d.message = std::move(message);
   report(std::move(d));
 }

@@ -7,8 +7,9 @@
 
 namespace relief::html {
 
-/// Appends `text` escaped for HTML and XML alike. Bytes that are not valid UTF-8 and control
-/// characters XML 1.0 forbids become U+FFFD, so that the page always parses.
+/// Appends `text` escaped for HTML and XML alike (core/xml_writer.h's escaper with ' as &#39;):
+/// bytes that are not valid UTF-8 and control characters XML 1.0 forbids become U+FFFD, so
+/// that the page always parses.
 void append_escaped(std::string& out, std::string_view text);
 /// `text` escaped (see append_escaped).
 [[nodiscard]] std::string esc(std::string_view text);

@@ -4,10 +4,12 @@
 #include <array>
 #include <cmath>
 #include <set>
+#include <string>
 #include <string_view>
 
 #include "relief/core/errors.h"
 #include "relief/core/number_format.h"
+#include "relief/core/xml_writer.h"
 #include "relief/export/geojson_writer.h"
 
 namespace relief {
@@ -64,15 +66,30 @@ const char* mark_type_name(RoadMark::Type type) {
   return "none";
 }
 
+const char* geometry_element(PlanGeometry::Kind kind) {
+  switch (kind) {
+    case PlanGeometry::Kind::line:
+      return "line";
+    case PlanGeometry::Kind::arc:
+      return "arc";
+    case PlanGeometry::Kind::spiral:
+      return "spiral";
+    case PlanGeometry::Kind::param_poly3:
+      return "paramPoly3";
+  }
+  return "line";
+}
+
 const char* contact_name(RoadLink::Contact c) {
   return c == RoadLink::Contact::start ? "start" : "end";
 }
 
-// Builds the document in one string: attributes are escaped, numbers checked and printed at a
+// Builds the document in one string through XmlWriter: numbers are checked and printed at a
 // fixed precision. `where_` names the road or junction being written for error messages.
 class XodrWriter {
  public:
-  XodrWriter(const RoadModel& model, const OpenDriveOptions& options) : model_(model), options_(options) {}
+  XodrWriter(const RoadModel& model, const OpenDriveOptions& options)
+      : model_(model), options_(options), xml_(out_, {.indent = 2}) {}
 
   std::string run();
 
@@ -80,40 +97,32 @@ class XodrWriter {
   void header();
   void road(const ModelRoad& road);
   void plan_view(const ModelRoad& road);
-  void profile(int depth, const char* element, const char* s_name, const CubicProfile& profile);
+  void profile(const char* element, const char* s_name, const CubicProfile& profile);
   void lane_section(const LaneSection& section);
   void lane(const LaneModel& lane);
-  void road_mark(int depth, const RoadMark& mark);
+  void road_mark(const RoadMark& mark);
   void junction(const JunctionModel& junction);
 
-  // Element and attribute output.
-  void open(int depth, const char* name) {
-    out_.append(static_cast<std::size_t>(depth) * 2, ' ');
-    out_ += '<';
-    out_ += name;
+  void start(const char* name) {
+    xml_.start(name);
     element_ = name;
   }
-  void end_start() { out_ += ">\n"; }
-  void end_empty() { out_ += "/>\n"; }
-  void close(int depth, const char* name) {
-    out_.append(static_cast<std::size_t>(depth) * 2, ' ');
-    out_ += "</";
-    out_ += name;
-    out_ += ">\n";
-  }
-  void attr(const char* name, std::string_view text);
+  void end(const char* name) { xml_.end(name); }
+  void attr(const char* name, std::string_view text) { xml_.attribute(name, text); }
   void attr(const char* name, double value);
   /// Polynomial coefficients: the shortest text that reads back exactly (they span many
   /// orders of magnitude; fixed decimals would lose d at 1e-9 over hundreds of metres).
   void attr_coefficient(const char* name, double value);
-  void attr_int(const char* name, long long value);
+  void attr_int(const char* name, long long value) { xml_.attribute_int(name, value); }
   void attr_positive(const char* name, double value);  // schema type t_grZero
   void poly(const Poly3& p);
+  void check_finite(const char* name, double value) const;
   [[noreturn]] void fail(const std::string& what) const;
 
   const RoadModel& model_;
   const OpenDriveOptions& options_;
   std::string out_;
+  XmlWriter xml_;
   std::string where_ = "header";
   std::string element_;
 };
@@ -122,69 +131,20 @@ void XodrWriter::fail(const std::string& what) const {
   throw InvalidInput("OpenDRIVE writer: " + where_ + ": " + what);
 }
 
-void XodrWriter::attr(const char* name, std::string_view text) {
-  out_ += ' ';
-  out_ += name;
-  out_ += "=\"";
-  for (const char c : text) {
-    switch (c) {
-      case '&':
-        out_ += "&amp;";
-        break;
-      case '<':
-        out_ += "&lt;";
-        break;
-      case '>':
-        out_ += "&gt;";
-        break;
-      case '"':
-        out_ += "&quot;";
-        break;
-      case '\n':
-        out_ += "&#10;";
-        break;
-      case '\r':
-        out_ += "&#13;";
-        break;
-      case '\t':
-        out_ += "&#9;";
-        break;
-      default:
-        // Other control characters are not allowed in XML 1.0 at all.
-        if (static_cast<unsigned char>(c) >= 0x20) out_ += c;
-    }
+void XodrWriter::check_finite(const char* name, double value) const {
+  if (!std::isfinite(value)) {
+    fail("<" + element_ + "> attribute '" + name + "' is not a finite number");
   }
-  out_ += '"';
 }
 
 void XodrWriter::attr(const char* name, double value) {
-  if (!std::isfinite(value)) {
-    fail("<" + element_ + "> attribute '" + name + "' is not a finite number");
-  }
-  out_ += ' ';
-  out_ += name;
-  out_ += "=\"";
-  append_fixed(out_, value, options_.decimals);
-  out_ += '"';
+  check_finite(name, value);
+  xml_.attribute_fixed(name, value, options_.decimals);
 }
 
 void XodrWriter::attr_coefficient(const char* name, double value) {
-  if (!std::isfinite(value)) {
-    fail("<" + element_ + "> attribute '" + name + "' is not a finite number");
-  }
-  out_ += ' ';
-  out_ += name;
-  out_ += "=\"";
-  append_shortest(out_, value);
-  out_ += '"';
-}
-
-void XodrWriter::attr_int(const char* name, long long value) {
-  out_ += ' ';
-  out_ += name;
-  out_ += "=\"";
-  append_int(out_, value);
-  out_ += '"';
+  check_finite(name, value);
+  xml_.attribute_shortest(name, value);
 }
 
 void XodrWriter::attr_positive(const char* name, double value) {
@@ -219,11 +179,13 @@ std::string XodrWriter::run() {
     }
   }
   out_.reserve(4096 + model_.roads.size() * 4096);
-  out_ += "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<OpenDRIVE>\n";
+  xml_.declaration();
+  start("OpenDRIVE");
   header();
   for (const ModelRoad& r : model_.roads) road(r);
   for (const JunctionModel& j : model_.junctions) junction(j);
-  out_ += "</OpenDRIVE>\n";
+  end("OpenDRIVE");
+  xml_.finish();
   return std::move(out_);
 }
 
@@ -242,7 +204,7 @@ void XodrWriter::header() {
   where_ = "header";
 
   const std::string& name = options_.name.empty() ? model_.name : options_.name;
-  open(1, "header");
+  start("header");
   attr_int("revMajor", 1);
   attr_int("revMinor", options_.rev_minor);
   attr("name", name);
@@ -253,49 +215,42 @@ void XodrWriter::header() {
   attr("east", box.max.x());
   attr("west", box.min.x());
   attr("vendor", options_.vendor);
-  end_start();
 
   // The ODbL attribution, readable by anyone who opens the file (a comment is valid anywhere).
   const std::string attribution = kOsmAttribution;
-  out_ += "    <!-- ";
-  out_ += attribution;
-  out_ += " -->\n";
+  xml_.comment(attribution);
 
-  // geoReference: the PROJ string as CDATA (split any "]]>" across two sections).
-  std::string proj = model_.frame.proj_string();
-  for (std::size_t at = proj.find("]]>"); at != std::string::npos; at = proj.find("]]>", at + 15)) {
-    proj.replace(at, 3, "]]]]><![CDATA[>");
-  }
-  out_ += "    <geoReference><![CDATA[";
-  out_ += proj;
-  out_ += "]]></geoReference>\n";
+  // geoReference: the PROJ string as CDATA.
+  start("geoReference");
+  xml_.cdata(model_.frame.proj_string());
+  end("geoReference");
   if (options_.rev_minor >= 7) {
     // Coordinates are already in the frame of the geoReference: no further offset.
-    open(2, "offset");
+    start("offset");
     attr("x", 0.0);
     attr("y", 0.0);
     attr("z", 0.0);
     attr("hdg", 0.0);
-    end_empty();
+    end("offset");
   }
   if (options_.rev_minor >= 8) {
-    open(2, "license");
+    start("license");
     attr("name", "Open Data Commons Open Database License 1.0");
     attr("resource", "https://opendatacommons.org/licenses/odbl/1-0/");
     attr("spdxid", "ODbL-1.0");
     attr("text", attribution);
-    end_empty();
+    end("license");
   }
-  open(2, "userData");
+  start("userData");
   attr("code", "attribution");
   attr("value", attribution);
-  end_empty();
+  end("userData");
   // relief's own frame (CRS and origin), so that reading the file back restores it exactly.
-  open(2, "userData");
+  start("userData");
   attr("code", "relief:crs");
   attr("value", model_.frame.crs());
-  end_empty();
-  open(2, "userData");
+  end("userData");
+  start("userData");
   attr("code", "relief:origin");
   std::string origin;
   const Vec2& o = model_.frame.origin();
@@ -304,8 +259,8 @@ void XodrWriter::header() {
   origin += ' ';
   append_fixed(origin, o.y(), 3);
   attr("value", origin);
-  end_empty();
-  close(1, "header");
+  end("userData");
+  end("header");
 }
 
 void XodrWriter::road(const ModelRoad& r) {
@@ -319,34 +274,31 @@ void XodrWriter::road(const ModelRoad& r) {
     if (!(r.sections[i].s > r.sections[i - 1].s)) fail("lane sections are not sorted by s");
   }
 
-  open(1, "road");
+  start("road");
   attr("name", r.name);
   attr_positive("length", r.plan.length());
   attr_int("id", r.id);
   attr_int("junction", r.junction);
-  end_start();
 
   if (r.predecessor || r.successor) {
-    open(2, "link");
-    end_start();
+    start("link");
     const auto link = [&](const char* tag, const RoadLink& l) {
-      open(3, tag);
+      start(tag);
       attr("elementType", l.element == RoadLink::Element::road ? "road" : "junction");
       attr_int("elementId", l.id);
       if (l.element == RoadLink::Element::road) attr("contactPoint", contact_name(l.contact));
-      end_empty();
+      end(tag);
     };
     if (r.predecessor) link("predecessor", *r.predecessor);
     if (r.successor) link("successor", *r.successor);
-    close(2, "link");
+    end("link");
   }
 
-  open(2, "type");
+  start("type");
   attr("s", 0.0);
   attr("type", r.type);
   if (r.speed_mps) {
-    end_start();
-    open(3, "speed");
+    start("speed");
     if (!(*r.speed_mps >= 0.0)) fail("<speed> is negative or not a number");
     if (minor == 4) {
       // 1.4 allows only a whole number: km/h keeps posted limits exact.
@@ -356,52 +308,48 @@ void XodrWriter::road(const ModelRoad& r) {
       attr("max", *r.speed_mps);
       attr("unit", "m/s");
     }
-    end_empty();
-    close(2, "type");
-  } else {
-    end_empty();
+    end("speed");
   }
+  end("type");
 
   plan_view(r);
 
   // Elevation and superelevation: an empty profile is the constant 0, written as one record.
-  out_ += "    <elevationProfile>\n";
-  profile(3, "elevation", "s", r.elevation.empty() ? CubicProfile::constant(0.0) : r.elevation);
-  out_ += "    </elevationProfile>\n    <lateralProfile>\n";
-  profile(3, "superelevation", "s",
-          r.superelevation.empty() ? CubicProfile::constant(0.0) : r.superelevation);
-  out_ += "    </lateralProfile>\n    <lanes>\n";
-  profile(3, "laneOffset", "s", r.lane_offset);
+  start("elevationProfile");
+  profile("elevation", "s", r.elevation.empty() ? CubicProfile::constant(0.0) : r.elevation);
+  end("elevationProfile");
+  start("lateralProfile");
+  profile("superelevation", "s", r.superelevation.empty() ? CubicProfile::constant(0.0) : r.superelevation);
+  end("lateralProfile");
+  start("lanes");
+  profile("laneOffset", "s", r.lane_offset);
   for (const LaneSection& section : r.sections) lane_section(section);
-  out_ += "    </lanes>\n";
-  close(1, "road");
+  end("lanes");
+  end("road");
 }
 
 void XodrWriter::plan_view(const ModelRoad& r) {
-  out_ += "    <planView>\n";
+  start("planView");
   for (const PlanGeometry& g : r.plan.records()) {
-    open(3, "geometry");
+    start("geometry");
     attr("s", g.s);
     attr("x", g.start.x());
     attr("y", g.start.y());
     attr("hdg", g.heading);
     attr_positive("length", g.length);
-    end_start();
+    const char* kind = geometry_element(g.kind);
+    start(kind);
     switch (g.kind) {
       case PlanGeometry::Kind::line:
-        open(4, "line");
         break;
       case PlanGeometry::Kind::arc:
-        open(4, "arc");
         attr_coefficient("curvature", g.curvature);
         break;
       case PlanGeometry::Kind::spiral:
-        open(4, "spiral");
         attr_coefficient("curvStart", g.curvature_start);
         attr_coefficient("curvEnd", g.curvature_end);
         break;
       case PlanGeometry::Kind::param_poly3:
-        open(4, "paramPoly3");
         attr("aU", g.u.a);
         attr_coefficient("bU", g.u.b);
         attr_coefficient("cU", g.u.c);
@@ -413,18 +361,18 @@ void XodrWriter::plan_view(const ModelRoad& r) {
         attr("pRange", g.normalized ? "normalized" : "arcLength");
         break;
     }
-    end_empty();
-    close(3, "geometry");
+    end(kind);
+    end("geometry");
   }
-  out_ += "    </planView>\n";
+  end("planView");
 }
 
-void XodrWriter::profile(int depth, const char* element, const char* s_name, const CubicProfile& p) {
+void XodrWriter::profile(const char* element, const char* s_name, const CubicProfile& p) {
   for (const CubicPiece& piece : p.pieces()) {
-    open(depth, element);
+    start(element);
     attr(s_name, piece.s);
     poly(piece.poly);
-    end_empty();
+    end(element);
   }
 }
 
@@ -436,9 +384,8 @@ void XodrWriter::lane_section(const LaneSection& section) {
         fail("lane id " + std::to_string(l.id) + " appears twice in one lane section");
     }
   }
-  open(3, "laneSection");
+  start("laneSection");
   attr("s", section.s);
-  end_start();
   // Lanes in the order of the standard's examples: left 2, 1, centre 0, right -1, -2.
   if (!section.left.empty()) {
     std::vector<const LaneModel*> lanes;
@@ -448,19 +395,18 @@ void XodrWriter::lane_section(const LaneSection& section) {
     }
     std::sort(lanes.begin(), lanes.end(),
               [](const LaneModel* a, const LaneModel* b) { return a->id > b->id; });
-    out_ += "        <left>\n";
+    start("left");
     for (const LaneModel* l : lanes) lane(*l);
-    out_ += "        </left>\n";
+    end("left");
   }
-  out_ += "        <center>\n";
-  open(5, "lane");
+  start("center");
+  start("lane");
   attr_int("id", 0);
   attr("type", "none");
   attr("level", "false");
-  end_start();
-  road_mark(6, section.centre_mark);
-  close(5, "lane");
-  out_ += "        </center>\n";
+  road_mark(section.centre_mark);
+  end("lane");
+  end("center");
   if (!section.right.empty()) {
     std::vector<const LaneModel*> lanes;
     for (const LaneModel& l : section.right) {
@@ -469,11 +415,11 @@ void XodrWriter::lane_section(const LaneSection& section) {
     }
     std::sort(lanes.begin(), lanes.end(),
               [](const LaneModel* a, const LaneModel* b) { return a->id > b->id; });
-    out_ += "        <right>\n";
+    start("right");
     for (const LaneModel* l : lanes) lane(*l);
-    out_ += "        </right>\n";
+    end("right");
   }
-  close(3, "laneSection");
+  end("laneSection");
 }
 
 void XodrWriter::lane(const LaneModel& l) {
@@ -481,71 +427,64 @@ void XodrWriter::lane(const LaneModel& l) {
     fail("lane " + std::to_string(l.id) + ": type '" + l.type + "' is not an OpenDRIVE 1." +
          std::to_string(options_.rev_minor) + " lane type");
   }
-  open(5, "lane");
+  start("lane");
   attr_int("id", l.id);
   attr("type", l.type);
   attr("level", "false");
-  end_start();
   if (l.predecessor || l.successor) {
-    out_ += "            <link>\n";
+    start("link");
     if (l.predecessor) {
-      open(7, "predecessor");
+      start("predecessor");
       attr_int("id", *l.predecessor);
-      end_empty();
+      end("predecessor");
     }
     if (l.successor) {
-      open(7, "successor");
+      start("successor");
       attr_int("id", *l.successor);
-      end_empty();
+      end("successor");
     }
-    out_ += "            </link>\n";
+    end("link");
   }
   // A lane without width records has width 0; 1.4 requires at least one record.
-  profile(6, "width", "sOffset", l.width.empty() ? CubicProfile::constant(0.0) : l.width);
-  road_mark(6, l.mark);
-  close(5, "lane");
+  profile("width", "sOffset", l.width.empty() ? CubicProfile::constant(0.0) : l.width);
+  road_mark(l.mark);
+  end("lane");
 }
 
-void XodrWriter::road_mark(int depth, const RoadMark& mark) {
+void XodrWriter::road_mark(const RoadMark& mark) {
   if (!valid_color(mark.color, options_.rev_minor))
     fail("road mark color '" + mark.color + "' is not an OpenDRIVE colour");
-  open(depth, "roadMark");
+  start("roadMark");
   attr("sOffset", 0.0);
   attr("type", mark_type_name(mark.type));
   attr("weight", "standard");
   attr("color", mark.color);
   if (!(mark.width_m >= 0.0) && std::isfinite(mark.width_m)) fail("road mark width is negative");
   attr("width", mark.width_m);
-  end_empty();
+  end("roadMark");
 }
 
 void XodrWriter::junction(const JunctionModel& j) {
   where_ = "junction " + std::to_string(j.id);
   if (j.connections.empty()) fail("no connection (OpenDRIVE requires at least one)");
-  open(1, "junction");
+  start("junction");
   attr("name", j.name);
   attr_int("id", j.id);
-  end_start();
   for (const JunctionConnection& c : j.connections) {
-    open(2, "connection");
+    start("connection");
     attr_int("id", c.id);
     attr_int("incomingRoad", c.incoming_road);
     attr_int("connectingRoad", c.connecting_road);
     attr("contactPoint", contact_name(c.contact));
-    if (c.lane_links.empty()) {
-      end_empty();
-      continue;
-    }
-    end_start();
     for (const auto& [from, to] : c.lane_links) {
-      open(3, "laneLink");
+      start("laneLink");
       attr_int("from", from);
       attr_int("to", to);
-      end_empty();
+      end("laneLink");
     }
-    close(2, "connection");
+    end("connection");
   }
-  close(1, "junction");
+  end("junction");
 }
 
 }  // namespace

@@ -8,6 +8,7 @@
 #include "pipeline/stages.h"
 #include "pipeline/sumo_stage.h"
 #include "relief/core/atomic_file.h"
+#include "relief/core/diagnostic_codes.h"
 #include "relief/core/errors.h"
 #include "relief/export/geojson_writer.h"
 #include "relief/export/opendrive_writer.h"
@@ -344,7 +345,7 @@ BuildResult build(const BuildOptions& options, Diagnostics& diagnostics, const P
   take_validation();
   report.gates = evaluate_gates(report, options.gates);
   for (const Gate& g : failed_gates(report.gates)) {
-    diagnostics.report(Severity::error, "gate.failed",
+    diagnostics.report(Severity::error, codes::kGateFailed,
                        "quality gate " + g.name + " failed: " + std::to_string(g.value) + " against " +
                            std::to_string(g.threshold) + (g.where.empty() ? "" : ", " + g.where));
   }

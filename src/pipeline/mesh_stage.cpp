@@ -5,6 +5,7 @@
 
 #include "pipeline/ground_openings.h"
 #include "pipeline/ground_support.h"
+#include "relief/core/diagnostic_codes.h"
 #include "relief/core/number_format.h"
 #include "relief/export/mesh_report.h"
 #include "relief/export/mesh_writer.h"
@@ -67,7 +68,7 @@ void report_self_intersections(const MeshQuality& road, const std::vector<int>& 
     append_fixed(text, p.z(), 2);
     text += ")";
   }
-  diagnostics.report(Severity::warning, "mesh.road_self_intersections",
+  diagnostics.report(Severity::warning, codes::kMeshRoadSelfIntersections,
                      std::to_string(road.self_intersecting_pairs) +
                          " Road_Road triangle pair(s) intersect; the first pairs' owners" + text);
 }
@@ -75,7 +76,7 @@ void report_self_intersections(const MeshQuality& road, const std::vector<int>& 
 void report_plan_overlaps(const PlanOverlaps& overlaps, std::size_t under, Diagnostics& diagnostics) {
   const std::string sites = first_sites(overlaps.sites);
   diagnostics.report(
-      Severity::info, "mesh.roads_overlap_in_plan",
+      Severity::info, codes::kMeshRoadsOverlapInPlan,
       std::to_string(under) + " road triangle(s) on the ground lie under another road seen from above (" +
           std::to_string(overlaps.pairs) + " overlapping pairs" + sites +
           "): a tunnel approach under the street over its portal, a street under a bridge's abutment, or "
@@ -262,7 +263,7 @@ MeshSummary write_mesh_outputs(const MeshStageInput& in, OutputSet& files, Stage
     summary.structure_terrain_intersecting_pairs = checked.structure_terrain_pairs;
     if (checked.structure_terrain_pairs > 0) {
       in.diagnostics.report(
-          Severity::warning, "mesh.structure_terrain_intersections",
+          Severity::warning, codes::kMeshStructureTerrainIntersections,
           std::to_string(checked.structure_terrain_pairs) +
               " triangle pair(s) of a deck, tunnel or road piece under another road intersect the terrain" +
               first_sites(checked.structure_terrain_sites) +

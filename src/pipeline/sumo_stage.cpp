@@ -7,9 +7,12 @@
 #include <fstream>
 #include <sstream>
 
+#include "relief/core/diagnostic_codes.h"
 #include "relief/core/errors.h"
 #include "relief/export/sumo_checks.h"
 #include "relief/export/sumo_drape.h"
+#include "relief/export/sumo_mapping.h"
+#include "relief/export/sumo_plain_xml.h"
 #include "relief/geometry/polyline.h"
 
 namespace relief {
@@ -85,7 +88,7 @@ SumoJob start_sumo(const SumoStageInput& in) {
     so.signalled_junctions = signalled_junctions(loaded, model, options.signal_snap_m, r.signals_mid_road);
     if (r.signals_mid_road > 0) {
       r.diagnostics.report(
-          Severity::info, "sumo.signal_mid_road",
+          Severity::info, codes::kSumoSignalMidRoad,
           std::to_string(r.signals_mid_road) + " traffic signals are more than " +
               std::to_string(options.signal_snap_m) +
               " m from any intersection (pedestrian crossings); SUMO gets no light for them");
@@ -169,7 +172,7 @@ SumoSummary finish_sumo(const SumoStageInput& in, SumoJob& job, OutputSet& files
     summary.max_internal_lane_grade_percent = check.max_internal_lane_grade_percent;
     if (check.points_unmapped > 0) {
       in.diagnostics.report(
-          Severity::warning, "sumo.unmapped_lane_points",
+          Severity::warning, codes::kSumoUnmappedLanePoints,
           std::to_string(check.points_unmapped) + " SUMO lane points have no OpenDRIVE road");
     }
   }

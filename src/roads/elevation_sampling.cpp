@@ -5,6 +5,7 @@
 #include <iomanip>
 #include <sstream>
 
+#include "relief/core/diagnostic_codes.h"
 #include "relief/core/errors.h"
 #include "relief/geometry/polyline.h"
 
@@ -20,7 +21,7 @@ std::string describe_road(const Road& road) {
 }
 
 // Reports that `count` of a road's `total` samples had no DEM height (`where`) and were filled.
-void report_filled(Diagnostics& diagnostics, const char* code, const Road& road, std::size_t count,
+void report_filled(Diagnostics& diagnostics, const DiagnosticCode& code, const Road& road, std::size_t count,
                    std::size_t total, const char* where) {
   Diagnostic d;
   d.code = code;
@@ -224,10 +225,10 @@ ElevationSamples sample_elevation(const RoadNetwork& network, const DemSampler& 
                            std::to_string(voids) + " of " + std::to_string(p.size()) +
                            " samples; use --nodata-fill interpolate to fill along the road");
       }
-      report_filled(diagnostics, "elevation.void", road, voids, p.size(), "in a DEM void");
+      report_filled(diagnostics, codes::kElevationVoid, road, voids, p.size(), "in a DEM void");
     }
     if (uncovered > 0 && options.allow_partial) {
-      report_filled(diagnostics, "elevation.uncovered", road, uncovered, p.size(), "outside every DEM");
+      report_filled(diagnostics, codes::kElevationUncovered, road, uncovered, p.size(), "outside every DEM");
     }
   }
 
@@ -275,7 +276,7 @@ ElevationSamples sample_elevation(const RoadNetwork& network, const DemSampler& 
       ++result.roads_without_height;
       Diagnostic d;
       d.severity = Severity::error;
-      d.code = "elevation.road_without_height";
+      d.code = codes::kElevationRoadWithoutHeight;
       d.road_id = road.id;
       if (!road.osm_way_ids.empty()) d.osm_way_id = road.osm_way_ids.front();
       d.message = describe_road(road) + " has no height anywhere; it is left out of the outputs";

@@ -9,6 +9,7 @@
 #include <sstream>
 #include <unordered_map>
 
+#include "relief/core/diagnostic_codes.h"
 #include "relief/core/errors.h"
 #include "relief/geometry/crs_transform.h"
 #include "relief/geometry/polyline.h"
@@ -116,7 +117,7 @@ std::vector<Piece> split_ways(const OsmRoads& osm, const NodeTable& table, Diagn
       if (piece.nodes.size() < 2 || piece_length_m(piece, table) < kMinPieceLength_m) {
         Diagnostic d;
         d.severity = Severity::warning;
-        d.code = "network.degenerate_way";
+        d.code = codes::kNetworkDegenerateWay;
         d.message = "way " + std::to_string(way.id) + ": the piece from node " +
                     std::to_string(way.node_ids[start]) + " to node " + std::to_string(way.node_ids[i]) +
                     " is shorter than 1 cm; dropped";

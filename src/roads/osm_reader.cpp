@@ -18,6 +18,7 @@
 #include <osmium/osm/way.hpp>
 #include <osmium/visitor.hpp>
 
+#include "relief/core/diagnostic_codes.h"
 #include "relief/core/errors.h"
 
 namespace relief {
@@ -64,7 +65,7 @@ class RoadHandler : public osmium::handler::Handler {
     if (!warnings.empty()) {
       Diagnostic d;
       d.severity = Severity::warning;
-      d.code = "osm.tag_value";
+      d.code = codes::kOsmTagValue;
       d.message = "way " + std::to_string(way.id()) + ": " + warnings;
       d.osm_way_id = way.id();
       diagnostics_.report(std::move(d));
@@ -108,7 +109,7 @@ class RoadHandler : public osmium::handler::Handler {
     if (!kept && missing == 0) {
       Diagnostic d;
       d.severity = Severity::warning;
-      d.code = "osm.degenerate_way";
+      d.code = codes::kOsmDegenerateWay;
       d.message = "way " + std::to_string(way.id()) + " has fewer than two distinct nodes; skipped";
       d.osm_way_id = way.id();
       diagnostics_.report(std::move(d));
@@ -119,7 +120,7 @@ class RoadHandler : public osmium::handler::Handler {
   void report_missing(std::int64_t way_id, std::int64_t node_id) {
     Diagnostic d;
     d.severity = Severity::warning;
-    d.code = "osm.missing_node";
+    d.code = codes::kOsmMissingNode;
     d.message = "way " + std::to_string(way_id) + " references node " + std::to_string(node_id) +
                 ", which is not in the file; the way is split there";
     d.osm_way_id = way_id;

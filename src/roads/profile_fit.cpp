@@ -13,6 +13,7 @@
 #include <sstream>
 #include <unordered_map>
 
+#include "relief/core/diagnostic_codes.h"
 #include "relief/core/errors.h"
 #include "relief/geometry/soft_qp.h"
 #include "relief/roads/vertical_curves.h"
@@ -182,7 +183,7 @@ std::vector<std::uint8_t> roads_with_data(const RoadNetwork& network, Diagnostic
     } else if (!reported[c]) {
       reported[c] = 1;
       Diagnostic d;
-      d.code = "fit.unanchored_structure";
+      d.code = codes::kFitUnanchoredStructure;
       d.road_id = road.id;
       if (!road.osm_way_ids.empty()) d.osm_way_id = road.osm_way_ids.front();
       d.message = "the " + std::string(road.attributes.bridge ? "bridge" : "tunnel") + " of road " +
@@ -794,7 +795,7 @@ ProfileFitResult fit_profiles(const RoadNetwork& network, const std::vector<Road
     msg << "the profile fit did not converge (" << solution.status << " after " << solution.iterations
         << " interior-point iterations; stationarity " << solution.stationarity << ", gap " << solution.gap
         << "): this is a defect of relief, please report it";
-    diagnostics.report(Severity::error, "fit.not_converged", msg.str());
+    diagnostics.report(Severity::error, codes::kFitNotConverged, msg.str());
   }
 
   // Back to per-road profiles.
@@ -884,7 +885,7 @@ ProfileFitResult fit_profiles(const RoadNetwork& network, const std::vector<Road
                    });
   for (const FitViolation& v : result.violations) {
     Diagnostic d;
-    d.code = "fit.limit_violated";
+    d.code = codes::kFitLimitViolated;
     d.severity = Severity::warning;
     std::ostringstream msg;
     msg.precision(3);

@@ -9,6 +9,7 @@
 #include <utility>
 #include <vector>
 
+#include "relief/core/diagnostic_codes.h"
 #include "relief/core/errors.h"
 #include "roads/junction_surface.h"
 #include "roads/lane_loft.h"
@@ -199,7 +200,7 @@ RoadMeshes build_road_meshes(const RoadModel& model, const RoadMeshOptions& opti
     Diagnostic d;
     d.road_id = r.id;
     if (!(r.length() > kShortRoad)) {
-      d.code = "mesh.road_too_short";
+      d.code = codes::kMeshRoadTooShort;
       d.message =
           "road " + std::to_string(r.id) + " is too short to loft (" + std::to_string(r.length()) + " m)";
       diagnostics.report(std::move(d));
@@ -209,7 +210,7 @@ RoadMeshes build_road_meshes(const RoadModel& model, const RoadMeshOptions& opti
       lofted[i] = detail::loft_road(r, options, road, sidewalk, options.markings ? &marking : nullptr);
       out.max_surface_deviation_m = std::max(out.max_surface_deviation_m, lofted[i]->max_deviation_m);
     } catch (const InvalidInput& e) {
-      d.code = "mesh.road_failed";
+      d.code = codes::kMeshRoadFailed;
       d.message = e.what();
       diagnostics.report(std::move(d));
     }
@@ -218,7 +219,7 @@ RoadMeshes build_road_meshes(const RoadModel& model, const RoadMeshOptions& opti
   // 2. Roads linked end to end share their end vertices.
   const std::size_t unmatched = weld_linked_ends(model, lofted, road, sidewalk, marking);
   if (unmatched > 0) {
-    diagnostics.report(Severity::info, "mesh.weld_unmatched",
+    diagnostics.report(Severity::info, codes::kMeshWeldUnmatched,
                        std::to_string(unmatched) +
                            " vertices of directly linked road ends have no partner within 5 mm "
                            "(lane counts differ across the link)");
@@ -274,7 +275,7 @@ RoadMeshes build_road_meshes(const RoadModel& model, const RoadMeshOptions& opti
     } else {
       ++out.junctions_failed;
       diagnostics.report(
-          Severity::warning, "mesh.junction_failed",
+          Severity::warning, codes::kMeshJunctionFailed,
           "junction " + std::to_string(junction.id) + ": " + problem + "; its area is left open");
     }
   }

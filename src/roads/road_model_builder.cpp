@@ -10,6 +10,7 @@
 
 #include <Eigen/Eigenvalues>
 
+#include "relief/core/diagnostic_codes.h"
 #include "relief/core/errors.h"
 #include "relief/geometry/polygon.h"
 #include "relief/geometry/polyline.h"
@@ -779,7 +780,7 @@ RoadModelBuild build_model(const RoadNetwork& network, const std::vector<RoadPro
     }
     Diagnostic d;
     d.severity = Severity::info;
-    d.code = "model.junctions_joined";
+    d.code = codes::kModelJunctionsJoined;
     d.message = "the junctions of OSM nodes " + nodes + " are one junction: the OSM way(s) " + roads +
                 " between them are too short to hold both";
     d.osm_node_id = j.osm_node_id;
@@ -812,7 +813,7 @@ RoadModelBuild build_model(const RoadNetwork& network, const std::vector<RoadPro
           << (e.cleared ? "trimmed back " : "still there after trimming back ") << e.trimmed_m << " m";
       Diagnostic d;
       d.severity = e.cleared ? Severity::info : Severity::warning;
-      d.code = e.cleared ? "model.stray_end_trimmed" : "model.stray_end_overlap";
+      d.code = e.cleared ? codes::kModelStrayEndTrimmed : codes::kModelStrayEndOverlap;
       d.message = msg.str();
       if (!road.osm_way_ids.empty()) d.osm_way_id = road.osm_way_ids.front();
       diagnostics.report(std::move(d));
@@ -837,7 +838,7 @@ RoadModelBuild build_model(const RoadNetwork& network, const std::vector<RoadPro
     const double s1 = length - trim[road.id][1];
     if (s1 - s0 < kMinRoadLength) {
       ++out.stats.roads_skipped;
-      diagnostics.report(Severity::warning, "opendrive.road_too_short",
+      diagnostics.report(Severity::warning, codes::kOpendriveRoadTooShort,
                          "road " + std::to_string(road.id) + " (" + std::to_string(length) +
                              " m) has no length left between its junctions; left out of the OpenDRIVE");
       continue;
@@ -861,7 +862,7 @@ RoadModelBuild build_model(const RoadNetwork& network, const std::vector<RoadPro
             << " m";
         Diagnostic d;
         d.severity = Severity::info;
-        d.code = "model.corner_rounded";
+        d.code = codes::kModelCornerRounded;
         d.message = msg.str();
         d.road_id = m.id;
         if (!road.osm_way_ids.empty()) d.osm_way_id = road.osm_way_ids.front();
@@ -915,7 +916,7 @@ RoadModelBuild build_model(const RoadNetwork& network, const std::vector<RoadPro
       ids += (ids.empty() ? "" : ", ") + std::to_string(model.roads[out.model_road_of[r]].id);
     }
     Diagnostic d;
-    d.code = "model.junction_ends_overlap";
+    d.code = codes::kModelJunctionEndsOverlap;
     d.message = "the ends of roads " + ids + " at the junction of OSM node " +
                 std::to_string(network.junctions[junction].osm_node_id) +
                 " still overlap after trimming them by the largest share allowed";
@@ -943,7 +944,7 @@ RoadModelBuild build_model(const RoadNetwork& network, const std::vector<RoadPro
     if (j.kind == JunctionKind::attribute_change && ends.size() == 2 && !has_passage(network, j)) {
       Diagnostic d;
       d.severity = Severity::warning;
-      d.code = "model.no_passage";
+      d.code = codes::kModelNoPassage;
       d.message = "roads " + std::to_string(model_of(ends[0]).id) + " and " +
                   std::to_string(model_of(ends[1]).id) + " meet at OSM node " +
                   std::to_string(j.osm_node_id) +
@@ -1118,7 +1119,7 @@ RoadModelBuild build_model(const RoadNetwork& network, const std::vector<RoadPro
         (e.at_start ? m.predecessor : m.successor).reset();
       }
       diagnostics.report(
-          Severity::warning, "opendrive.junction_without_movements",
+          Severity::warning, codes::kOpendriveJunctionWithoutMovements,
           "no movement is possible at the junction of OSM node " + std::to_string(j.osm_node_id) +
               " (one-ways all leading away, or turn lanes allowing none); its roads end there");
       ++out.stats.junctions_without_movements;

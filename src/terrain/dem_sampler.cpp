@@ -7,6 +7,7 @@
 #include <limits>
 #include <sstream>
 
+#include "relief/core/diagnostic_codes.h"
 #include "relief/core/errors.h"
 #include "relief/geometry/crs_transform.h"
 #include "terrain/dem_sanity.h"
@@ -337,7 +338,7 @@ void report_missing_grid(const DemInfo& info, const std::string& frame_crs, Diag
     message << " (accuracy unknown)";
   }
   message << " instead";
-  diagnostics->report(Severity::warning, "dem.datum_grid_missing", message.str());
+  diagnostics->report(Severity::warning, codes::kDemDatumGridMissing, message.str());
 }
 
 // Longer side (m) of the cells of each row of `window`: the larger distance in the frame's
@@ -437,7 +438,7 @@ void void_implausible_cells(std::vector<double>& z, const gdal::PixelWindow& win
                                                                     options.plausible_max_m, kCellsListed);
   info.implausible_cells = implausible.count;
   if (implausible.count > 0 && diagnostics != nullptr) {
-    diagnostics->report(Severity::warning, "dem.implausible_height",
+    diagnostics->report(Severity::warning, codes::kDemImplausibleHeight,
                         "DEM '" + info.path + "': " + std::to_string(implausible.count) +
                             (implausible.count == 1 ? " cell" : " cells") +
                             " outside the plausible heights " + format_number(options.plausible_min_m) +
@@ -455,7 +456,7 @@ void void_implausible_cells(std::vector<double>& z, const gdal::PixelWindow& win
   info.spike_cells = spikes.count;
   if (spikes.count > 0 && diagnostics != nullptr) {
     diagnostics->report(
-        Severity::warning, "dem.spike",
+        Severity::warning, codes::kDemSpike,
         "DEM '" + info.path + "': " + std::to_string(spikes.count) +
             (spikes.count == 1 ? " one-cell spike or pit" : " one-cell spikes or pits") + " (more than max(" +
             format_number(options.spike_min_step_m) + " m, " + format_number(options.spike_step_per_cell) +

@@ -8,71 +8,15 @@
 #include <string>
 
 #include "relief/core/errors.h"
+#include "support/sumo_ramp.h"
 
 namespace relief {
 namespace {
 
+using test::ramp_model;
+
 // atan(0.1) in degrees: SUMO's slope on a 10 % ramp.
 const double kRampDeg = std::atan(0.1) * 180.0 / std::numbers::pi;
-
-LaneModel lane(int id, double width_m) {
-  LaneModel l;
-  l.id = id;
-  l.width = CubicProfile({CubicPiece{0.0, {width_m, 0.0, 0.0, 0.0}}});
-  return l;
-}
-
-// A straight road east along y = 0 from x = x0, rising 10 % from z0.
-ModelRoad ramp_road(int id, double x0, double length, double z0) {
-  ModelRoad road;
-  road.id = id;
-  PlanGeometry line;
-  line.start = Vec2(x0, 0.0);
-  line.length = length;
-  road.plan = PlanView({line});
-  road.elevation = CubicProfile({CubicPiece{0.0, {z0, 0.1, 0.0, 0.0}}});
-  road.lane_offset = CubicProfile::constant(0.0);
-  return road;
-}
-
-// One 10 % ramp east along y = 0, z = 0.1 x: road 1 (x 0..100, a 3 m lane each way), the
-// connecting road 2 of junction 100 (x 100..110, right lane only) and road 3 (x 110..210).
-RoadModel ramp_model() {
-  ModelRoad r1 = ramp_road(1, 0.0, 100.0, 0.0);
-  LaneSection s1;
-  s1.left = {lane(1, 3.0)};
-  s1.right = {lane(-1, 3.0)};
-  r1.sections = {s1};
-  r1.successor = RoadLink{RoadLink::Element::junction, 100, RoadLink::Contact::start};
-
-  ModelRoad r2 = ramp_road(2, 100.0, 10.0, 10.0);
-  r2.junction = 100;
-  LaneSection s2;
-  s2.right = {lane(-1, 3.0)};
-  s2.right[0].predecessor = -1;
-  s2.right[0].successor = -1;
-  r2.sections = {s2};
-  r2.predecessor = RoadLink{RoadLink::Element::road, 1, RoadLink::Contact::end};
-  r2.successor = RoadLink{RoadLink::Element::road, 3, RoadLink::Contact::start};
-
-  ModelRoad r3 = ramp_road(3, 110.0, 100.0, 11.0);
-  LaneSection s3;
-  s3.right = {lane(-1, 3.0)};
-  r3.sections = {s3};
-  r3.predecessor = RoadLink{RoadLink::Element::junction, 100, RoadLink::Contact::start};
-
-  RoadModel model;
-  model.roads = {r1, r2, r3};
-  JunctionModel junction;
-  junction.id = 100;
-  JunctionConnection c;
-  c.incoming_road = 1;
-  c.connecting_road = 2;
-  c.lane_links = {{-1, -1}};
-  junction.connections = {c};
-  model.junctions = {junction};
-  return model;
-}
 
 // The network netconvert would write for ramp_model(): lane centres at y = -1.5 (along s) and
 // y = +1.5 (against s) on the plane z = 0.1 x. The connection carries no params (as from

@@ -13,6 +13,7 @@
 #include <unordered_map>
 #include <utility>
 
+#include "relief/core/xml_writer.h"
 #include "relief/geometry/crs_transform.h"
 #include "relief/terrain/dem_writer.h"
 #include "support/synthetic.h"
@@ -177,8 +178,7 @@ class OsmWriter {
 
   std::int64_t node(const Vec2& p) {
     const Vec2 ll = to_wgs84_.apply(frame_.to_crs(p));
-    nodes_ << "  <node id=\"" << next_node_ << "\" version=\"1\" lat=\"" << std::setprecision(10) << ll.y()
-           << "\" lon=\"" << ll.x() << "\"/>\n";
+    nodes_.push_back({next_node_, ll.y(), ll.x()});
     return next_node_++;
   }
   std::vector<std::int64_t> nodes(const Polyline2& line) {
@@ -189,10 +189,7 @@ class OsmWriter {
   // A way through `refs`; `plan` is its centreline (for the length).
   std::int64_t way(const std::vector<std::int64_t>& refs, const Tags& tags, const Polyline2& plan) {
     const std::int64_t id = next_way_++;
-    ways_ << "  <way id=\"" << id << "\" version=\"1\">\n";
-    for (const std::int64_t r : refs) ways_ << "    <nd ref=\"" << r << "\"/>\n";
-    for (const auto& [k, v] : tags) ways_ << "    <tag k=\"" << k << "\" v=\"" << v << "\"/>\n";
-    ways_ << "  </way>\n";
+    ways_.push_back({id, refs, tags});
     if (std::any_of(tags.begin(), tags.end(), [](const auto& t) { return t.first == "highway"; }))
       length_m_ += plan_length(plan);
     ++count_;
@@ -202,17 +199,66 @@ class OsmWriter {
     const Vec2 ll = to_wgs84_.apply(frame_.to_crs(p));
     return {ll.x(), ll.y()};
   }
+  // Nodes first, then ways, as OSM files have them; degrees at 10 significant digits.
   [[nodiscard]] std::string xml() const {
-    return "<?xml version='1.0' encoding='UTF-8'?>\n<osm version=\"0.6\" generator=\"relief corpus\">\n" +
-           nodes_.str() + ways_.str() + "</osm>\n";
+    const auto degrees = [](double v) {
+      std::ostringstream text;
+      text << std::setprecision(10) << v;
+      return text.str();
+    };
+    std::string out;
+    XmlWriter xml(out, {.indent = 2});
+    xml.declaration();
+    xml.start("osm");
+    xml.attribute("version", "0.6");
+    xml.attribute("generator", "relief corpus");
+    for (const Node& n : nodes_) {
+      xml.start("node");
+      xml.attribute_int("id", n.id);
+      xml.attribute("version", "1");
+      xml.attribute("lat", degrees(n.lat));
+      xml.attribute("lon", degrees(n.lon));
+      xml.end("node");
+    }
+    for (const Way& w : ways_) {
+      xml.start("way");
+      xml.attribute_int("id", w.id);
+      xml.attribute("version", "1");
+      for (const std::int64_t r : w.refs) {
+        xml.start("nd");
+        xml.attribute_int("ref", r);
+        xml.end("nd");
+      }
+      for (const auto& [k, v] : w.tags) {
+        xml.start("tag");
+        xml.attribute("k", k);
+        xml.attribute("v", v);
+        xml.end("tag");
+      }
+      xml.end("way");
+    }
+    xml.end("osm");
+    xml.finish();
+    return out;
   }
   [[nodiscard]] std::size_t count() const { return count_; }
   [[nodiscard]] double length_km() const { return length_m_ / 1000.0; }
 
  private:
+  struct Node {
+    std::int64_t id;
+    double lat, lon;
+  };
+  struct Way {
+    std::int64_t id;
+    std::vector<std::int64_t> refs;
+    Tags tags;
+  };
+
   GeoFrame frame_;
   CrsTransform to_wgs84_;
-  std::ostringstream nodes_, ways_;
+  std::vector<Node> nodes_;
+  std::vector<Way> ways_;
   std::int64_t next_node_ = 1, next_way_ = 1;
   std::size_t count_ = 0;
   double length_m_ = 0.0;

@@ -3,11 +3,11 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
-#include <cstdio>
 #include <fstream>
 #include <numbers>
-#include <sstream>
 #include <stdexcept>
+
+#include "relief/core/xml_writer.h"
 
 namespace relief::test {
 
@@ -17,44 +17,18 @@ bool is_letter(char c) {
   return (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z');
 }
 
-std::string escape(const std::string& text) {
-  std::string out;
-  for (const char c : text) {
-    switch (c) {
-      case '&':
-        out += "&amp;";
-        break;
-      case '<':
-        out += "&lt;";
-        break;
-      case '>':
-        out += "&gt;";
-        break;
-      case '"':
-        out += "&quot;";
-        break;
-      case '\'':
-        out += "&apos;";
-        break;
-      default:
-        out += c;
-    }
-  }
-  return out;
-}
-
 double round7(double deg) {
   return std::round(deg * 1e7) / 1e7;
 }
 
-std::string degrees(double deg) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.7f", deg);
-  return text;
-}
-
-void write_tags(std::ostringstream& out, const OsmSketch::Tags& tags) {
-  for (const auto& [k, v] : tags) out << "    <tag k=\"" << escape(k) << "\" v=\"" << escape(v) << "\"/>\n";
+// Tags as OSM writes them: <tag k=".." v=".."/>, escaped.
+void write_tags(XmlWriter& xml, const OsmSketch::Tags& tags) {
+  for (const auto& [k, v] : tags) {
+    xml.start("tag");
+    xml.attribute("k", k);
+    xml.attribute("v", v);
+    xml.end("tag");
+  }
 }
 
 }  // namespace
@@ -138,35 +112,50 @@ LonLat OsmSketch::lonlat(char letter) const {
 }
 
 std::string OsmSketch::xml() const {
-  std::ostringstream out;
-  out << "<?xml version='1.0' encoding='UTF-8'?>\n<osm version=\"0.6\" generator=\"relief "
-         "OsmSketch\">\n";
+  // Degrees at 1e-7, as OSM stores them.
+  const auto degrees = [](XmlWriter& xml, const char* name, double deg) {
+    xml.attribute_fixed(name, deg, 7);
+  };
+  std::string out;
+  XmlWriter xml(out, {.indent = 2});
+  xml.declaration();
+  xml.start("osm");
+  xml.attribute("version", "0.6");
+  xml.attribute("generator", "relief OsmSketch");
   if (bounds_) {
-    out << "  <bounds minlat=\"" << degrees(bounds_->min_lat) << "\" minlon=\"" << degrees(bounds_->min_lon)
-        << "\" maxlat=\"" << degrees(bounds_->max_lat) << "\" maxlon=\"" << degrees(bounds_->max_lon)
-        << "\"/>\n";
+    xml.start("bounds");
+    degrees(xml, "minlat", bounds_->min_lat);
+    degrees(xml, "minlon", bounds_->min_lon);
+    degrees(xml, "maxlat", bounds_->max_lat);
+    degrees(xml, "maxlon", bounds_->max_lon);
+    xml.end("bounds");
   }
   for (const auto& [letter, offset] : offsets_) {
     const LonLat p = lonlat(letter);
-    out << "  <node id=\"" << node_id(letter) << "\" version=\"1\" lat=\"" << degrees(p.lat_deg)
-        << "\" lon=\"" << degrees(p.lon_deg) << "\"";
+    xml.start("node");
+    xml.attribute_int("id", node_id(letter));
+    xml.attribute("version", "1");
+    degrees(xml, "lat", p.lat_deg);
+    degrees(xml, "lon", p.lon_deg);
     const auto tags = node_tags_.find(letter);
-    if (tags == node_tags_.end()) {
-      out << "/>\n";
-    } else {
-      out << ">\n";
-      write_tags(out, tags->second);
-      out << "  </node>\n";
-    }
+    if (tags != node_tags_.end()) write_tags(xml, tags->second);
+    xml.end("node");
   }
   for (const Way& w : ways_) {
-    out << "  <way id=\"" << w.id << "\" version=\"1\">\n";
-    for (const char c : w.letters) out << "    <nd ref=\"" << node_id(c) << "\"/>\n";
-    write_tags(out, w.tags);
-    out << "  </way>\n";
+    xml.start("way");
+    xml.attribute_int("id", w.id);
+    xml.attribute("version", "1");
+    for (const char c : w.letters) {
+      xml.start("nd");
+      xml.attribute_int("ref", node_id(c));
+      xml.end("nd");
+    }
+    write_tags(xml, w.tags);
+    xml.end("way");
   }
-  out << "</osm>\n";
-  return out.str();
+  xml.end("osm");
+  xml.finish();
+  return out;
 }
 
 std::filesystem::path OsmSketch::write(const std::filesystem::path& path) const {

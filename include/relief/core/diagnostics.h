@@ -18,7 +18,8 @@ enum class Severity { info, warning, error };
 
 [[nodiscard]] std::string_view to_string(Severity severity);
 
-/// One reported defect. `code` is a stable machine-readable key ("osm.missing_node").
+/// One reported defect. `code` is a stable machine-readable key ("osm.missing_node"), one of the
+/// registry core/diagnostic_codes.h.
 struct Diagnostic {
   Severity severity = Severity::warning;
   std::string code;
@@ -37,7 +38,8 @@ class Diagnostics {
   explicit Diagnostics(std::size_t max_kept_per_code = 50) : max_kept_per_code_(max_kept_per_code) {}
 
   void report(Diagnostic diagnostic);
-  void report(Severity severity, std::string code, std::string message);
+  /// `code`: a constant of core/diagnostic_codes.h (codes::kOsmMissingNode, ...).
+  void report(Severity severity, std::string_view code, std::string message);
 
   /// Called for every reported diagnostic (the CLI prints warnings through this).
   void set_listener(Listener listener) { listener_ = std::move(listener); }

@@ -1,7 +1,7 @@
 #pragma once
-// The SUMO network of a RoadModel as SUMO's plain XML (nodes, edges, connections), from the
-// same fitted geometry as the OpenDRIVE: edge shapes are the roads' centre lines in 3D, the
-// internal junction lanes are the OpenDRIVE connecting roads, so SUMO's lanes lie on the
+// The SUMO network of a RoadModel (nodes, edges, connections; written as SUMO's plain XML by
+// export/sumo_plain_xml.h), from the same fitted geometry as the OpenDRIVE: edge shapes are the roads' centre
+// lines in 3D, the internal junction lanes are the OpenDRIVE connecting roads, so SUMO's lanes lie on the
 // OpenDRIVE surface. netconvert (export/sumo_tools.h) turns the plain files into a .net.xml
 // (junction shapes, right of way, traffic-light programs) with its height fixing turned off.
 //
@@ -9,10 +9,9 @@
 // (its left lanes) — the scheme of netconvert's own OpenDRIVE import, without the section
 // suffix since relief's roads have one lane section. SUMO lane index 0 is the outermost
 // OpenDRIVE lane of the edge's side. Every edge carries params odr.road / odr.lanes, every
-// connection the connecting road, and sumo_mapping.json lists every lane (mapping.h below).
+// connection the connecting road, and sumo_mapping.json lists every lane (export/sumo_mapping.h).
 
 #include <map>
-#include <ostream>
 #include <set>
 #include <string>
 #include <vector>
@@ -106,15 +105,5 @@ struct SumoPlainNetwork {
 [[nodiscard]] SumoPlainNetwork build_sumo_network(const RoadModel& model,
                                                   const std::vector<SumoRoadInfo>& info,
                                                   const SumoOptions& options, Diagnostics& diagnostics);
-
-/// SUMO's plain XML files (netconvert --node-files / --edge-files / --connection-files). The
-/// node file carries the <location> (netOffset = -origin, projParameter = the frame's CRS).
-void write_sumo_nodes(std::ostream& out, const SumoPlainNetwork& net);
-void write_sumo_edges(std::ostream& out, const SumoPlainNetwork& net);
-void write_sumo_connections(std::ostream& out, const SumoPlainNetwork& net);
-
-/// sumo_mapping.json: every SUMO lane (edge lanes and internal lanes by their from/to) with its
-/// OpenDRIVE road and lane, and the frame, so a co-simulation can translate vehicles.
-void write_sumo_mapping(std::ostream& out, const SumoPlainNetwork& net);
 
 }  // namespace relief
