@@ -13,6 +13,7 @@
 #include <utility>
 #include <vector>
 
+#include "relief/core/diagnostic_codes.h"
 #include "relief/geometry/types.h"
 
 namespace relief::detail {
@@ -177,7 +178,7 @@ std::size_t join_crossing_ways(OsmRoads& osm, Diagnostics& diagnostics) {
         << ", a junction";
     Diagnostic diagnostic;
     diagnostic.severity = Severity::warning;
-    diagnostic.code = "osm.crossing_without_node";
+    diagnostic.code = codes::kOsmCrossingWithoutNode;
     diagnostic.message = msg.str();
     diagnostic.osm_way_id = ws.id;
     diagnostics.report(std::move(diagnostic));

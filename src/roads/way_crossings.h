@@ -17,7 +17,7 @@ namespace relief::detail {
 /// existing end node of one segment when the crossing lies within 1 cm of it, else a new node
 /// with a negative id below every id in `osm`; two end nodes within 1 cm of each other (one
 /// place drawn twice) are merged into the first. Each crossing is reported once
-/// ("osm.crossing_without_node", warning, with both way ids and the position). Segments are
+/// (codes::kOsmCrossingWithoutNode, a warning, with both way ids and the position). Segments are
 /// bucketed on a grid, so the cost grows with the number of segments, not with its square.
 /// Returns the number of crossings joined.
 std::size_t join_crossing_ways(OsmRoads& osm, Diagnostics& diagnostics);

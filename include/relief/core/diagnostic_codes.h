@@ -35,6 +35,9 @@ inline constexpr DiagnosticCode kOsmDegenerateWay{"osm.degenerate_way",
                                                   "a way with fewer than two distinct nodes is skipped"};
 inline constexpr DiagnosticCode kOsmTagValue{
     "osm.tag_value", "tag values of a way that relief cannot read fall back to defaults"};
+inline constexpr DiagnosticCode kOsmCrossingWithoutNode{
+    "osm.crossing_without_node",
+    "ways crossing on one level without a shared node are joined by a node there"};
 inline constexpr DiagnosticCode kNetworkDegenerateWay{
     "network.degenerate_way", "a piece of a way between two junctions shorter than 1 cm is dropped"};
 
@@ -112,6 +115,7 @@ inline constexpr std::array kAll{kDemDatumGridMissing,
                                  kOsmMissingNode,
                                  kOsmDegenerateWay,
                                  kOsmTagValue,
+                                 kOsmCrossingWithoutNode,
                                  kNetworkDegenerateWay,
                                  kElevationVoid,
                                  kElevationUncovered,

@@ -10,7 +10,7 @@ namespace relief {
 
 /// Builds the network in `frame`.
 /// - Ways crossing on one level without a shared node get a node at the crossing
-///   (detail::join_crossing_ways, "osm.crossing_without_node").
+///   (detail::join_crossing_ways, codes::kOsmCrossingWithoutNode).
 /// - Each way is projected (PROJ, WGS84 -> frame CRS, minus origin) and split at every node
 ///   shared with another way (or used twice by the same way).
 /// - Consecutive pieces that meet at a node used by exactly two pieces and have equal
