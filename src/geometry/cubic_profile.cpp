@@ -177,4 +177,37 @@ CubicProfile hermite_profile(double length, double z0, double g0, double z1, dou
   return CubicProfile({CubicPiece{0.0, hermite(length, z0, g0, z1, g1)}});
 }
 
+CubicProfile slope_bounded_profile(double length, double z0, double g0, double z1, double g1,
+                                   double allowance) {
+  const CubicProfile cubic = hermite_profile(length, z0, g0, z1, g1);
+  if (!(allowance >= 0.0)) throw InvalidInput("slope-bounded profile: the allowance must be >= 0");
+  const double rise = z1 - z0;
+  const double bound = std::max({std::abs(g0), std::abs(g1), std::abs(rise) / length + allowance});
+  // The Hermite slope is a quadratic in s: its extreme lies at an end or at its vertex.
+  const Poly3& h = cubic.pieces().front().poly;
+  double steepest = std::max(std::abs(g0), std::abs(g1));
+  if (h.d != 0.0) {
+    const double vertex = -h.c / (3.0 * h.d);
+    if (vertex > 0.0 && vertex < length) steepest = std::max(steepest, std::abs(cubic.derivative(vertex)));
+  }
+  if (steepest <= bound + allowance) return cubic;  // the smoothest, where it overshoots little
+  // Slope ramps of length r from g0 to c and from c to g1, c constant between: the rise is
+  // r (g0 + g1) / 2 + c (length - r). The longest ramps (r = length / 2) when their c is within
+  // the bound, else c at the bound on the side of the overshoot and r from the rise.
+  const double mean_end = 0.5 * (g0 + g1);
+  double r = 0.5 * length;
+  double c = 2.0 * rise / length - mean_end;
+  if (std::abs(c) > bound) {
+    c = std::copysign(bound, c);
+    r = (rise - c * length) / (mean_end - c);
+    if (!(r > 0.0 && r <= 0.5 * length)) return cubic;  // no such ramps: the rise itself is too steep
+  }
+  const double z_r = z0 + 0.5 * r * (g0 + c);
+  std::vector<CubicPiece> pieces{{0.0, Poly3{z0, g0, 0.5 * (c - g0) / r, 0.0}}};
+  const double straight = length - 2.0 * r;
+  if (straight > 1e-9 * length) pieces.push_back({r, Poly3{z_r, c, 0.0, 0.0}});
+  pieces.push_back({length - r, Poly3{z_r + c * std::max(straight, 0.0), c, 0.5 * (g1 - c) / r, 0.0}});
+  return CubicProfile(std::move(pieces));
+}
+
 }  // namespace relief

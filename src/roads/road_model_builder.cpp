@@ -27,7 +27,9 @@ constexpr double kMinRoadLength = 0.05;  // m left after trimming, else the road
 constexpr double kTrimStep = 0.5;        // m added to an overlapping road end's trim per pass
 constexpr int kMaxTrimPasses = 400;      // bounds the trims' growth at one junction
 constexpr int kMaxJoinRounds = 8;        // bounds the rounds of junctions joined by their trims
-constexpr double kMaxJoinGap = 10.0;     // m beyond two radii a used-up road joins (netconvert's join-dist)
+// A road inside a junction is no steeper than its steeper end or than its mean grade plus this.
+constexpr double kConnectionGradeAllowance = 0.02;
+constexpr double kMaxJoinGap = 10.0;  // m beyond two radii a used-up road joins (netconvert's join-dist)
 
 double wrap_angle(double a) {
   while (a > kPi) a -= 2.0 * kPi;
@@ -317,7 +319,7 @@ void add_transition_road(RoadModel& model, ModelRoad& a_ref, bool a_at_start, in
   const double len = t.plan.length();
   const auto [z0, g0] = end_height(a, a_at_start, /*along_reference=*/!a_at_start);
   const auto [z1, g1] = end_height(b, b_at_start, /*along_reference=*/b_at_start);
-  t.elevation = hermite_profile(len, z0, g0, z1, g1);
+  t.elevation = slope_bounded_profile(len, z0, g0, z1, g1, kConnectionGradeAllowance);
   t.superelevation = plane_rolls(t.plan, gradient, gradient);
   const double off0 = a_at_start ? -a.lane_offset.value(0.0) : a.lane_offset.value(sa);
   const double off1 = b_at_start ? b.lane_offset.value(0.0) : -b.lane_offset.value(sb);
@@ -1084,7 +1086,7 @@ RoadModelBuild build_model(const RoadNetwork& network, const std::vector<RoadPro
           const double len = c.plan.length();
           const auto [z0, g0] = lane_end_height(a, in.at_start, la);
           const auto [z1, g1] = lane_end_height(b, to.at_start, lb);
-          c.elevation = hermite_profile(len, z0, g0, z1, g1);
+          c.elevation = slope_bounded_profile(len, z0, g0, z1, g1, kConnectionGradeAllowance);
           c.superelevation = plane_rolls(c.plan, gradient_of(junction_of(in)), gradient_of(junction_of(to)));
           c.lane_offset = CubicProfile({CubicPiece{0.0, Poly3{0.5 * w0, 0.5 * (w1 - w0) / len, 0.0, 0.0}}});
           LaneSection sec;

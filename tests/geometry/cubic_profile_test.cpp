@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
@@ -177,6 +178,74 @@ TEST(CubicProfile, FitRejectsBadInput) {
   EXPECT_THROW((void)fit_cubic_profile({0.0, 1.0}, {0.0, 1.0}, -0.1), InvalidInput);
   EXPECT_THROW((void)fit_cubic_profile({0.0, 1.0}, {0.0, 1.0}, 0.1, std::pair{0.0, std::nan("")}),
                InvalidInput);
+}
+
+// Steepest slope and largest jump of value or slope across pieces, sampled every 1 mm.
+struct ProfileShape {
+  double steepest = 0.0, value_jump = 0.0, slope_jump = 0.0;
+};
+ProfileShape shape_of(const CubicProfile& p, double length) {
+  ProfileShape out;
+  for (int k = 0; k <= 1000 * static_cast<int>(std::ceil(length)); ++k) {
+    const double s = std::min(length, 0.001 * k);
+    out.steepest = std::max(out.steepest, std::abs(p.derivative(s)));
+  }
+  for (std::size_t k = 1; k < p.pieces().size(); ++k) {
+    const CubicPiece& a = p.pieces()[k - 1];
+    const CubicPiece& b = p.pieces()[k];
+    out.value_jump = std::max(out.value_jump, std::abs(a.poly.value(b.s - a.s) - b.poly.value(0.0)));
+    out.slope_jump =
+        std::max(out.slope_jump, std::abs(a.poly.derivative(b.s - a.s) - b.poly.derivative(0.0)));
+  }
+  return out;
+}
+
+TEST(SlopeBoundedProfile, KeepsTheHermiteCubicWhereItStaysWithinTheBound) {
+  const CubicProfile p = slope_bounded_profile(50.0, 10.0, 0.02, 11.0, -0.01, 0.02);
+  ASSERT_EQ(p.pieces().size(), 1u);
+  const CubicProfile h = hermite_profile(50.0, 10.0, 0.02, 11.0, -0.01);
+  EXPECT_EQ(p.pieces()[0].poly.c, h.pieces()[0].poly.c);
+  EXPECT_EQ(p.pieces()[0].poly.d, h.pieces()[0].poly.d);
+}
+
+TEST(SlopeBoundedProfile, AShortSteepConnectionLeavingDownhillAndArrivingUphillStaysWithinItsEnds) {
+  // Liechtenstein's junction connector: 4.3 m, 1.11 m down, leaving at -35 %, arriving at +20.7 %:
+  // the Hermite cubic reaches -43 %; bounded, the slope stays within 35 % (the steeper end), C1,
+  // with both ends and the rise kept.
+  const double L = 4.296, z0 = 858.18, z1 = 857.07, g0 = -0.35, g1 = 0.207;
+  EXPECT_GT(shape_of(hermite_profile(L, z0, g0, z1, g1), L).steepest, 0.42);
+  const CubicProfile p = slope_bounded_profile(L, z0, g0, z1, g1, 0.02);
+  const ProfileShape s = shape_of(p, L);
+  EXPECT_LE(s.steepest, 0.35 + 1e-9);
+  EXPECT_LT(s.value_jump, 1e-12);
+  EXPECT_LT(s.slope_jump, 1e-12);
+  EXPECT_NEAR(p.value(0.0), z0, 1e-12);
+  EXPECT_NEAR(p.value(L), z1, 1e-9);
+  EXPECT_NEAR(p.derivative(0.0), g0, 1e-12);
+  EXPECT_NEAR(p.derivative(L), g1, 1e-9);
+}
+
+TEST(SlopeBoundedProfile, TwoRampsWhereTheyFitAndNothingBetterWhereTheRiseItselfIsTooSteep) {
+  // Level ends, 2 m up over 10 m: the Hermite cubic peaks at 30 %, beyond the bound (22 %) by
+  // more than the allowance: three pieces, the straight grade at 22 %.
+  const CubicProfile p = slope_bounded_profile(10.0, 0.0, 0.0, 2.0, 0.0, 0.02);
+  EXPECT_EQ(p.pieces().size(), 3u);
+  EXPECT_NEAR(shape_of(p, 10.0).steepest, 0.22, 1e-9);
+  EXPECT_NEAR(p.value(10.0), 2.0, 1e-9);
+  // A crest 10 m long, +20 % in and -20 % out, 0.95 m up: the Hermite cubic climbs at 21 %;
+  // two parabolas meeting in the middle (at 19 %) stay within the 20 % of the ends.
+  EXPECT_GT(shape_of(hermite_profile(10.0, 0.0, 0.2, 0.95, -0.2), 10.0).steepest, 0.21);
+  const CubicProfile q = slope_bounded_profile(10.0, 0.0, 0.2, 0.95, -0.2, 0.0);
+  EXPECT_EQ(q.pieces().size(), 2u);
+  EXPECT_LE(shape_of(q, 10.0).steepest, 0.2 + 1e-9);
+  EXPECT_NEAR(q.value(10.0), 0.95, 1e-9);
+  EXPECT_NEAR(q.derivative(10.0), -0.2, 1e-9);
+  // A Hermite overshoot within the allowance is kept (the smoothest curve).
+  EXPECT_EQ(slope_bounded_profile(10.0, 0.0, 0.0, 1.0, 0.0, 0.05).pieces().size(), 1u);
+  // Without an allowance the straight grade would have to be the mean grade itself, with ramps
+  // of no length (kinks): the Hermite cubic stays.
+  EXPECT_EQ(slope_bounded_profile(10.0, 0.0, 0.0, 2.0, 0.0, 0.0).pieces().size(), 1u);
+  EXPECT_THROW((void)slope_bounded_profile(10.0, 0, 0, 1, 0, -0.1), InvalidInput);
 }
 
 }  // namespace

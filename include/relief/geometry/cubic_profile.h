@@ -50,4 +50,15 @@ class CubicProfile {
 /// Throws InvalidInput unless length is positive and finite.
 [[nodiscard]] CubicProfile hermite_profile(double length, double z0, double g0, double z1, double g1);
 
+/// A C1 profile on [0, length] with the ends of hermite_profile whose slope stays within
+/// bound = max(|g0|, |g1|, |z1 - z0| / length + `allowance`): the Hermite cubic (the smoothest)
+/// where its slope stays within bound + allowance (it overshoots where the end slopes pull
+/// against the mean grade, e.g. a short steep connection that leaves downhill and arrives
+/// climbing), else a slope that ramps linearly from g0 to a constant c within the bound and from
+/// c to g1 over ramps of equal length, as long as the bound allows (parabolic vertical curves
+/// joined by a straight grade: two or three pieces). Throws
+/// InvalidInput unless length is positive and finite and allowance >= 0.
+[[nodiscard]] CubicProfile slope_bounded_profile(double length, double z0, double g0, double z1, double g1,
+                                                 double allowance);
+
 }  // namespace relief
