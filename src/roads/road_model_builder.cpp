@@ -705,10 +705,10 @@ RoadModelBuild build_model(const RoadNetwork& network, const std::vector<RoadPro
     }
     out.stats.junction_ends_trimmed = ends_trimmed;
     // Whether the roads at one junction of a road reach into its other junction's area (the
-    // hull of its road ends' end lines, this road's own end there included): the trims at the
-    // first pushed them past the road between (roads meeting at a small angle), and the two
-    // junctions' surfaces would overlap. A far end that only carries the street on is covered
-    // by the end strips reaching to it.
+    // hull of its road ends' end lines, this road's own end there included), or the two areas
+    // overlap: the trims at the first pushed them past the road between (roads meeting at a
+    // small angle), and the two junctions' surfaces would overlap. A far end that only carries the street on
+    // is covered by the end strips reaching to it.
     const auto junctions_meet = [&](const Road& road) {
       const int ja = road.start_junction, jb = road.end_junction;
       if (ja < 0 || jb < 0 || network.junctions[ja].kind != JunctionKind::intersection ||
@@ -741,8 +741,17 @@ RoadModelBuild build_model(const RoadNetwork& network, const std::vector<RoadPro
         }
         return false;
       };
+      // The two areas overlapping (each junction's surface would lie through the other's).
+      const auto areas_overlap = [&](const Side& x, const Side& y) {
+        if (x.area.size() < 3 || y.area.size() < 3) return false;
+        for (std::size_t i = 0; i < x.area.size(); ++i) {
+          if (segment_polygon_distance(x.area[i], x.area[(i + 1) % x.area.size()], y.area) < 1e-9)
+            return true;
+        }
+        return false;
+      };
       const Side a = side(ja), b = side(jb);
-      return reaches(a, b) || reaches(b, a);
+      return reaches(a, b) || reaches(b, a) || areas_overlap(a, b) || areas_overlap(b, a);
     };
     // A road the trims left no more than min_kept_length_m: the two junctions' areas meet
     // across it (their kerb lines, their other roads' ends) and become one.
