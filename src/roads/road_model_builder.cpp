@@ -707,8 +707,8 @@ RoadModelBuild build_model(const RoadNetwork& network, const std::vector<RoadPro
     // Whether the roads at one junction of a road reach into its other junction's area (the
     // hull of its road ends' end lines, this road's own end there included), or the two areas
     // overlap: the trims at the first pushed them past the road between (roads meeting at a
-    // small angle), and the two junctions' surfaces would overlap. A far end that only carries the street on
-    // is covered by the end strips reaching to it.
+    // small angle), and the two junctions' surfaces would overlap. A far end that only carries
+    // the street on is covered by the end strips reaching to it.
     const auto junctions_meet = [&](const Road& road) {
       const int ja = road.start_junction, jb = road.end_junction;
       if (ja < 0 || jb < 0 || network.junctions[ja].kind != JunctionKind::intersection ||
