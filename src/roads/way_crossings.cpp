@@ -122,7 +122,12 @@ std::size_t join_crossing_ways(OsmRoads& osm, Diagnostics& diagnostics) {
 
   std::size_t joined = 0;
   std::vector<std::vector<Insertion>> insertions(ways.size());
-  std::unordered_map<std::int64_t, std::int64_t> alias;                     // duplicate node -> the node kept
+  std::unordered_map<std::int64_t, std::int64_t> alias;  // duplicate node -> the node kept
+  // The node kept for `node` (three or more nodes at one place merge into the first).
+  const auto kept = [&](std::int64_t node) {
+    for (auto it = alias.find(node); it != alias.end(); it = alias.find(node)) node = it->second;
+    return node;
+  };
   std::set<std::tuple<std::int64_t, std::int64_t, std::int64_t>> reported;  // ways and node
   for (const Crossing& x : crossings) {
     const SegmentRef& s = x.s;
@@ -149,8 +154,9 @@ std::size_t join_crossing_ways(OsmRoads& osm, Diagnostics& diagnostics) {
       id = ws.node_ids[*ks];
       at = ws.nodes[*ks];
       const std::int64_t twin = wt.node_ids[*kt];
-      if (twin == id || alias.contains(twin)) continue;
-      alias.emplace(twin, id);
+      const std::int64_t a = kept(id), b = kept(twin);
+      if (a == b) continue;
+      alias.emplace(b, a);
       how = "two nodes at one place (" + std::to_string(id) + " and " + std::to_string(twin) + "): merged";
     } else if (ks) {
       id = ws.node_ids[*ks];
@@ -194,15 +200,15 @@ std::size_t join_crossing_ways(OsmRoads& osm, Diagnostics& diagnostics) {
     std::vector<LonLat> nodes;
     std::size_t next = 0;
     for (std::uint32_t i = 0; i < way.node_ids.size(); ++i) {
-      const auto merged = alias.find(way.node_ids[i]);
-      const std::int64_t node = merged == alias.end() ? way.node_ids[i] : merged->second;
+      const std::int64_t node = kept(way.node_ids[i]);
       if (ids.empty() || ids.back() != node) {
         ids.push_back(node);
         nodes.push_back(way.nodes[i]);
       }
       for (; next < list.size() && list[next].index == i; ++next) {
-        if (list[next].id == ids.back()) continue;  // two crossings at one node
-        ids.push_back(list[next].id);
+        const std::int64_t inserted = kept(list[next].id);
+        if (inserted == ids.back()) continue;  // two crossings at one node
+        ids.push_back(inserted);
         nodes.push_back(list[next].position);
       }
     }

@@ -96,6 +96,19 @@ TEST(WayCrossings, TwoNodesAtOnePlaceAreMergedAndANodeOnAWayJoinsIt) {
   EXPECT_EQ(d.count("osm.crossing_without_node"), 2u);
 }
 
+TEST(WayCrossings, ThreeNodesAtOnePlaceBecomeOne) {
+  // Three ways through (0, 0), each with its own node there: one node, whichever pairs are met
+  // first (no chain of merges left unresolved, no cycle).
+  OsmRoads osm = Sketch()
+                     .way_through(1, {{0, {-50, 0}}, {7, {0, 0}}, {0, {50, 0}}})
+                     .way_through(2, {{0, {0, -50}}, {8, {0, 0}}, {0, {0, 50}}})
+                     .way_through(3, {{0, {-40, -40}}, {9, {0, 0}}, {0, {40, 40}}})
+                     .done();
+  Diagnostics d;
+  EXPECT_EQ(join_crossing_ways(osm, d), 2u);
+  for (const OsmWay& w : osm.ways) EXPECT_EQ(w.node_ids[1], 7) << "way " << w.id;
+}
+
 TEST(WayCrossings, WaysOnDifferentLevelsOrApartAreLeftAlone) {
   WayAttributes bridge = Sketch::street();
   bridge.bridge = true;
