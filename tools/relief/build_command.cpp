@@ -69,7 +69,7 @@ Runner add_build_command(CLI::App& app) {
   cmd->add_option_function<std::string>(
       "--grade-limits",
       [&o](const std::string& text) {
-        if (!text.empty()) parse_for("--grade-limits", [&] { o.grade_limits.apply_overrides(text); });
+        if (!text.empty()) parse_for("--grade-limits", [&] { o.fit.limits.apply_overrides(text); });
       },
       "override grade limits, e.g. highway=8,arterial=12,local=15,residential=18 (percent)");
   cmd->add_option_function<std::string>(

@@ -52,9 +52,11 @@ struct BuildOptions {
   DemOptions dem;
   DemOptions reference_dem;
   SamplingOptions sampling;
-  GradeLimits grade_limits = GradeLimits::paper();  ///< compliance table; also the design policy's
   ProfileMethod profile_method = ProfileMethod::relief;
-  ProfileFitOptions fit;  ///< its `limits` are replaced by grade_limits
+  /// The fit's options, used as given. `fit.limits` is the run's one table of class grade
+  /// limits: the design policy's limits, the paper smoothing's, and the compliance every
+  /// method's profiles are reported against (report.json "grade_limits_percent").
+  ProfileFitOptions fit;
   int paper_max_iterations = 1000;
   /// Also run the other methods and put the comparison in the report.
   bool compare_methods = true;
