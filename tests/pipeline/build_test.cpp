@@ -98,6 +98,22 @@ TEST(Build, CallersGradeLimitsAreTheRunsTable) {
   EXPECT_GE(r.gradient.max_percent, 8.0 - 0.5);
 }
 
+// A caller's signalled junctions add SUMO traffic lights to the one the OSM signal gives.
+TEST(Build, CallersSignalledJunctionsJoinTheOsmOnes) {
+  BuildOptions o;
+  o.osm_path = test::fixture("hill/hill.osm");
+  o.dem_paths = {test::fixture("hill/hill_dem.asc").string()};
+  o.out_dir = test::scratch_dir("build_caller_signals");
+  o.outputs = {Output::xodr, Output::sumo};
+  o.compare_methods = false;
+  for (int j = 0; j < 100; ++j) o.sumo.signalled_junctions.insert(j);  // every junction of the model
+  Diagnostics d;
+  const RunReport r = build(o, d).report;
+  ASSERT_TRUE(r.sumo && r.opendrive);
+  EXPECT_GT(r.opendrive->junctions, 1u);
+  EXPECT_EQ(r.sumo->traffic_lights, r.opendrive->junctions);  // 1 with the OSM signal alone
+}
+
 TEST(Build, PotreroWithReferenceDem) {
   RELIEF_REQUIRE_SHARED_DATA();
   BuildOptions o = potrero_options("build_potrero");

@@ -64,7 +64,10 @@ struct BuildOptions {
                               Output::xodr,    Output::sumo,   Output::mesh};
   RoadModelOptions road_model;
   int opendrive_rev_minor = 7;  ///< OpenDRIVE 1.4, 1.7 or 1.8
-  SumoOptions sumo;             ///< its signalled_junctions are filled from the OSM signals
+  /// SUMO's options, used as given, except that `sumo.signalled_junctions` (OpenDRIVE junction
+  /// ids of this build's model) is joined by the junctions the OSM signals give (signal_snap_m):
+  /// a caller's ids add lights, never replace them.
+  SumoOptions sumo;
   /// Random trips for a quick SUMO run (NAME.rou.xml + NAME.sumocfg); trips = 0: none.
   DemandOptions demand;
   double signal_snap_m = 30.0;  ///< an OSM signal this close to an intersection controls it
