@@ -46,7 +46,7 @@ MethodReport evaluate(std::string method, const RoadNetwork& network,
     if (!road.osm_way_ids.empty()) m.ground.max_osm_way = road.osm_way_ids.front();
   }
   m.structures = validator.validate(profiles, structures);
-  m.gradient = grade_stats(network, profiles, options.grade_limits);
+  m.gradient = grade_stats(network, profiles, options.fit.limits);
   m.junctions = junction_gaps(network, profiles);
   m.cut_fill = cut_fill(profiles, raw, ground);
   update_clearances(separations, profiles);
@@ -130,7 +130,7 @@ BuildResult build(const BuildOptions& options, Diagnostics& diagnostics, const P
   report.interpolation = options.dem.interpolation;
   report.spacing_m = options.sampling.spacing_m;
   report.nodata_fill = std::string(to_string(options.sampling.nodata_fill));
-  report.grade_limits = options.grade_limits;
+  report.grade_limits = options.fit.limits;
   report.profile_method = std::string(to_string(options.profile_method));
   report.diagnostics = &diagnostics;
 
@@ -170,7 +170,7 @@ BuildResult build(const BuildOptions& options, Diagnostics& diagnostics, const P
   if (wanted(ProfileMethod::paper)) {
     paper = timer.run("paper smoothing", [&] {
       PaperSmoothingOptions o;
-      o.limits = options.grade_limits;
+      o.limits = options.fit.limits;
       o.max_iterations = options.paper_max_iterations;
       return smooth_paper(network, raw, o);
     });
@@ -178,15 +178,12 @@ BuildResult build(const BuildOptions& options, Diagnostics& diagnostics, const P
     report.paper = PaperSummary{options.paper_max_iterations, paper->not_converged_roads.size(),
                                 paper->max_shift_m, paper->not_converged_roads};
   }
-  // The fit's options with the run's grade table (the caps the outputs are checked against too).
-  ProfileFitOptions fit_options = options.fit;
-  fit_options.limits = options.grade_limits;
   std::optional<ProfileFitResult> fit;
   if (wanted(ProfileMethod::relief)) {
     fit = timer.run("fit profiles", [&] {
       // Where the road model will cut the roads for their junctions (plan only), so that the
       // fit bounds the grades across each junction there.
-      return fit_profiles(network, raw, fit_options, diagnostics,
+      return fit_profiles(network, raw, options.fit, diagnostics,
                           junction_end_trims(network, raw, options.road_model));
     });
     fit_seconds = timer.timings().back().second;
@@ -272,7 +269,7 @@ BuildResult build(const BuildOptions& options, Diagnostics& diagnostics, const P
       std::vector<double> cap(built->model.roads.size(), -1.0);
       for (std::size_t i = 0; i < built->model.roads.size(); ++i) {
         const int source = built->model.roads[i].source_road;
-        if (source >= 0) cap[i] = grade_limit(fit_options, network.roads[source].attributes);
+        if (source >= 0) cap[i] = grade_limit(options.fit, network.roads[source].attributes);
       }
       return check_grades(built->model, cap);
     });

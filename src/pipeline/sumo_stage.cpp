@@ -84,8 +84,10 @@ SumoJob start_sumo(const SumoStageInput& in) {
       if (source >= 0)
         info[i].highway = loaded.network.roads[static_cast<std::size_t>(source)].attributes.highway;
     }
+    // The caller's signalled junctions, joined by those of the OSM signals.
     SumoOptions so = options.sumo;
-    so.signalled_junctions = signalled_junctions(loaded, model, options.signal_snap_m, r.signals_mid_road);
+    so.signalled_junctions.merge(
+        signalled_junctions(loaded, model, options.signal_snap_m, r.signals_mid_road));
     if (r.signals_mid_road > 0) {
       r.diagnostics.report(
           Severity::info, codes::kSumoSignalMidRoad,

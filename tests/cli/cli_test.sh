@@ -246,11 +246,45 @@ for bad in "ground_holes=nan" "ground_holes" "no_such_gate=1"; do
 done
 # Every numeric option refuses what is not a finite number in its range (CLI11's own
 # PositiveNumber let nan and inf through).
-for opt in --max-grade --clearance --smoothing-wavelength --mesh-tolerance --max-ground-departure --route-end; do
-  for bad in nan inf -1; do
+for opt in --spacing --max-grade --highway-max-grade --clearance --smoothing-wavelength --max-curvature \
+    --routes --route-end --seed --step-length --mesh-tolerance --terrain-tolerance --mesh-tile-size \
+    --max-ground-departure; do
+  for bad in nan inf -inf -1; do
     check "$opt $bad" run 2 "" build --osm "$fix/hill.osm" --dem "$fix/hill_dem.asc" --out "$RELIEF_TMP/x" "$opt=$bad"
-    check "$opt $bad message" stderr_has "not a finite number"
+    check "$opt $bad message" stderr_has "$opt: '$bad' is not a finite number"
   done
+done
+# Values the library parses (enums, lists, CLASS=PERCENT, NAME=VALUE, boxes): a bad one is bad
+# usage, and the message names the option and the value.
+while read -r opt bad named; do
+  check "$opt $bad" run 2 "" build --osm "$fix/hill.osm" --dem "$fix/hill_dem.asc" --out "$RELIEF_TMP/x" "$opt=$bad"
+  check "$opt $bad message" stderr_has "$opt: '$named' is not"
+done <<'LIST'
+--interp cubic cubic
+--dem-unit yards yards
+--reference-dem-unit yards yards
+--nodata-fill zero zero
+--profiles spline spline
+--grade-policy strict strict
+--outputs xodr,pdf pdf
+--mesh-formats glb,stl stl
+--bbox 1,2,3 1,2,3
+LIST
+check "--grade-limits bad class" run 2 "" build --osm "$fix/hill.osm" --dem "$fix/hill_dem.asc" --out "$RELIEF_TMP/x" \
+  --grade-limits boulevard=5
+check "--grade-limits message" stderr_has "--grade-limits: grade limit 'boulevard=5'"
+check "--vclass-max-grade inf" run 2 "" build --osm "$fix/hill.osm" --dem "$fix/hill_dem.asc" --out "$RELIEF_TMP/x" \
+  --vclass-max-grade truck=inf
+check "--vclass-max-grade message" stderr_has "--vclass-max-grade: 'truck=inf': the grade must be a percent > 0"
+check "--gate message" run 2 "" build --osm "$fix/hill.osm" --dem "$fix/hill_dem.asc" --out "$RELIEF_TMP/x" \
+  --gate no_such_gate=1
+check "--gate message names the gate" stderr_has "--gate: 'no_such_gate' is not a quality gate"
+check "info --interp cubic" run 2 "" info --osm "$fix/hill.osm" --dem "$fix/hill_dem.asc" --interp cubic
+# --help shows the library's defaults (bound to BuildOptions, not a copy in the CLI).
+check "help shows library defaults" run 0 "" build --help
+for shown in "--max-grade FLOAT:FINITE > 0=35" "--interp TEXT=bilinear" "--outputs TEXT=all" \
+    "--mesh-formats TEXT=glb,obj,fbx" "--mesh-tolerance FLOAT:FINITE > 0=0.02" "defaults bus=20 coach=15 trailer=10 truck=15"; do
+  check "help shows $shown" grep -q -- "$shown" "$RELIEF_TMP/stdout"
 done
 
 # Real data with hostile cells: the Potrero DEM copied with one cell under 24th Street set to

@@ -79,6 +79,41 @@ TEST(Build, SyntheticPlaneHasExactGrades) {
   EXPECT_LT(r.mesh->terrain_max_vertical_error_m, 0.25 + 1e-9);
 }
 
+// BuildOptions are used as the caller set them: the class table in fit.limits is the one the
+// design policy fits to and the report checks against (it was replaced by a second table).
+TEST(Build, CallersGradeLimitsAreTheRunsTable) {
+  BuildOptions o;
+  o.osm_path = test::fixture("hill/hill.osm");
+  o.dem_paths = {test::fixture("hill/hill_dem.asc").string()};
+  o.out_dir = test::scratch_dir("build_caller_limits");
+  o.outputs = {Output::report};
+  o.compare_methods = false;
+  o.fit.policy = GradePolicy::design;
+  o.fit.limits.apply_overrides("highway=8,arterial=8,local=8");
+  Diagnostics d;
+  const RunReport r = build(o, d).report;
+  EXPECT_EQ(r.grade_limits.percent, o.fit.limits.percent);
+  // The plane's avenues climb 10 %; fitted to the caller's 8 % (the paper's table allows 15 %).
+  EXPECT_LE(r.gradient.max_percent, 8.0 + 0.05);
+  EXPECT_GE(r.gradient.max_percent, 8.0 - 0.5);
+}
+
+// A caller's signalled junctions add SUMO traffic lights to the one the OSM signal gives.
+TEST(Build, CallersSignalledJunctionsJoinTheOsmOnes) {
+  BuildOptions o;
+  o.osm_path = test::fixture("hill/hill.osm");
+  o.dem_paths = {test::fixture("hill/hill_dem.asc").string()};
+  o.out_dir = test::scratch_dir("build_caller_signals");
+  o.outputs = {Output::xodr, Output::sumo};
+  o.compare_methods = false;
+  for (int j = 0; j < 100; ++j) o.sumo.signalled_junctions.insert(j);  // every junction of the model
+  Diagnostics d;
+  const RunReport r = build(o, d).report;
+  ASSERT_TRUE(r.sumo && r.opendrive);
+  EXPECT_GT(r.opendrive->junctions, 1u);
+  EXPECT_EQ(r.sumo->traffic_lights, r.opendrive->junctions);  // 1 with the OSM signal alone
+}
+
 TEST(Build, PotreroWithReferenceDem) {
   RELIEF_REQUIRE_SHARED_DATA();
   BuildOptions o = potrero_options("build_potrero");

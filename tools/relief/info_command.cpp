@@ -56,15 +56,13 @@ void print_info(const InfoResult& info) {
 Runner add_info_command(CLI::App& app) {
   auto* cmd =
       app.add_subcommand("info", "Describe the OSM and DEM inputs and their coverage, without building");
-  auto args = std::make_shared<InputArgs>();
-  args->add_to(*cmd);
-  return [args] {
+  auto options = std::make_shared<BuildOptions>();
+  add_input_options(*cmd, *options);
+  return [options] {
     return run_reporting_errors([&] {
-      BuildOptions options;
-      args->apply_to(options);
       Diagnostics diagnostics;
       print_diagnostics_live(diagnostics, false);
-      print_info(inspect(options, diagnostics));
+      print_info(inspect(*options, diagnostics));
       print_diagnostics_summary(diagnostics);
       return static_cast<int>(kOk);
     });

@@ -52,9 +52,11 @@ struct BuildOptions {
   DemOptions dem;
   DemOptions reference_dem;
   SamplingOptions sampling;
-  GradeLimits grade_limits = GradeLimits::paper();  ///< compliance table; also the design policy's
   ProfileMethod profile_method = ProfileMethod::relief;
-  ProfileFitOptions fit;  ///< its `limits` are replaced by grade_limits
+  /// The fit's options, used as given. `fit.limits` is the run's one table of class grade
+  /// limits: the design policy's limits, the paper smoothing's, and the compliance every
+  /// method's profiles are reported against (report.json "grade_limits_percent").
+  ProfileFitOptions fit;
   int paper_max_iterations = 1000;
   /// Also run the other methods and put the comparison in the report.
   bool compare_methods = true;
@@ -62,7 +64,10 @@ struct BuildOptions {
                               Output::xodr,    Output::sumo,   Output::mesh};
   RoadModelOptions road_model;
   int opendrive_rev_minor = 7;  ///< OpenDRIVE 1.4, 1.7 or 1.8
-  SumoOptions sumo;             ///< its signalled_junctions are filled from the OSM signals
+  /// SUMO's options, used as given, except that `sumo.signalled_junctions` (OpenDRIVE junction
+  /// ids of this build's model) is joined by the junctions the OSM signals give (signal_snap_m):
+  /// a caller's ids add lights, never replace them.
+  SumoOptions sumo;
   /// Random trips for a quick SUMO run (NAME.rou.xml + NAME.sumocfg); trips = 0: none.
   DemandOptions demand;
   double signal_snap_m = 30.0;  ///< an OSM signal this close to an intersection controls it
