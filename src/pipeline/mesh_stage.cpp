@@ -3,8 +3,6 @@
 #include <algorithm>
 #include <optional>
 
-#include "pipeline/ground_openings.h"
-#include "pipeline/ground_support.h"
 #include "relief/core/diagnostic_codes.h"
 #include "relief/core/number_format.h"
 #include "relief/export/mesh_report.h"
@@ -12,8 +10,10 @@
 #include "relief/geometry/mesh_quality.h"
 #include "relief/geometry/mesh_tiles.h"
 #include "relief/geometry/plan_overlap.h"
-#include "relief/roads/road_mesh.h"
+#include "relief/scene/road_mesh.h"
 #include "relief/terrain/terrain_tin.h"
+#include "scene/ground_openings.h"
+#include "scene/ground_support.h"
 
 namespace relief {
 namespace {
