@@ -5,6 +5,7 @@
 #include <optional>
 #include <string>
 
+#include "relief/scene/surface_query.h"
 #include "scene/bridge_world.h"
 
 namespace relief {
@@ -115,6 +116,28 @@ TEST(Scene, WithoutTerrainOnlyThePavedSurface) {
   ASSERT_TRUE(scene.checks);
   EXPECT_EQ(scene.checks->quality.size(), scene.meshes.meshes.size());  // no welded ground
   EXPECT_FALSE(scene.checks->seam_road_terrain_m);
+}
+
+// The query on a built scene: the street lies at the plane's 20 m, the deck 7 m over it at the
+// crossing, the terrain at 20 m away from the roads.
+TEST(Scene, SurfaceUnderTheBridgeWorld) {
+  Diagnostics d;
+  const test::BridgeWorld w = test::make_bridge_world(d);
+  const Scene scene = build_scene(w.built.model, w.network, w.dem, {}, d);
+  const SurfaceQuery query(scene.meshes);
+  const auto deck = query.highest(0.0, 0.5);
+  ASSERT_TRUE(deck);
+  EXPECT_NEAR(deck->z_m, test::kWorldGroundM + test::kWorldDeckRiseM, 0.05);
+  EXPECT_EQ(scene.meshes.meshes[deck->mesh].name, "Road_Road");
+  const auto street = query.nearest(0.0, 0.5, test::kWorldGroundM);
+  ASSERT_TRUE(street);
+  EXPECT_NEAR(street->z_m, test::kWorldGroundM, 1e-9);
+  EXPECT_EQ(scene.meshes.meshes[street->mesh].name, "Road_Road");
+  const auto field = query.highest(50.0, 50.0);
+  ASSERT_TRUE(field);
+  EXPECT_EQ(scene.meshes.meshes[field->mesh].name, "Terrain");
+  EXPECT_NEAR(field->z_m, test::kWorldGroundM, 1e-9);
+  EXPECT_FALSE(query.highest(1000.0, 0.0));
 }
 
 }  // namespace
