@@ -4,6 +4,7 @@
 #include <chrono>
 #include <future>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -33,6 +34,21 @@ class StageTimer {
     timings_.emplace_back(stage, dt.count());
     if (progress_) progress_(stage, 1.0);
     return value;
+  }
+
+  /// A progress callback for a library call that brackets its own stages with (stage, 0) and
+  /// (stage, 1): forwards them and records each stage's wall time as run() does. Valid while
+  /// the timer lives; for one thread.
+  [[nodiscard]] ProgressFn stage_progress() {
+    return [this, t0 = std::chrono::steady_clock::time_point{}](std::string_view stage,
+                                                                double fraction) mutable {
+      if (fraction == 0.0) t0 = std::chrono::steady_clock::now();
+      if (progress_) progress_(stage, fraction);
+      if (fraction == 1.0) {
+        const std::chrono::duration<double> dt = std::chrono::steady_clock::now() - t0;
+        timings_.emplace_back(std::string(stage), dt.count());
+      }
+    };
   }
 
   /// Records a stage timed elsewhere (work done on another thread).

@@ -7,9 +7,9 @@
 #include <map>
 #include <numbers>
 
-#include "relief/roads/road_mesh.h"
 #include "relief/roads/road_model_checks.h"
 #include "relief/roads/road_surface.h"
+#include "relief/scene/road_mesh.h"
 #include "support/synthetic.h"
 
 namespace relief {

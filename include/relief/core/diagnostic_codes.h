@@ -78,7 +78,7 @@ inline constexpr DiagnosticCode kOpendriveRoadTooShort{
 inline constexpr DiagnosticCode kOpendriveJunctionWithoutMovements{
     "opendrive.junction_without_movements", "no movement is possible at a junction; its roads end there"};
 
-// Road surface meshes (roads/road_mesh.h) and the mesh stage's checks.
+// Road surface meshes (scene/road_mesh.h) and the mesh stage's checks.
 inline constexpr DiagnosticCode kMeshRoadTooShort{"mesh.road_too_short",
                                                   "a road too short to loft has no mesh"};
 inline constexpr DiagnosticCode kMeshRoadFailed{"mesh.road_failed",

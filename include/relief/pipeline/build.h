@@ -19,9 +19,9 @@
 #include "relief/roads/osm_reader.h"
 #include "relief/roads/paper_smoothing.h"
 #include "relief/roads/profile_fit.h"
-#include "relief/roads/road_mesh.h"
 #include "relief/roads/road_model_builder.h"
 #include "relief/roads/validation.h"
+#include "relief/scene/road_mesh.h"
 #include "relief/terrain/dem_sampler.h"
 #include "relief/terrain/terrain_tin.h"
 

@@ -1,4 +1,4 @@
-#include "pipeline/ground_support.h"
+#include "scene/ground_support.h"
 
 #include <algorithm>
 #include <optional>

@@ -1,4 +1,4 @@
-#include "roads/outline_order.h"
+#include "scene/outline_order.h"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-#include "relief/roads/road_mesh.h"
+#include "relief/scene/road_mesh.h"
 
 #include <gtest/gtest.h>
 

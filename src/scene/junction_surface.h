@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
-#include "relief/roads/road_mesh.h"
-#include "roads/mesh_builder.h"
+#include "relief/scene/road_mesh.h"
+#include "scene/mesh_builder.h"
 
 namespace relief::detail {
 

@@ -1,4 +1,4 @@
-#include "roads/lane_loft.h"
+#include "scene/lane_loft.h"
 
 #include <algorithm>
 #include <cmath>

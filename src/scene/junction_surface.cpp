@@ -1,4 +1,4 @@
-#include "roads/junction_surface.h"
+#include "scene/junction_surface.h"
 
 #include <algorithm>
 #include <cmath>
@@ -23,8 +23,8 @@
 
 #include "relief/core/errors.h"
 #include "relief/roads/road_surface.h"
-#include "roads/lane_loft.h"
-#include "roads/outline_order.h"
+#include "scene/lane_loft.h"
+#include "scene/outline_order.h"
 
 namespace relief::detail {
 

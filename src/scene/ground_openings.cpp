@@ -1,4 +1,4 @@
-#include "pipeline/ground_openings.h"
+#include "scene/ground_openings.h"
 
 #include <algorithm>
 #include <limits>

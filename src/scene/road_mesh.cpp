@@ -1,4 +1,4 @@
-#include "relief/roads/road_mesh.h"
+#include "relief/scene/road_mesh.h"
 
 #include <algorithm>
 #include <cmath>
@@ -11,9 +11,9 @@
 
 #include "relief/core/diagnostic_codes.h"
 #include "relief/core/errors.h"
-#include "roads/junction_surface.h"
-#include "roads/lane_loft.h"
-#include "roads/mesh_builder.h"
+#include "scene/junction_surface.h"
+#include "scene/lane_loft.h"
+#include "scene/mesh_builder.h"
 
 namespace relief {
 

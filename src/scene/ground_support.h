@@ -8,9 +8,9 @@
 #include <vector>
 
 #include "relief/geometry/plan_overlap.h"
-#include "relief/roads/road_mesh.h"
 #include "relief/roads/road_model.h"
 #include "relief/roads/road_network.h"
+#include "relief/scene/road_mesh.h"
 #include "relief/terrain/dem_sampler.h"
 
 namespace relief {
