@@ -56,7 +56,11 @@ std::size_t insert_greedy(Tin& tin, GridSamples& grid, double tolerance_m) {
     std::uint32_t stamp;
     FaceHandle face;
   };
-  const auto lower = [](const Entry& a, const Entry& b) { return a.error < b.error; };
+  // Ties of error (common on a quantised DEM) go to the lower sample index: the order must not
+  // depend on where the faces lie in memory, or the TIN differs from run to run.
+  const auto lower = [](const Entry& a, const Entry& b) {
+    return a.error < b.error || (a.error == b.error && a.point > b.point);
+  };
   std::priority_queue<Entry, std::vector<Entry>, decltype(lower)> heap(lower);
   std::vector<std::uint32_t> stamp(grid.size(), 0);
 

@@ -11,6 +11,7 @@
 #include <set>
 #include <string>
 #include <tuple>
+#include <vector>
 
 #include "relief/core/errors.h"
 #include "relief/terrain/dem_writer.h"
@@ -191,6 +192,35 @@ TEST(TerrainTin, WavySurfaceStaysWithinTheToleranceAtEverySample) {
   }
   EXPECT_LE(worst, options.vertical_tolerance_m + 1e-6);
   EXPECT_NEAR(worst, build.max_vertical_error_m, 1e-9);
+}
+
+// Heights quantised to whole metres tie the greedy insertion's errors everywhere. The TIN must
+// not depend on where its faces lie in memory: each build below runs after the heap was
+// fragmented differently, and all must give the same vertices and triangles.
+TEST(TerrainTin, TiedErrorsGiveTheSameTinWhateverTheMemoryLayout) {
+  const Surface terraces = [](double x, double y) {
+    return std::round(40.0 - 0.08 * std::abs(x) - 0.05 * std::abs(y) + 3.0 * std::sin(x / 40.0));
+  };
+  const DemSampler dem = make_dem("terraces", terraces);
+  TerrainOptions options;
+  options.vertical_tolerance_m = 0.1;
+  const TriangleMesh first = build_terrain(dem, box(180.0), {}, options).terrain;
+  ASSERT_GT(first.triangles.size(), 100u);
+  for (int layout = 1; layout <= 6; ++layout) {
+    std::vector<std::vector<char>> blocks;  // every other block freed: holes of varied sizes
+    for (int i = 0; i < 300 * layout; ++i)
+      blocks.emplace_back(static_cast<std::size_t>(64 + (i * 7919) % 200000));
+    for (std::size_t i = 0; i < blocks.size(); i += 2) std::vector<char>().swap(blocks[i]);
+    const TriangleMesh again = build_terrain(dem, box(180.0), {}, options).terrain;
+    ASSERT_EQ(again.vertices.size(), first.vertices.size()) << "layout " << layout;
+    ASSERT_EQ(again.triangles.size(), first.triangles.size()) << "layout " << layout;
+    for (std::size_t i = 0; i < first.vertices.size(); ++i) {
+      ASSERT_EQ(again.vertices[i], first.vertices[i]) << "layout " << layout << ", vertex " << i;
+    }
+    for (std::size_t i = 0; i < first.triangles.size(); ++i) {
+      ASSERT_EQ(again.triangles[i], first.triangles[i]) << "layout " << layout << ", triangle " << i;
+    }
+  }
 }
 
 TEST(TerrainTin, GridStepOptionSetsTheSampling) {
