@@ -1,5 +1,6 @@
 #include "relief/pipeline/build.h"
 
+#include <cstdlib>
 #include <ctime>
 #include <iomanip>
 #include <sstream>
@@ -20,8 +21,18 @@
 namespace relief {
 namespace {
 
+// The build's time stamp: now, or SOURCE_DATE_EPOCH when set (reproducible-builds.org), so
+// that two builds of the same inputs can be byte-identical.
 std::string utc_now() {
-  const std::time_t now = std::time(nullptr);
+  std::time_t now = std::time(nullptr);
+  if (const char* epoch = std::getenv("SOURCE_DATE_EPOCH"); epoch != nullptr && *epoch != '\0') {
+    char* end = nullptr;
+    const long long seconds = std::strtoll(epoch, &end, 10);
+    if (*end != '\0' || seconds < 0) {
+      throw InvalidInput("SOURCE_DATE_EPOCH='" + std::string(epoch) + "' is not a number of seconds >= 0");
+    }
+    now = static_cast<std::time_t>(seconds);
+  }
   std::tm tm{};
   gmtime_r(&now, &tm);
   std::ostringstream out;
