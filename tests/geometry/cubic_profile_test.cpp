@@ -200,6 +200,96 @@ ProfileShape shape_of(const CubicProfile& p, double length) {
   return out;
 }
 
+// The fitted profile of a hairpin's stretch between two tight arcs: 35 % for a metre or two
+// between 20 % (the fit flattens the arcs for their inner lane). A cubic through these samples
+// overshoots 35 % between them; the grade-bounded fit does not.
+TEST(GradeBoundedProfile, ASteepStretchBetweenFlatterOnesKeepsItsGrade) {
+  std::vector<double> s{0.0};
+  std::vector<double> z{100.0};
+  const double grades[] = {0.2, 0.2, 0.2, 0.35, 0.35, 0.2, 0.2, 0.35, 0.2, 0.2, 0.2};
+  for (const double g : grades) {
+    s.push_back(s.back() + 1.0);
+    z.push_back(z.back() + g);
+  }
+  const double tolerance = 0.01;
+  const CubicProfile cubic = fit_cubic_profile(s, z, tolerance, std::pair{0.2, 0.2});
+  const CubicProfile bounded = fit_grade_bounded_profile(s, z, tolerance, std::pair{0.2, 0.2});
+  double cubic_steepest = 0.0, bounded_steepest = 0.0;
+  for (double x = 0.0; x <= s.back(); x += 1e-3) {
+    cubic_steepest = std::max(cubic_steepest, std::abs(cubic.derivative(x)));
+    bounded_steepest = std::max(bounded_steepest, std::abs(bounded.derivative(x)));
+  }
+  EXPECT_GT(cubic_steepest, 0.37);  // the overshoot this fit exists for
+  EXPECT_LE(bounded_steepest, 0.35 + 1e-4);
+  for (std::size_t i = 0; i < s.size(); ++i)
+    EXPECT_LE(std::abs(bounded.value(s[i]) - z[i]), tolerance + 1e-12);
+  EXPECT_NEAR(bounded.value(0.0), 100.0, 1e-12);
+  EXPECT_NEAR(bounded.value(s.back()), z.back(), 1e-9);
+  EXPECT_NEAR(bounded.derivative(0.0), 0.2, 1e-12);
+  EXPECT_NEAR(bounded.derivative(s.back()), 0.2, 1e-9);
+  expect_c1_at_knots(bounded);
+}
+
+// Generated profiles: uneven stations (0.1 to 3 m), grades and end slopes up to 60 %, noise.
+TEST(GradeBoundedProfile, GeneratedProfilesKeepTheirGradesValuesEndsAndC1) {
+  std::uint64_t state = 7;
+  const auto uniform = [&](double lo, double hi) {
+    state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+    return lo + (hi - lo) * (static_cast<double>(state >> 11) / 9007199254740992.0);
+  };
+  for (int trial = 0; trial < 300; ++trial) {
+    const int n = 2 + static_cast<int>(uniform(0.0, 60.0));
+    std::vector<double> s{0.0}, z{uniform(-50.0, 900.0)};
+    double steepest = 0.0;
+    for (int i = 1; i < n; ++i) {
+      const double h = uniform(0.1, 3.0), g = uniform(-0.6, 0.6);
+      s.push_back(s.back() + h);
+      z.push_back(z.back() + g * h);
+      steepest = std::max(steepest, std::abs(g));
+    }
+    const double e0 = uniform(-0.6, 0.6), e1 = uniform(-0.6, 0.6);
+    const double tolerance = trial % 3 == 0 ? 0.001 : 0.01;
+    const CubicProfile p = fit_grade_bounded_profile(s, z, tolerance, std::pair{e0, e1});
+    // An end interval's grade may rise by tolerance / (4 (h - ramp / 2)) <= tolerance / (3 h).
+    const double ends = tolerance / (3.0 * std::min(s[1] - s[0], s[n - 1] - s[n - 2]));
+    const double bound = std::max({steepest, std::abs(e0), std::abs(e1)}) + ends + 1e-4;
+    for (const CubicPiece& piece : p.pieces()) {
+      for (double x = piece.s; x <= s.back() && x < piece.s + 10.0; x += 1e-2) {
+        ASSERT_LE(std::abs(p.derivative(x)), bound) << "trial " << trial << " at s = " << x;
+      }
+    }
+    for (std::size_t i = 0; i < s.size(); ++i) {
+      ASSERT_LE(std::abs(p.value(s[i]) - z[i]), tolerance + 1e-9) << "trial " << trial << ", sample " << i;
+    }
+    ASSERT_NEAR(p.value(0.0), z.front(), 1e-9);
+    ASSERT_NEAR(p.value(s.back()), z.back(), 1e-9);
+    ASSERT_NEAR(p.derivative(0.0), e0, 1e-9);
+    ASSERT_NEAR(p.derivative(s.back()), e1, 1e-9);
+    expect_c1_at_knots(p);
+  }
+}
+
+TEST(GradeBoundedProfile, SmoothProfilesStayFewPiecesAndZeroToleranceIsTheCubicFit) {
+  // A 10 km noisy road: no more pieces than twice the cubic fit's.
+  const NoisyRoad road = noisy_road();
+  const CubicProfile cubic = fit_cubic_profile(road.s, road.z, 0.15);
+  const CubicProfile bounded = fit_grade_bounded_profile(road.s, road.z, 0.15);
+  for (std::size_t i = 0; i < road.s.size(); ++i) {
+    ASSERT_LE(std::abs(bounded.value(road.s[i]) - road.z[i]), 0.15 + 1e-9) << road.s[i];
+  }
+  EXPECT_LE(bounded.pieces().size(), 2 * cubic.pieces().size());
+  // A quadratic needs one piece.
+  std::vector<double> s{0.0, 0.7, 3.0, 3.2, 9.0, 15.5, 20.0}, z;
+  for (double x : s) z.push_back(2.0 - 0.5 * x + 0.03 * x * x);
+  EXPECT_EQ(fit_grade_bounded_profile(s, z, 1e-6, std::pair{-0.5, 0.7}).pieces().size(), 1u);
+  // Tolerance 0: the cubic fit itself.
+  const CubicProfile exact = fit_grade_bounded_profile(s, z, 0.0);
+  const CubicProfile reference = fit_cubic_profile(s, z, 0.0);
+  ASSERT_EQ(exact.pieces().size(), reference.pieces().size());
+  EXPECT_EQ(exact.pieces()[0].poly.b, reference.pieces()[0].poly.b);
+  EXPECT_THROW((void)fit_grade_bounded_profile({0.0, 1.0}, {0.0, std::nan("")}, 0.1), InvalidInput);
+}
+
 TEST(SlopeBoundedProfile, KeepsTheHermiteCubicWhereItStaysWithinTheBound) {
   const CubicProfile p = slope_bounded_profile(50.0, 10.0, 0.02, 11.0, -0.01, 0.02);
   ASSERT_EQ(p.pieces().size(), 1u);

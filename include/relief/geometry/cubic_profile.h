@@ -46,6 +46,21 @@ class CubicProfile {
     const std::vector<double>& s, const std::vector<double>& z, double tolerance,
     const std::optional<std::pair<double, double>>& end_slopes = std::nullopt);
 
+/// Like fit_cubic_profile, with the grade kept within the samples' own: the samples' polyline
+/// with each kink rounded by a parabolic vertical curve (within half the tolerance), merged
+/// into the longest Hermite pieces whose slope stays within the steepest grade they replace
+/// (+0.01 %) and that keep every sample within `tolerance`. The slope never exceeds the largest
+/// of the chord grades |z_(i+1) - z_i| / (s_(i+1) - s_i) and the end slopes, except that an end
+/// interval's grade rises by at most tolerance / (4 (its length - its ramp / 2)) to pay for the
+/// ramp from the end slope. A fitted profile that keeps its grade limits between samples keeps
+/// them here too, where a cubic through the samples would overshoot them between (a steep
+/// stretch between two flatter ones). First and last samples and the end slopes (three-point
+/// estimates when not given) are exact. A tolerance of 0 gives fit_cubic_profile. Throws as
+/// fit_cubic_profile.
+[[nodiscard]] CubicProfile fit_grade_bounded_profile(
+    const std::vector<double>& s, const std::vector<double>& z, double tolerance,
+    const std::optional<std::pair<double, double>>& end_slopes = std::nullopt);
+
 /// The cubic on [0, length] with value z0, slope g0 at 0 and value z1, slope g1 at length.
 /// Throws InvalidInput unless length is positive and finite.
 [[nodiscard]] CubicProfile hermite_profile(double length, double z0, double g0, double z1, double g1);
