@@ -313,9 +313,9 @@ void add_transition_road(RoadModel& model, ModelRoad& a_ref, bool a_at_start, in
   Pose2 from = a.plan.at(sa), to = b.plan.at(sb);
   if (a_at_start) from.heading = wrap_angle(from.heading + kPi);  // leave a away from its body
   if (!b_at_start) to.heading = wrap_angle(to.heading + kPi);     // enter b along its body
-  // Tangents as long as those of the circular arc through the same turn: shorter ones pinch the
-  // bend into a radius smaller than the lanes are wide, and the lanes fold.
-  t.plan = PlanView({hermite_connector(from, to, arc_tangent_scale(to.heading - from.heading))});
+  // The roundest circular arc the corner allows (and a line): a cubic between the same poses
+  // pinches the bend into a radius smaller than the lanes are wide, and the lanes fold.
+  t.plan = PlanView(corner_connector(from, to));
   const double len = t.plan.length();
   const auto [z0, g0] = end_height(a, a_at_start, /*along_reference=*/!a_at_start);
   const auto [z1, g1] = end_height(b, b_at_start, /*along_reference=*/b_at_start);
@@ -416,6 +416,70 @@ double minimum_radius(const Road& road, const RoadModelOptions& options) {
   return outer_border_t(road.attributes) + options.min_radius_margin_m;
 }
 
+// Direction in which a road leaves junction `at_start ? start : end`, `along` metres into it:
+// that of the polyline segment there (unit vector).
+Vec2 leaving_direction_at(const Road& road, bool at_start, double along) {
+  const Polyline2& p = road.points;
+  const std::size_t n = p.size();
+  double walked = 0.0;
+  for (std::size_t k = 0; k + 1 < n; ++k) {
+    const Vec2 a = at_start ? p[k] : p[n - 1 - k], b = at_start ? p[k + 1] : p[n - 2 - k];
+    walked += (b - a).norm();
+    if (walked >= along || k + 2 == n) return (b - a).normalized();
+  }
+  return leaving_direction(road, at_start);
+}
+
+// How far a transition road reaches into both roads: from `reach` on, the least (in steps of
+// 25 %, at most max_trim_fraction of either road) at which the bend between the two ends is
+// no tighter than either road's minimum radius (what the reference line keeps at an OSM
+// vertex; the bend's radius is chord / (2 sin(turn / 2))), or else the one with the widest
+// bend. Reaching further stops where the transition would climb steeper than both roads there
+// (plus the connection allowance) and than it does at `reach`: the legs of a hairpin drawn to
+// one node can part in height faster than in plan.
+double transition_reach(const RoadNetwork& network, const std::vector<RoadProfile>& profiles,
+                        const Junction& j, double reach, const RoadModelOptions& options) {
+  const RoadEnd ends[2] = {j.ends[0], j.ends[1]};
+  const Road* roads[2] = {&network.roads[ends[0].road], &network.roads[ends[1].road]};
+  std::vector<double> cumulative[2] = {cumulative_length(roads[0]->points),
+                                       cumulative_length(roads[1]->points)};
+  const double r = std::max(minimum_radius(*roads[0], options), minimum_radius(*roads[1], options));
+  const double limit = options.max_trim_fraction * std::min(cumulative[0].back(), cumulative[1].back());
+  double best = reach, widest = -1.0;
+  double allowed = std::numeric_limits<double>::infinity();  // the steepest the transition may get
+  for (double d = reach; d <= limit; d *= 1.25) {
+    Vec2 p[2], dir[2];
+    double s_at[2];
+    for (int k = 0; k < 2; ++k) {
+      s_at[k] = ends[k].at_start ? d : cumulative[k].back() - d;
+      p[k] = point_at(roads[k]->points, cumulative[k], s_at[k]);
+      dir[k] = leaving_direction_at(*roads[k], ends[k].at_start, d);
+    }
+    const double turn = std::acos(std::clamp(-dir[0].dot(dir[1]), -1.0, 1.0));
+    const double chord = (p[0] - p[1]).norm();
+    const double radius =
+        turn < 1e-9 ? std::numeric_limits<double>::infinity() : chord / (2.0 * std::sin(0.5 * turn));
+    const RoadProfile& pa = profiles[roads[0]->id];
+    const RoadProfile& pb = profiles[roads[1]->id];
+    if (pa.has_height && pb.has_height) {
+      const double length = turn < 1e-9 ? chord : radius * turn;
+      const double grade = std::abs(height_at_station(pa, s_at[0]) - height_at_station(pb, s_at[1])) / length;
+      const double roads_grade = std::max(std::abs(slope_at(pa, s_at[0])), std::abs(slope_at(pb, s_at[1])));
+      if (d == reach) {
+        allowed = std::max(grade, roads_grade + kConnectionGradeAllowance);
+      } else if (grade > allowed) {
+        break;
+      }
+    }
+    if (radius >= r) return d;
+    if (radius > widest) {
+      widest = radius;
+      best = d;
+    }
+  }
+  return best;
+}
+
 double cross2(const Vec2& a, const Vec2& b) {
   return a.x() * b.y() - a.y() * b.x();
 }
@@ -491,11 +555,19 @@ double segment_polygon_distance(const Vec2& a, const Vec2& b, const Polyline2& p
 std::vector<double> driven_stations(const Road& road, const RoadProfile& profile,
                                     const RoadModelOptions& options) {
   std::vector<double> ref_s;
-  (void)fit_reference_line(road.points, {options.plan_tolerance_m, 1e-3, minimum_radius(road, options)},
-                           &ref_s, nullptr);
+  const PlanView plan = fit_reference_line(
+      road.points, {options.plan_tolerance_m, 1e-3, minimum_radius(road, options)}, &ref_s, nullptr);
   const std::vector<double> cumulative = cumulative_length(road.points);
+  // The outermost lane's centre on the inside of each bend: d(driven) = (1 - |curvature| t) ds.
+  // The minimum radius (outer border plus margin) keeps the factor above zero.
+  const double t = std::max(0.0, outer_border_t(road.attributes) - 0.5 * road.attributes.lane_width_m);
   std::vector<double> out(profile.size());
-  for (std::size_t i = 0; i < profile.size(); ++i) out[i] = map_station(cumulative, ref_s, profile.s[i]);
+  double previous = 0.0;
+  for (std::size_t i = 0; i < profile.size(); ++i) {
+    const double s = map_station(cumulative, ref_s, profile.s[i]);
+    out[i] = i == 0 ? s : out[i - 1] + (s - previous) - t * plan.total_turn(previous, s);
+    previous = s;
+  }
   return out;
 }
 
@@ -535,6 +607,7 @@ RoadModelBuild build_model(const RoadNetwork& network, const std::vector<RoadPro
     double widest = 0.0;
     for (const RoadEnd& e : j.ends) widest = std::max(widest, half_width(network.roads[e.road]));
     radius[j.id] = widest + options.junction_margin_m;
+    if (transition[j.id]) radius[j.id] = transition_reach(network, profiles, j, radius[j.id], options);
   }
 
   // Slopes at the road ends, "leaving the junction" (downhill away from it is negative). Where
@@ -906,7 +979,7 @@ RoadModelBuild build_model(const RoadNetwork& network, const std::vector<RoadPro
     // End slopes along the reference line; untrimmed ends take the junction's shared slope.
     const double g0 = s0 > 0.0 ? slope_at(p, s0) : leaving[road.id][0];
     const double g1 = s1 < length ? slope_at(p, s1) : -leaving[road.id][1];
-    m.elevation = fit_cubic_profile(es, ez, options.elevation_tolerance_m, std::make_pair(g0, g1));
+    m.elevation = fit_grade_bounded_profile(es, ez, options.elevation_tolerance_m, std::make_pair(g0, g1));
     for (std::size_t i = 0; i < es.size(); ++i) {
       out.stats.max_elevation_deviation_m =
           std::max(out.stats.max_elevation_deviation_m, std::abs(m.elevation.value(es[i]) - ez[i]));

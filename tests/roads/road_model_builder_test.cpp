@@ -513,6 +513,32 @@ TEST(RoadModelBuilder, ACornerGetsATransitionRoad) {
   EXPECT_LT(cont.max_vertical_m, 1e-6);
 }
 
+TEST(RoadModelBuilder, AHairpinDrawnToOneNodeTurnsNoTighterThanTheRoadsMinimumRadius) {
+  // Two streets leaving one node 30 degrees apart: the transition road turns 150 degrees. At the
+  // junction radius (half width 3.25 m + margin) its bend would have a radius of 1.4 m, tighter
+  // than the lanes are wide (they fold); it reaches into both streets until the radius is the
+  // roads' minimum, 3.25 + 0.5 m, and is a circular arc there.
+  const double a = 15.0 * std::numbers::pi / 180.0;
+  const RoadNetwork net = test::make_network({{{100.0 * std::cos(a), 100.0 * std::sin(a)}, {0, 0}},
+                                              {{0, 0}, {100.0 * std::cos(a), -100.0 * std::sin(a)}}},
+                                             {street(1, 1), street(1, 1)});
+  Diagnostics d;
+  const RoadModelBuild b = build_road_model(net, drape(net), {}, d);
+  ASSERT_EQ(b.stats.transition_roads, 1u);
+  const ModelRoad& t = b.model.roads.back();
+  double tightest = std::numeric_limits<double>::infinity();
+  for (const PlanGeometry& g : t.plan.records()) {
+    ASSERT_NE(g.kind, PlanGeometry::Kind::param_poly3);
+    if (g.kind == PlanGeometry::Kind::arc) tightest = std::min(tightest, 1.0 / std::abs(g.curvature));
+  }
+  EXPECT_GE(tightest, 3.75 - 1e-6);
+  EXPECT_LT(tightest, 3.75 * 1.25 * 1.25);  // reached no further than the 25 % steps need
+  EXPECT_NEAR(t.plan.total_turn(0.0, t.plan.length()), 150.0 * std::numbers::pi / 180.0, 1e-6);
+  const LinkContinuity cont = check_link_continuity(b.model);
+  EXPECT_LT(cont.max_horizontal_m, 1e-6);
+  EXPECT_LT(cont.max_vertical_m, 1e-6);
+}
+
 TEST(RoadModelBuilder, TwoOneWaysArrivingAtOneNodeEndApart) {
   // A one-way freeway and a one-way ramp both ending at one node, 10 degrees apart (an extract's
   // edge cutting through their merge): no lane leads from one into the other, so neither is
@@ -592,6 +618,19 @@ TEST(RoadModelBuilder, DrivenStationsFollowTheRoundedReferenceLine) {
   // larger radius would cut more.
   EXPECT_LT(ps.back(), drawn - 59.5);
   EXPECT_GT(ps.back(), 0.0);
+
+  // Along the reference line less the inner lane's shortcut: the outermost lane centre lies
+  // t = 3 - 1.5 = 1.5 m from it, so each bend is shorter by 1.5 m x the angle turned
+  // (168.7 deg: 4.42 m in all).
+  const RoadModelOptions options;
+  const PlanView plan = fit_reference_line(pin.roads[0].points, {options.plan_tolerance_m, 1e-3, 3.5});
+  const double turn = plan.total_turn(0.0, plan.length());
+  EXPECT_NEAR(turn, std::numbers::pi - std::atan2(20.0, 100.0), 1e-6);
+  EXPECT_NEAR(ps.back(), plan.length() - 1.5 * turn, 1e-6);
+  // Mid-bend the stations still grow: the factor 1 - t / r = 1 - 1.5 / 3.5 stays above 0.
+  double smallest_step = 1e9;
+  for (std::size_t i = 1; i < ps.size(); ++i) smallest_step = std::min(smallest_step, ps[i] - ps[i - 1]);
+  EXPECT_GT(smallest_step, 0.0);
 }
 
 }  // namespace

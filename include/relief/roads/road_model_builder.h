@@ -95,10 +95,13 @@ struct RoadModelBuild {
   std::vector<std::array<double, 2>> end_trims;
 };
 
-/// Arc length along the road as driven (its reference line, the OSM polyline with every vertex
-/// rounded by the options' minimum radius) at each of the profile's stations, for the whole
-/// untrimmed road. Where a hairpin's OSM vertex is rounded the driven road is shorter than the
-/// polyline, and grades measured along it are steeper: the fit takes its grade limits there.
+/// Arc length along the road as driven at each of the profile's stations, for the whole
+/// untrimmed road: along its reference line (the OSM polyline with every vertex rounded by the
+/// options' minimum radius), and in each bend along the centre of the outermost lane on its
+/// inside (offset t = outer border - half a lane), which is shorter by t times the angle turned.
+/// Where a hairpin's OSM vertex is rounded the driven road is shorter than the polyline, and
+/// grades measured along it are steeper: the fit takes its grade and curvature limits there, so
+/// that they hold on every lane (a lane's height is the reference line's at the same s).
 [[nodiscard]] std::vector<double> driven_stations(const Road& road, const RoadProfile& profile,
                                                   const RoadModelOptions& options);
 
