@@ -558,14 +558,24 @@ std::vector<double> driven_stations(const Road& road, const RoadProfile& profile
   const PlanView plan = fit_reference_line(
       road.points, {options.plan_tolerance_m, 1e-3, minimum_radius(road, options)}, &ref_s, nullptr);
   const std::vector<double> cumulative = cumulative_length(road.points);
-  // The outermost lane's centre on the inside of each bend: d(driven) = (1 - |curvature| t) ds.
+  // The outermost lane's centre on the inside of each bend: d(driven) = (1 - |curvature| t) ds,
+  // each step between stations at its tightest curvature, so that a grade limit on the step
+  // holds where the lane is shortest (the elevation records climb no steeper than the step).
   // The minimum radius (outer border plus margin) keeps the factor above zero.
   const double t = std::max(0.0, outer_border_t(road.attributes) - 0.5 * road.attributes.lane_width_m);
+  const std::vector<PlanGeometry>& records = plan.records();
   std::vector<double> out(profile.size());
   double previous = 0.0;
   for (std::size_t i = 0; i < profile.size(); ++i) {
     const double s = map_station(cumulative, ref_s, profile.s[i]);
-    out[i] = i == 0 ? s : out[i - 1] + (s - previous) - t * plan.total_turn(previous, s);
+    double tightest = 0.0;  // |curvature| (the reference line has lines and arcs only)
+    if (i > 0) {
+      for (std::size_t k = plan.record_at(previous); k < records.size() && records[k].s < s; ++k) {
+        if (records[k].s + records[k].length > previous)
+          tightest = std::max(tightest, std::abs(records[k].curvature));
+      }
+    }
+    out[i] = i == 0 ? s : out[i - 1] + (s - previous) * (1.0 - t * tightest);
     previous = s;
   }
   return out;

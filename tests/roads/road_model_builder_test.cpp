@@ -4,9 +4,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iostream>
 #include <map>
 #include <numbers>
 
+#include "relief/roads/profile_fit.h"
 #include "relief/roads/road_model_checks.h"
 #include "relief/roads/road_surface.h"
 #include "relief/scene/road_mesh.h"
@@ -594,6 +596,45 @@ TEST(RoadModelBuilder, TurnLanesDecideWhichLaneMakesWhichMovement) {
   EXPECT_LT(check_link_continuity(b.model).max_horizontal_m, 1e-6);
 }
 
+// A street zigzagging up a 120 % slope: 40.8 m legs climbing 23.5 % joined by hairpins that turn
+// 157 degrees, rounded at the road's minimum radius (outer border 3 m + 0.5 m). Around a
+// hairpin the inner lane's centre (1.5 m in) is 43 % shorter than the reference line. The fit
+// takes its limits along that lane, so every lane keeps the street's cap: measured over 1 m of
+// lane (the fit's sample spacing) on the written elevation records, 35.4 % for a cap of 35 %
+// (62 % with the limits along the reference line).
+TEST(RoadModelBuilder, EveryLaneOfASteepSwitchbackKeepsTheGradeCap) {
+  Polyline2 zig;
+  for (int i = 0; i <= 6; ++i) zig.emplace_back(i % 2 == 0 ? 0.0 : 40.0, 8.0 * i);
+  const RoadNetwork net = test::make_network({zig}, {street(1, 1)});
+  std::vector<RoadProfile> raw = test::drape(net, [](const Vec2& p) { return 1.2 * p.y(); });
+  const RoadModelOptions options;
+  for (std::size_t r = 0; r < raw.size(); ++r)
+    raw[r].driven_s = driven_stations(net.roads[r], raw[r], options);
+  Diagnostics d;
+  const ProfileFitResult fit = fit_profiles(net, raw, {}, d);
+  ASSERT_TRUE(fit.converged) << fit.solver_status;
+  const RoadModelBuild b = build_road_model(net, fit.profiles, options, d, fit.junction_gradient);
+  const double cap = grade_limit(ProfileFitOptions{}, net.roads[0].attributes);
+  double steepest = 0.0;
+  for (const ModelRoad& road : b.model.roads) {
+    const LaneSection& sec = road.sections.front();
+    for (const auto* side : {&sec.left, &sec.right}) {
+      for (const LaneModel& lane : *side) {
+        Vec3 last = surface_point(road, 0.0, lane_centre_t(road, 0.0, lane.id));
+        for (double s = 0.05; s <= road.length(); s += 0.05) {
+          const Vec3 p = surface_point(road, s, lane_centre_t(road, s, lane.id));
+          const double run = (p - last).head<2>().norm();
+          if (run < 1.0) continue;
+          steepest = std::max(steepest, std::abs(p.z() - last.z()) / run);
+          last = p;
+        }
+      }
+    }
+  }
+  std::cout << "switchback: steepest lane grade " << 100.0 * steepest << " % (cap " << 100.0 * cap << " %)\n";
+  EXPECT_LE(steepest, cap + 0.01);
+}
+
 TEST(RoadModelBuilder, DrivenStationsFollowTheRoundedReferenceLine) {
   // A straight road is driven as drawn.
   const RoadNetwork line = test::make_network({{{0, 0}, {100, 0}}});
@@ -621,12 +662,14 @@ TEST(RoadModelBuilder, DrivenStationsFollowTheRoundedReferenceLine) {
 
   // Along the reference line less the inner lane's shortcut: the outermost lane centre lies
   // t = 3 - 1.5 = 1.5 m from it, so each bend is shorter by 1.5 m x the angle turned
-  // (168.7 deg: 4.42 m in all).
+  // (168.7 deg: 4.42 m in all), and a step between stations that is partly in the bend counts
+  // wholly at its curvature: at most two steps (1 m each) more at the factor 1.5 / 3.5.
   const RoadModelOptions options;
   const PlanView plan = fit_reference_line(pin.roads[0].points, {options.plan_tolerance_m, 1e-3, 3.5});
   const double turn = plan.total_turn(0.0, plan.length());
   EXPECT_NEAR(turn, std::numbers::pi - std::atan2(20.0, 100.0), 1e-6);
-  EXPECT_NEAR(ps.back(), plan.length() - 1.5 * turn, 1e-6);
+  EXPECT_LE(ps.back(), plan.length() - 1.5 * turn + 1e-6);
+  EXPECT_GE(ps.back(), plan.length() - 1.5 * turn - 2.0 * 1.5 / 3.5 - 1e-6);
   // Mid-bend the stations still grow: the factor 1 - t / r = 1 - 1.5 / 3.5 stays above 0.
   double smallest_step = 1e9;
   for (std::size_t i = 1; i < ps.size(); ++i) smallest_step = std::min(smallest_step, ps[i] - ps[i - 1]);
