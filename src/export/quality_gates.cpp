@@ -24,6 +24,7 @@ const std::vector<Entry>& entries() {
       {"sumo_lanes_without_z", &GateThresholds::sumo_lanes_without_z},
       {"sumo_lane_z_max_m", &GateThresholds::sumo_lane_z_max_m},
       {"sumo_height_steps", &GateThresholds::sumo_height_steps},
+      {"sumo_handover_gap_m", &GateThresholds::sumo_handover_gap_m},
       {"road_self_intersections", &GateThresholds::road_self_intersections},
       {"junctions_open", &GateThresholds::junctions_open},
       {"ground_holes", &GateThresholds::ground_holes},
@@ -126,6 +127,10 @@ std::vector<Gate> evaluate_gates(const RunReport& r, const GateThresholds& t) {
             r.sumo->height_steps
                 ? "lane " + r.sumo->first_step_lane + " at " + at_xyz(r.sumo->first_step_point)
                 : std::string());
+    at_most("sumo_handover_gap_m", r.sumo->max_handover_gap_m, t.sumo_handover_gap_m,
+            r.sumo->handover_gap_lanes.empty()
+                ? std::string()
+                : "lanes " + r.sumo->handover_gap_lanes + " at " + at_xyz(r.sumo->handover_gap_point));
   }
   if (r.mesh) {
     if (r.mesh->road) {

@@ -268,6 +268,8 @@ std::string report_json(const RunReport& r) {
                  {"xy_max_m", round_to(o.xy_max_m, 1e-4)},
                  {"xy_max_lane", o.xy_max_lane},
                  {"max_handover_step_m", round_to(o.max_handover_step_m, 1e-4)},
+                 {"max_handover_gap_m", round_to(o.max_handover_gap_m, 1e-4)},
+                 {"handover_gap_lanes", o.handover_gap_lanes},
                  {"max_lane_grade_percent", round_to(o.max_lane_grade_percent, 1e-2)},
                  {"max_internal_lane_grade_percent", round_to(o.max_internal_lane_grade_percent, 1e-2)},
                  {"max_profile_grade_percent", round_to(o.max_profile_grade_percent, 1e-2)},

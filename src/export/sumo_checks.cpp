@@ -12,8 +12,8 @@
 #include <unordered_map>
 #include <unordered_set>
 
-#include "relief/core/errors.h"
 #include "export/sumo_lane_locator.h"
+#include "relief/core/errors.h"
 #include "relief/roads/road_surface.h"
 
 namespace relief {
@@ -141,6 +141,11 @@ SumoNetCheck check_sumo_net(std::string_view net_xml, const RoadModel& model, co
     check.max_handover_step_m = std::max(check.max_handover_step_m, step);
     ++check.handovers;
     const double gap = (a->second.back() - b->second.front()).head<2>().norm();
+    if (gap > check.max_handover_gap_m) {
+      check.max_handover_gap_m = gap;
+      check.handover_gap_lanes = a->first + " -> " + b->first;
+      check.handover_gap_point = a->second.back();
+    }
     if (step > kStepRiseM && step > kStepMinGrade * gap && check.height_steps++ == 0) {
       check.first_step_lane = a->first;
       check.first_step_point = a->second.back();

@@ -166,6 +166,9 @@ SumoSummary finish_sumo(const SumoStageInput& in, SumoJob& job, OutputSet& files
     summary.xy_max_m = check.xy_max_m;
     summary.xy_max_lane = check.xy_max_lane;
     summary.max_handover_step_m = check.max_handover_step_m;
+    summary.max_handover_gap_m = check.max_handover_gap_m;
+    summary.handover_gap_lanes = check.handover_gap_lanes;
+    summary.handover_gap_point = check.handover_gap_point;
     summary.lanes_without_z = check.lanes_without_z;
     summary.height_steps = check.height_steps;
     summary.first_step_lane = check.first_step_lane;

@@ -74,7 +74,22 @@ TEST(SumoChecks, NetLanesOnARampMapToTheirRoadsIncludingInternalLanes) {
   EXPECT_NEAR(check.max_internal_lane_grade_percent, 10.0, 1e-9);
   EXPECT_EQ(check.handovers, 2u);  // 1 -> :J_0_0 and :J_0_0 -> 3
   EXPECT_NEAR(check.max_handover_step_m, 0.0, 1e-9);
+  EXPECT_NEAR(check.max_handover_gap_m, 0.0, 1e-9);
   EXPECT_EQ(check.disallowed_lanes, 1u);
+}
+
+TEST(SumoChecks, AHandOverWhoseLanesDoNotMeetIsAGap) {
+  // netconvert cut edge 3 at an outline of its own: its lane starts 6 m on from where the
+  // internal lane ends (on the same ramp, so no height step), and a vehicle jumps 6 m there.
+  std::string net = kNet;
+  const std::string lane3 = "shape=\"110,-1.5,11 210,-1.5,21\"";
+  net.replace(net.find(lane3), lane3.size(), "shape=\"116,-1.5,11.6 210,-1.5,21\"");
+  const SumoNetCheck check = check_sumo_net(net, ramp_model(), "ramp.net.xml");
+  EXPECT_NEAR(check.max_handover_gap_m, 6.0, 1e-9);
+  EXPECT_EQ(check.handover_gap_lanes, ":J_0_0 -> 3_0");
+  EXPECT_NEAR(check.handover_gap_point.x(), 110.0, 1e-9);
+  EXPECT_NEAR(check.max_handover_step_m, 0.6, 1e-9);
+  EXPECT_EQ(check.height_steps, 0u);  // 0.6 m over 6 m is no step
 }
 
 TEST(SumoChecks, NamesTheLanesOfTheWorstPoints) {

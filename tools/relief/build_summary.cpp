@@ -86,7 +86,7 @@ std::string format_build_summary(const BuildResult& result) {
         << " internal lanes; lanes vs OpenDRIVE "
         << "surface: z p99 " << fixed(o.z_p99_m, 3) << " m, max " << fixed(o.z_max_m, 3) << " m"
         << (o.z_max_lane.empty() ? "" : " (lane " + o.z_max_lane + ")") << "; lane/internal step max "
-        << fixed(o.max_handover_step_m, 3) << " m\n";
+        << fixed(o.max_handover_step_m, 3) << " m, gap max " << fixed(o.max_handover_gap_m, 3) << " m\n";
     out << "  sumo       kept off by grade:";
     for (const auto& [vclass, edges] : o.restricted_edges) {
       out << " " << vclass << " " << edges << " edges (> " << fixed(o.max_grade_percent.at(vclass), 0)

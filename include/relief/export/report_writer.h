@@ -92,18 +92,21 @@ struct SumoSummary {
   std::map<std::string, std::size_t> restricted_edges;  ///< vehicle class -> edges kept off by grade
   std::map<std::string, double> max_grade_percent;      ///< the limits applied
   std::size_t points_checked = 0;
-  double z_max_m = 0.0, z_p99_m = 0.0;           ///< lane points vs the OpenDRIVE surface
-  std::string z_max_lane;                        ///< SUMO lane of the z_max_m point
-  double netconvert_lanes_z_max_m = 0.0;         ///< the same for internal lanes netconvert drew
+  double z_max_m = 0.0, z_p99_m = 0.0;    ///< lane points vs the OpenDRIVE surface
+  std::string z_max_lane;                 ///< SUMO lane of the z_max_m point
+  double netconvert_lanes_z_max_m = 0.0;  ///< the same for internal lanes netconvert drew
   /// Lane points netconvert left off the surface (cut at its junction outlines), given the
   /// surface height before the check (sumo_drape.h): how many moved by more than 1 mm, the
   /// largest move and its lane.
   std::size_t draped_points_moved = 0;
   double drape_max_move_m = 0.0;
   std::string drape_max_move_lane;
-  double xy_max_m = 0.0;                         ///< lane centre points vs the OpenDRIVE lane centres
-  std::string xy_max_lane;                       ///< SUMO lane of the xy_max_m point
-  double max_handover_step_m = 0.0;              ///< lane <-> internal lane height step
+  double xy_max_m = 0.0;             ///< lane centre points vs the OpenDRIVE lane centres
+  std::string xy_max_lane;           ///< SUMO lane of the xy_max_m point
+  double max_handover_step_m = 0.0;  ///< lane <-> internal lane height step
+  double max_handover_gap_m = 0.0;   ///< lane -> internal lane -> lane plan gap
+  std::string handover_gap_lanes;    ///< "from -> to" of that gap
+  Vec3 handover_gap_point = Vec3::Zero();
   double max_lane_grade_percent = 0.0;           ///< normal lanes
   double max_internal_lane_grade_percent = 0.0;  ///< junction-internal lanes (connecting roads)
   double max_profile_grade_percent = 0.0;        ///< relief's profiles over the same roads

@@ -39,6 +39,11 @@ struct SumoNetCheck {
   double max_handover_step_m =
       0.0;  ///< |z| step between a lane's end and the internal lane it feeds (and back)
   std::size_t handovers = 0;
+  /// Largest plan distance between a lane's end and the start of the lane it hands over to
+  /// (lane -> internal lane -> lane): a vehicle jumps that far. Its lanes, "from -> to".
+  double max_handover_gap_m = 0.0;
+  std::string handover_gap_lanes;
+  Vec3 handover_gap_point = Vec3::Zero();        ///< the end of the lane handing over
   double max_lane_grade_percent = 0.0;           ///< steepest segment (>= 1 m) of a normal lane
   double max_internal_lane_grade_percent = 0.0;  ///< the same for junction-internal lanes
   std::size_t disallowed_lanes = 0;              ///< lanes with a `disallow` list
