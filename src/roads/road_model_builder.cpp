@@ -12,6 +12,7 @@
 
 #include "relief/core/diagnostic_codes.h"
 #include "relief/core/errors.h"
+#include "relief/geometry/plane.h"
 #include "relief/geometry/polygon.h"
 #include "relief/geometry/polyline.h"
 #include "relief/roads/road_surface.h"
@@ -30,12 +31,6 @@ constexpr int kMaxJoinRounds = 8;        // bounds the rounds of junctions joine
 // A road inside a junction is no steeper than its steeper end or than its mean grade plus this.
 constexpr double kConnectionGradeAllowance = 0.02;
 constexpr double kMaxJoinGap = 10.0;  // m beyond two radii a used-up road joins (netconvert's join-dist)
-
-double wrap_angle(double a) {
-  while (a > kPi) a -= 2.0 * kPi;
-  while (a <= -kPi) a += 2.0 * kPi;
-  return a;
-}
 
 double half_width(const Road& road) {
   const WayAttributes& a = road.attributes;
@@ -395,7 +390,7 @@ bool needs_transition(const RoadNetwork& network, const Junction& j) {
   const Road& a = network.roads[j.ends[0].road];
   const Road& b = network.roads[j.ends[1].road];
   const Vec2 da = leaving_direction(a, j.ends[0].at_start), db = leaving_direction(b, j.ends[1].at_start);
-  const double sin_kink = std::abs(da.x() * db.y() - da.y() * db.x());
+  const double sin_kink = std::abs(cross(da, db));
   const double reach = 2.0 * std::max(half_width(a), half_width(b));  // farthest border from the line
   if (da.dot(db) > 0.0 || reach * sin_kink > 0.002) return true;
   const auto [a_in, a_out] = arriving_departing(a.attributes, j.ends[0].at_start);
@@ -416,21 +411,10 @@ double minimum_radius(const Road& road, const RoadModelOptions& options) {
   return outer_border_t(road.attributes) + options.min_radius_margin_m;
 }
 
-double cross2(const Vec2& a, const Vec2& b) {
-  return a.x() * b.y() - a.y() * b.x();
-}
-
-double point_segment_distance(const Vec2& q, const Vec2& a, const Vec2& b) {
-  const Vec2 d = b - a;
-  const double len2 = d.squaredNorm();
-  const double t = len2 > 0.0 ? std::clamp((q - a).dot(d) / len2, 0.0, 1.0) : 0.0;
-  return (a + t * d - q).norm();
-}
-
 // Distance between two segments, 0 when they cross or touch.
 double segment_distance(const Vec2& a0, const Vec2& a1, const Vec2& b0, const Vec2& b1) {
-  const double d1 = cross2(a1 - a0, b0 - a0), d2 = cross2(a1 - a0, b1 - a0);
-  const double d3 = cross2(b1 - b0, a0 - b0), d4 = cross2(b1 - b0, a1 - b0);
+  const double d1 = cross(a1 - a0, b0 - a0), d2 = cross(a1 - a0, b1 - a0);
+  const double d3 = cross(b1 - b0, a0 - b0), d4 = cross(b1 - b0, a1 - b0);
   if (((d1 > 0.0) != (d2 > 0.0)) && ((d3 > 0.0) != (d4 > 0.0))) return 0.0;
   return std::min({point_segment_distance(a0, b0, b1), point_segment_distance(a1, b0, b1),
                    point_segment_distance(b0, a0, a1), point_segment_distance(b1, a0, a1)});
