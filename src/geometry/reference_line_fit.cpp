@@ -1,4 +1,4 @@
-#include "relief/geometry/plan_view.h"
+#include "relief/geometry/reference_line_fit.h"
 
 #include <algorithm>
 #include <cmath>

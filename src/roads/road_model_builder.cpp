@@ -15,6 +15,7 @@
 #include "relief/geometry/plane.h"
 #include "relief/geometry/polygon.h"
 #include "relief/geometry/polyline.h"
+#include "relief/geometry/reference_line_fit.h"
 #include "relief/roads/road_surface.h"
 #include "roads/junction_clusters.h"
 #include "roads/stray_ends.h"
