@@ -18,10 +18,13 @@
 #include "relief/geometry/reference_line_fit.h"
 #include "relief/roads/road_surface.h"
 #include "roads/junction_clusters.h"
+#include "roads/lane_layout.h"
 #include "roads/stray_ends.h"
 
 namespace relief {
 namespace {
+
+using namespace detail;  // the builder's steps (src/roads/*.h)
 
 constexpr double kPi = std::numbers::pi;
 constexpr double kUTurn_rad = 5.0 * kPi / 6.0;
@@ -29,14 +32,7 @@ constexpr double kMinRoadLength = 0.05;  // m left after trimming, else the road
 constexpr double kTrimStep = 0.5;        // m added to an overlapping road end's trim per pass
 constexpr int kMaxTrimPasses = 400;      // bounds the trims' growth at one junction
 constexpr int kMaxJoinRounds = 8;        // bounds the rounds of junctions joined by their trims
-// A road inside a junction is no steeper than its steeper end or than its mean grade plus this.
-constexpr double kConnectionGradeAllowance = 0.02;
-constexpr double kMaxJoinGap = 10.0;  // m beyond two radii a used-up road joins (netconvert's join-dist)
-
-double half_width(const Road& road) {
-  const WayAttributes& a = road.attributes;
-  return 0.5 * a.lane_width_m * (a.lanes_forward + a.lanes_backward);
-}
+constexpr double kMaxJoinGap = 10.0;     // m beyond two radii a used-up road joins (netconvert's join-dist)
 
 // Slope dz/ds of a profile at s, by central differences over +-h (one-sided at the ends).
 double slope_at(const RoadProfile& p, double s, double h = 1.0) {
@@ -71,25 +67,6 @@ double map_station(const std::vector<double>& from, const std::vector<double>& t
   return to[i - 1] + t * (to[i] - to[i - 1]);
 }
 
-RoadMark mark(RoadMark::Type type, const char* color = "standard") {
-  RoadMark m;
-  m.type = type;
-  m.color = color;
-  return m;
-}
-
-bool is_major(HighwayClass c) {
-  switch (c) {
-    case HighwayClass::motorway:
-    case HighwayClass::trunk:
-    case HighwayClass::primary:
-    case HighwayClass::secondary:
-      return true;
-    default:
-      return false;
-  }
-}
-
 std::string road_type(HighwayClass c) {
   switch (c) {
     case HighwayClass::motorway:
@@ -110,94 +87,11 @@ std::string road_type(HighwayClass c) {
   }
 }
 
-// One lane section over the whole road: right lanes along the reference line, left against it,
-// road marks by position, the carriageway centred on the reference line by the lane offset.
-void add_lanes(ModelRoad& m, const WayAttributes& a) {
-  LaneSection section;
-  const double w = a.lane_width_m;
-  const int right = a.lanes_forward, left = a.oneway ? 0 : a.lanes_backward;
-  for (int k = 1; k <= right; ++k) {
-    LaneModel lane;
-    lane.id = -k;
-    lane.width = CubicProfile::constant(w);
-    lane.mark = k == right ? mark(RoadMark::Type::solid) : mark(RoadMark::Type::broken);
-    section.right.push_back(lane);
-  }
-  for (int k = 1; k <= left; ++k) {
-    LaneModel lane;
-    lane.id = k;
-    lane.width = CubicProfile::constant(w);
-    lane.mark = k == left ? mark(RoadMark::Type::solid) : mark(RoadMark::Type::broken);
-    section.left.push_back(lane);
-  }
-  if (left == 0) {
-    section.centre_mark = mark(RoadMark::Type::solid, "yellow");  // the left edge of a one-way
-  } else {
-    section.centre_mark = is_major(a.highway) ? mark(RoadMark::Type::solid_solid, "yellow")
-                                              : mark(RoadMark::Type::broken, "yellow");
-  }
-  m.sections = {section};
-  m.lane_offset = CubicProfile::constant(0.5 * w * (right - left));
-}
-
 // A road end at a junction, as the model sees it.
 struct EndRef {
   int network_road = -1;
   bool at_start = true;
 };
-
-// Lanes that arrive at / depart from a road end, innermost first.
-std::vector<int> arriving_lanes(const ModelRoad& m, bool at_start) {
-  std::vector<int> ids;
-  const LaneSection& sec = at_start ? m.sections.front() : m.sections.back();
-  for (const LaneModel& l : at_start ? sec.left : sec.right) ids.push_back(l.id);
-  return ids;
-}
-std::vector<int> departing_lanes(const ModelRoad& m, bool at_start) {
-  std::vector<int> ids;
-  const LaneSection& sec = at_start ? m.sections.front() : m.sections.back();
-  for (const LaneModel& l : at_start ? sec.right : sec.left) ids.push_back(l.id);
-  return ids;
-}
-
-// Pose of the inner border of `lane` at a road end, facing the lane's direction of travel.
-Pose2 lane_inner_pose(const ModelRoad& m, bool at_start, int lane) {
-  const double s = at_start ? 0.0 : m.length();
-  const int inner = lane < 0 ? lane + 1 : lane - 1;
-  const double t = lane_border_t(m, s, inner);
-  const Pose2 ref = m.plan.at(s);
-  Pose2 p;
-  p.position = ref.position + t * Vec2(-std::sin(ref.heading), std::cos(ref.heading));
-  p.heading = lane < 0 ? ref.heading : wrap_angle(ref.heading + kPi);
-  return p;
-}
-
-// The centre of a lane of width w whose inner border runs along `inner` (lanes lie right of
-// their direction of travel).
-Pose2 to_lane_centre(Pose2 inner, double w) {
-  inner.position += 0.5 * w * Vec2(std::sin(inner.heading), -std::cos(inner.heading));
-  return inner;
-}
-
-double lane_width_at(const ModelRoad& m, bool at_start, int lane) {
-  const double s = at_start ? 0.0 : m.length();
-  return std::abs(lane_border_t(m, s, lane) - lane_border_t(m, s, lane < 0 ? lane + 1 : lane - 1));
-}
-
-// Height and slope along the direction of travel of a lane at a road end.
-std::pair<double, double> end_height(const ModelRoad& m, bool at_start, bool along_reference) {
-  const double s = at_start ? 0.0 : m.length();
-  const double g = m.elevation.derivative(s);
-  return {m.elevation.value(s), along_reference ? g : -g};
-}
-
-// Height and slope along the direction of travel of the centre of `lane` at a road end (the
-// roll eases to its end value with zero slope, so the slope is the reference line's).
-std::pair<double, double> lane_end_height(const ModelRoad& m, bool at_start, int lane) {
-  const double s = at_start ? 0.0 : m.length();
-  const double g = end_height(m, at_start, /*along_reference=*/lane < 0).second;
-  return {surface_z(m, s, lane_centre_t(m, s, lane)), g};
-}
 
 // Superelevation (roll, radians) that lays a cross-section of the given heading on a plane of
 // gradient g: the surface rises by tan(roll) per metre to the left (road_surface.h).
@@ -275,21 +169,6 @@ CubicProfile plane_rolls(const PlanView& plan, const Vec2& g0, const Vec2& g1) {
     r[i] = plane_roll((1.0 - u) * g0 + u * g1, plan.at(s[i]).heading);
   }
   return fit_cubic_profile(s, r, kRollTolerance_rad);
-}
-
-void set_lane_link(ModelRoad& m, bool at_start, int lane, int other) {
-  LaneSection& sec = at_start ? m.sections.front() : m.sections.back();
-  for (auto* side : {&sec.left, &sec.right}) {
-    for (LaneModel& l : *side) {
-      if (l.id != lane) continue;
-      (at_start ? l.predecessor : l.successor) = other;
-    }
-  }
-}
-
-// Width of lane `k`-th (1 = innermost) of a list at a road end, 0 when there is no such lane.
-double width_or_zero(const ModelRoad& m, bool at_start, const std::vector<int>& lanes, std::size_t k) {
-  return k < lanes.size() ? lane_width_at(m, at_start, lanes[k]) : 0.0;
 }
 
 // A road from road `a`'s end at a junction to road `b`'s end there (no OpenDRIVE junction: two
@@ -398,18 +277,6 @@ bool needs_transition(const RoadNetwork& network, const Junction& j) {
   const auto [b_in, b_out] = arriving_departing(b.attributes, j.ends[1].at_start);
   return a_in != b_out || a_out != b_in ||
          std::abs(a.attributes.lane_width_m - b.attributes.lane_width_m) > 1e-9;
-}
-
-// Distance of the outermost lane borders from the reference line: add_lanes centres the
-// carriageway, so both sides reach half the total width.
-double outer_border_t(const WayAttributes& a) {
-  return 0.5 * a.lane_width_m * (a.lanes_forward + (a.oneway ? 0 : a.lanes_backward));
-}
-
-// The smallest radius the reference line rounds a vertex by: the road's outer border plus a
-// margin, so that no lane border folds.
-double minimum_radius(const Road& road, const RoadModelOptions& options) {
-  return outer_border_t(road.attributes) + options.min_radius_margin_m;
 }
 
 // Distance between two segments, 0 when they cross or touch.
