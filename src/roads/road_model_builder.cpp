@@ -15,6 +15,7 @@
 #include "relief/geometry/polyline.h"
 #include "relief/geometry/reference_line_fit.h"
 #include "relief/roads/road_surface.h"
+#include "roads/connecting_roads.h"
 #include "roads/junction_clusters.h"
 #include "roads/junction_planes.h"
 #include "roads/lane_layout.h"
@@ -26,8 +27,6 @@ namespace {
 
 using namespace detail;  // the builder's steps (src/roads/*.h)
 
-constexpr double kPi = std::numbers::pi;
-constexpr double kUTurn_rad = 5.0 * kPi / 6.0;
 constexpr double kMinRoadLength = 0.05;  // m left after trimming, else the road is skipped
 constexpr double kTrimStep = 0.5;        // m added to an overlapping road end's trim per pass
 constexpr int kMaxTrimPasses = 400;      // bounds the trims' growth at one junction
@@ -86,12 +85,6 @@ std::string road_type(HighwayClass c) {
       return "town";
   }
 }
-
-// A road end at a junction, as the model sees it.
-struct EndRef {
-  int network_road = -1;
-  bool at_start = true;
-};
 
 // Distance between two segments, 0 when they cross or touch.
 double segment_distance(const Vec2& a0, const Vec2& a1, const Vec2& b0, const Vec2& b1) {
@@ -607,11 +600,6 @@ RoadModelBuild build_model(const RoadNetwork& network, const std::vector<RoadPro
     const auto model_of = [&](const EndRef& e) -> ModelRoad& {
       return model.roads[out.model_road_of[e.network_road]];
     };
-    // The network junction an end belongs to (a joined junction holds several).
-    const auto junction_of = [&](const EndRef& e) {
-      const Road& road = network.roads[e.network_road];
-      return e.at_start ? road.start_junction : road.end_junction;
-    };
 
     if (j.kind == JunctionKind::attribute_change && ends.size() == 2 && !has_passage(network, j)) {
       report_no_passage(j, model_of(ends[0]), model_of(ends[1]), diagnostics);
@@ -630,140 +618,7 @@ RoadModelBuild build_model(const RoadNetwork& network, const std::vector<RoadPro
       continue;
     }
     if (j.kind != JunctionKind::intersection || ends.size() < 2) continue;
-
-    JunctionModel jm;
-    jm.id = static_cast<int>(model.junctions.size()) + 1;
-    jm.source_junctions = clusters.members[j.id];
-    jm.name = "junction " + std::to_string(j.osm_node_id);
-    if (jm.source_junctions.size() > 1)
-      jm.name += " (+" + std::to_string(jm.source_junctions.size() - 1) + " joined)";
-    // The member junction a road end touches: a movement between two members follows the
-    // absorbed roads between them, one-ways only forward.
-    const auto member_of = [&](const EndRef& e) {
-      const Road& road = network.roads[e.network_road];
-      return e.at_start ? road.start_junction : road.end_junction;
-    };
-    for (const EndRef& e : ends) {
-      ModelRoad& m = model_of(e);
-      (e.at_start ? m.predecessor : m.successor) =
-          RoadLink{RoadLink::Element::junction, jm.id, RoadLink::Contact::start};
-    }
-    for (std::size_t ia = 0; ia < ends.size(); ++ia) {
-      for (std::size_t ib = 0; ib < ends.size(); ++ib) {
-        if (ia == ib) continue;
-        const EndRef& in = ends[ia];
-        const EndRef& to = ends[ib];
-        if (!clusters.reachable(network, member_of(in), member_of(to))) continue;
-        // Copies: adding connecting roads may reallocate model.roads.
-        const ModelRoad a = model_of(in);
-        const ModelRoad b = model_of(to);
-        const std::vector<int> arriving = arriving_lanes(a, in.at_start);
-        const std::vector<int> departing = departing_lanes(b, to.at_start);
-        if (arriving.empty() || departing.empty()) continue;
-        const Pose2 from0 = lane_inner_pose(a, in.at_start, arriving.front());
-        const Pose2 to0 = lane_inner_pose(b, to.at_start, departing.front());
-        const double turn = wrap_angle(to0.heading - from0.heading);
-        // A U-turn goes back into the arriving road, or turns back by more than 150 degrees into
-        // another (the two carriageways where a divided street splits: their ends lie a metre
-        // apart and the hairpin between them cannot carry a lane).
-        const bool u_turn = in.network_road == to.network_road || std::abs(turn) > kUTurn_rad;
-        if (u_turn && !options.u_turns) continue;
-        const char* movement = std::abs(turn) < kPi / 6.0 ? "through" : turn > 0.0 ? "left" : "right";
-        // A slight turn (under 60 degrees) may also be made from a through lane: streets bend.
-        const bool slight = std::abs(turn) < kPi / 3.0;
-        // With `turn:lanes` tagged, the lanes that allow the movement make it: a left turn from
-        // the innermost of them into the innermost departing lanes, through and right from the
-        // outside in. Without, through pairs lanes from the outside in and a turn uses one lane,
-        // the outermost for a right turn, the innermost for a left turn.
-        const WayAttributes& in_attr = network.roads[in.network_road].attributes;
-        const std::vector<std::string>& turns = in.at_start ? in_attr.turn_backward : in_attr.turn_forward;
-        std::vector<std::pair<int, int>> pairs;
-        if (turns.size() == arriving.size()) {
-          std::vector<int> allowed;
-          for (std::size_t k = 0; k < turns.size(); ++k)
-            if (lane_allows(turns[k], movement)) allowed.push_back(arriving[k]);
-          if (allowed.empty() && slight) {
-            for (std::size_t k = 0; k < turns.size(); ++k)
-              if (lane_allows(turns[k], "through")) allowed.push_back(arriving[k]);
-          }
-          const std::size_t k = std::min(allowed.size(), departing.size());
-          for (std::size_t i = 0; i < k; ++i) {
-            if (std::string_view(movement) == "left") {
-              pairs.emplace_back(allowed[i], departing[i]);
-            } else {
-              pairs.emplace_back(allowed[allowed.size() - 1 - i], departing[departing.size() - 1 - i]);
-            }
-          }
-        } else if (std::string_view(movement) == "through") {
-          const std::size_t k = std::min(arriving.size(), departing.size());
-          for (std::size_t i = 0; i < k; ++i)
-            pairs.emplace_back(arriving[arriving.size() - 1 - i], departing[departing.size() - 1 - i]);
-        } else if (std::string_view(movement) == "right") {
-          pairs.emplace_back(arriving.back(), departing.back());
-        } else {
-          pairs.emplace_back(arriving.front(), departing.front());
-        }
-        for (const auto& [la, lb] : pairs) {
-          ModelRoad c;
-          c.id = static_cast<int>(model.roads.size()) + 1;
-          c.junction = jm.id;
-          c.name = "connection " + std::to_string(a.id) + ":" + std::to_string(la) + " -> " +
-                   std::to_string(b.id) + ":" + std::to_string(lb);
-          c.type = a.type;
-          c.speed_mps = std::min(a.speed_mps.value_or(10.0), b.speed_mps.value_or(10.0));
-          // The reference line runs along the lane's centre (the lane kept right of it by a lane
-          // offset of half its width), as the roundest arc the corner allows: then neither
-          // border of a tight turn folds before the centre is tighter than half a lane.
-          const double w0 = lane_width_at(a, in.at_start, la), w1 = lane_width_at(b, to.at_start, lb);
-          const Pose2 from = to_lane_centre(lane_inner_pose(a, in.at_start, la), w0);
-          const Pose2 dest = to_lane_centre(lane_inner_pose(b, to.at_start, lb), w1);
-          c.plan = PlanView(corner_connector(from, dest));
-          const double len = c.plan.length();
-          const auto [z0, g0] = lane_end_height(a, in.at_start, la);
-          const auto [z1, g1] = lane_end_height(b, to.at_start, lb);
-          c.elevation = slope_bounded_profile(len, z0, g0, z1, g1, kConnectionGradeAllowance);
-          c.superelevation = plane_rolls(c.plan, gradient_of(junction_of(in)), gradient_of(junction_of(to)));
-          c.lane_offset = CubicProfile({CubicPiece{0.0, Poly3{0.5 * w0, 0.5 * (w1 - w0) / len, 0.0, 0.0}}});
-          LaneSection sec;
-          LaneModel lane;
-          lane.id = -1;
-          lane.width = CubicProfile({CubicPiece{0.0, Poly3{w0, (w1 - w0) / len, 0.0, 0.0}}});
-          lane.predecessor = la;
-          lane.successor = lb;
-          sec.right.push_back(lane);
-          c.sections = {sec};
-          c.predecessor = RoadLink{RoadLink::Element::road, a.id,
-                                   in.at_start ? RoadLink::Contact::start : RoadLink::Contact::end};
-          c.successor = RoadLink{RoadLink::Element::road, b.id,
-                                 to.at_start ? RoadLink::Contact::start : RoadLink::Contact::end};
-          JunctionConnection conn;
-          conn.id = static_cast<int>(jm.connections.size());
-          conn.incoming_road = a.id;
-          conn.connecting_road = c.id;
-          conn.contact = RoadLink::Contact::start;
-          conn.lane_links = {{la, -1}};
-          jm.connections.push_back(conn);
-          model.roads.push_back(std::move(c));
-          ++out.stats.connecting_roads;
-        }
-      }
-    }
-    if (jm.connections.empty()) {
-      // No movement is possible here (every road leads away, or the turn lanes allow nothing):
-      // the roads end at the junction's edge instead.
-      for (const EndRef& e : ends) {
-        ModelRoad& m = model_of(e);
-        (e.at_start ? m.predecessor : m.successor).reset();
-      }
-      diagnostics.report(
-          Severity::warning, codes::kOpendriveJunctionWithoutMovements,
-          "no movement is possible at the junction of OSM node " + std::to_string(j.osm_node_id) +
-              " (one-ways all leading away, or turn lanes allowing none); its roads end there");
-      ++out.stats.junctions_without_movements;
-      continue;
-    }
-    model.junctions.push_back(std::move(jm));
-    ++out.stats.junctions;
+    add_junction(network, clusters, j, ends, planes, options, out, diagnostics);
   }
   return out;
 }
