@@ -4,20 +4,11 @@
 
 #include <cmath>
 
+#include "relief/geometry/plane.h"
 #include "relief/geometry/polyline.h"
 #include "relief/roads/road_surface.h"
 
 namespace relief {
-namespace {
-
-double distance_to_segment(const Vec3& p, const Vec3& a, const Vec3& b) {
-  const Vec3 ab = b - a;
-  const double len2 = ab.squaredNorm();
-  const double u = len2 > 0.0 ? std::clamp((p - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
-  return (a + u * ab - p).norm();
-}
-
-}  // namespace
 
 Polyline3 simplify_3d(const Polyline3& line, double tolerance_m, const std::vector<double>& headings,
                       double max_turn_rad) {
@@ -25,11 +16,10 @@ Polyline3 simplify_3d(const Polyline3& line, double tolerance_m, const std::vect
   const std::vector<std::uint8_t> keep = douglas_peucker(
       line.size(), tolerance_m,
       [&](std::size_t i, std::size_t k, std::size_t j) {
-        return distance_to_segment(line[k], line[i], line[j]);
+        return point_segment_distance(line[k], line[i], line[j]);
       },
       [&](std::size_t i, std::size_t j) {
-        return !headings.empty() &&
-               std::abs(std::remainder(headings[j] - headings[i], 2.0 * M_PI)) > max_turn_rad;
+        return !headings.empty() && std::abs(wrap_angle(headings[j] - headings[i])) > max_turn_rad;
       });
   Polyline3 out;
   for (std::size_t k = 0; k < line.size(); ++k) {

@@ -26,6 +26,7 @@
 
 #include "geometry/edge_order.h"
 #include "relief/core/errors.h"
+#include "relief/geometry/plane.h"
 
 namespace relief {
 namespace {
@@ -262,13 +263,6 @@ std::optional<PairCount> pmp_self_intersections(const TriangleMesh& mesh) {
 }
 
 // --- Geometry helpers -----------------------------------------------------------------------
-
-double point_segment_distance(const Vec3& p, const Vec3& a, const Vec3& b) {
-  const Vec3 ab = b - a;
-  const double len2 = ab.squaredNorm();
-  const double t = len2 > 0.0 ? std::clamp((p - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
-  return (p - (a + t * ab)).norm();
-}
 
 // Boundary edges (used by exactly one triangle) in the direction of their triangle.
 std::vector<std::pair<std::uint32_t, std::uint32_t>> boundary_edges(const TriangleMesh& mesh) {

@@ -1,4 +1,4 @@
-#include "relief/geometry/plan_view.h"
+#include "relief/geometry/reference_line_fit.h"
 
 #include <algorithm>
 #include <cmath>
@@ -7,6 +7,7 @@
 #include <string>
 
 #include "relief/core/errors.h"
+#include "relief/geometry/plane.h"
 
 namespace relief {
 
@@ -16,17 +17,6 @@ constexpr double kDuplicate_m = 1e-3;                               // vertices 
 constexpr double kStraight_rad = 1e-9;                              // turning angles below this add no arc
 constexpr double kVanish_m = 1e-9;                                  // lines this short vanish without notice
 constexpr double kMaxHalfTurn_rad = 0.5 * std::numbers::pi - 1e-9;  // U-turn clamp
-
-double wrap_angle(double a) {
-  // (-pi, pi]
-  a = std::remainder(a, 2.0 * std::numbers::pi);
-  if (a <= -std::numbers::pi) a += 2.0 * std::numbers::pi;
-  return a;
-}
-
-double cross(const Vec2& a, const Vec2& b) {
-  return a.x() * b.y() - a.y() * b.x();
-}
 
 // Plan records laid end to end: each starts at the previous one's end pose (exact G1).
 struct RecordChain {

@@ -15,6 +15,7 @@
 
 #include "relief/core/diagnostic_codes.h"
 #include "relief/core/errors.h"
+#include "relief/geometry/plane.h"
 #include "relief/geometry/soft_qp.h"
 #include "relief/roads/vertical_curves.h"
 
@@ -103,10 +104,6 @@ std::array<double, 3> curvature_row(double h1, double h2) {
   h1 = std::max(h1, kMinCurvatureSpacing);
   h2 = std::max(h2, kMinCurvatureSpacing);
   return {2.0 / (h1 * (h1 + h2)), -2.0 / (h1 * h2), 2.0 / (h2 * (h1 + h2))};
-}
-
-double cross2(const Vec2& a, const Vec2& b) {
-  return a.x() * b.y() - a.y() * b.x();
 }
 
 // Arc length of station i as driven (RoadProfile::driven_s), where grades and curvatures are
@@ -753,8 +750,8 @@ ProfileFitResult fit_profiles(const RoadNetwork& network, const std::vector<Road
     if (!raw[sep.upper_road].has_height || !raw[sep.lower_road].has_height) continue;
     std::vector<double> along_upper{0.0}, along_lower{0.0};
     if (!sep.alongside) {
-      const double sine = std::abs(cross2(direction(sep.upper_road, at(sep.upper_road, sep.s_upper).first),
-                                          direction(sep.lower_road, at(sep.lower_road, sep.s_lower).first)));
+      const double sine = std::abs(cross(direction(sep.upper_road, at(sep.upper_road, sep.s_upper).first),
+                                         direction(sep.lower_road, at(sep.lower_road, sep.s_lower).first)));
       const double ru =
           std::min(half_width(sep.lower_road) / std::max(sine, 1e-3), 3.0 * half_width(sep.lower_road));
       const double rl =

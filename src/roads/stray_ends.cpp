@@ -6,6 +6,7 @@
 #include <unordered_map>
 #include <utility>
 
+#include "relief/geometry/plane.h"
 #include "relief/geometry/polyline.h"
 
 namespace relief::detail {
@@ -13,16 +14,10 @@ namespace {
 
 constexpr double kCell = 25.0;  // m, grid cell of the segment index
 
-double cross(const Vec2& a, const Vec2& b) {
-  return a.x() * b.y() - a.y() * b.x();
-}
-
 // Distance from p to segment ab, and the parameter (0..1) of the nearest point.
 std::pair<double, double> point_segment(const Vec2& p, const Vec2& a, const Vec2& b) {
-  const Vec2 ab = b - a;
-  const double len2 = ab.squaredNorm();
-  const double u = len2 > 0.0 ? std::clamp((p - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
-  return {(p - (a + u * ab)).norm(), u};
+  const double u = segment_parameter(p, a, b);
+  return {(p - (a + u * (b - a))).norm(), u};
 }
 
 // Distance between segments pq and ab, and the parameter on ab of the nearest point.

@@ -14,6 +14,7 @@
 #include "relief/geometry/polyline.h"
 #include "terrain/outline_index.h"
 #include "terrain/terrain_cdt.h"
+#include "terrain/tin_refinement.h"
 #include "terrain/under_decks.h"
 
 namespace relief {

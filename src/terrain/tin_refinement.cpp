@@ -1,11 +1,11 @@
 // Greedy insertion of DEM samples into the terrain TIN, and the final check of every sample.
 
+#include "terrain/tin_refinement.h"
+
 #include <algorithm>
 #include <cmath>
 #include <iterator>
 #include <queue>
-
-#include "terrain/terrain_cdt.h"
 
 namespace relief::terrain_detail {
 namespace {

@@ -1,3 +1,5 @@
+#include "relief/geometry/reference_line_fit.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>

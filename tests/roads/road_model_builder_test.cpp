@@ -8,6 +8,7 @@
 #include <map>
 #include <numbers>
 
+#include "relief/geometry/reference_line_fit.h"
 #include "relief/roads/profile_fit.h"
 #include "relief/roads/road_model_checks.h"
 #include "relief/roads/road_surface.h"

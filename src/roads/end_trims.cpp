@@ -1,0 +1,186 @@
+#include "roads/end_trims.h"
+
+#include <algorithm>
+#include <array>
+#include <optional>
+#include <sstream>
+#include <string>
+
+#include "relief/core/diagnostic_codes.h"
+#include "roads/junction_joining.h"
+#include "roads/lane_layout.h"
+#include "roads/stray_ends.h"
+#include "roads/transition_roads.h"
+
+namespace relief::detail {
+namespace {
+
+constexpr double kTrimStep = 0.5;    // m added to an overlapping road end's trim per pass
+constexpr int kMaxTrimPasses = 400;  // bounds the trims' growth at one junction
+constexpr int kMaxJoinRounds = 8;    // bounds the rounds of junctions joined by their trims
+
+// Grows the trims of the usable road ends at junction j in steps until no two overlap. Ends
+// that reach their cap mark their roads `stuck`; where ends still overlap, the junction goes
+// into `overlaps` and is made level in `planes`. Returns the ends whose trims grew.
+std::size_t grow_apart(JunctionEnds& state, const Junction& j, std::vector<std::uint8_t>& stuck,
+                       EndTrimResult& out, std::vector<Vec2>& planes) {
+  const RoadNetwork& network = state.network;
+  const RoadModelOptions& options = state.options;
+  std::vector<const RoadEnd*> ends;
+  for (const RoadEnd* e : state.ends_of(j)) {
+    if (state.usable(network.roads[e->road])) ends.push_back(e);
+  }
+  if (ends.size() < 2) return 0;
+  std::vector<std::optional<EndShape>> shape(ends.size());
+  const auto shape_of = [&](std::size_t k) -> const EndShape& {
+    if (!shape[k]) shape[k] = state.end_shape_at(*ends[k]);
+    return *shape[k];
+  };
+  std::vector<std::uint8_t> grown(ends.size(), 0), capped(ends.size(), 0);
+  bool clear = false;
+  for (int pass = 0; pass < kMaxTrimPasses && !clear; ++pass) {
+    std::vector<std::uint8_t> grow(ends.size(), 0);
+    for (std::size_t a = 0; a < ends.size(); ++a) {
+      for (std::size_t b = a + 1; b < ends.size(); ++b) {
+        if (!state.ends_overlap(shape_of(a), shape_of(b))) continue;
+        grow[a] = grow[b] = 1;
+      }
+    }
+    clear = std::find(grow.begin(), grow.end(), 1) == grow.end();
+    bool any = false;
+    for (std::size_t k = 0; k < ends.size(); ++k) {
+      if (!grow[k]) continue;
+      const Road& road = network.roads[ends[k]->road];
+      const double length = state.cumulative[road.id].back();
+      double& t = state.trim[road.id][ends[k]->at_start ? 0 : 1];
+      // Both ends of a road draw on its length, leaving it min_kept_length_m; a loop's two
+      // ends overlap each other whatever is cut, so it keeps the per-end share.
+      const double cap = state.loop(road) ? options.max_trim_fraction * length
+                                          : length - state.trim[road.id][ends[k]->at_start ? 1 : 0] -
+                                                options.min_kept_length_m;
+      const double next = std::min(t + kTrimStep, cap);
+      if (next - t < 1e-9) {
+        capped[k] = state.loop(road) ? 0 : 1;
+        continue;
+      }
+      t = next;
+      shape[k].reset();
+      grown[k] = 1;
+      any = true;
+    }
+    if (!any) break;
+  }
+  std::size_t ends_trimmed = 0;
+  for (const std::uint8_t g : grown) ends_trimmed += g;
+  if (!clear) {
+    for (std::size_t k = 0; k < ends.size(); ++k) {
+      if (capped[k]) stuck[ends[k]->road] = 1;
+    }
+    std::vector<int> roads;
+    for (const RoadEnd* e : ends) roads.push_back(e->road);
+    out.overlaps.emplace_back(static_cast<int>(j.id), roads);
+    // Road ends that still overlap would cross each other once tilted differently: the
+    // junction stays level.
+    for (const int m : state.clusters.members[j.id]) planes[m] = Vec2::Zero();
+    planes[j.id] = Vec2::Zero();
+  }
+  return ends_trimmed;
+}
+
+}  // namespace
+
+std::vector<double> junction_radii(const RoadNetwork& network, const std::vector<RoadProfile>& profiles,
+                                   const RoadModelOptions& options,
+                                   const std::vector<std::uint8_t>& transition) {
+  std::vector<double> radius(network.junctions.size(), 0.0);
+  for (const Junction& j : network.junctions) {
+    // Two one-ways without passage between them end apart, clear of each other as at a fork.
+    const bool apart =
+        j.kind == JunctionKind::attribute_change && j.ends.size() == 2 && !has_passage(network, j);
+    if (j.kind != JunctionKind::intersection && !transition[j.id] && !apart) continue;
+    double widest = 0.0;
+    for (const RoadEnd& e : j.ends) widest = std::max(widest, half_width(network.roads[e.road]));
+    radius[j.id] = widest + options.junction_margin_m;
+    if (transition[j.id]) radius[j.id] = transition_reach(network, profiles, j, radius[j.id], options);
+  }
+  return radius;
+}
+
+EndTrimResult grow_end_trims(JunctionEnds& ends, std::vector<Vec2>& planes) {
+  // A road whose trims leave it only min_kept_length_m while its ends still overlap others is
+  // used up: its two junctions are joined and the trims run again from the radii (a stub
+  // between two junctions cannot hold both).
+  const RoadNetwork& network = ends.network;
+  EndTrimResult out;
+  const std::vector<std::array<double, 2>> radius_trim = ends.trim;
+  const std::vector<Vec2> given_planes = planes;
+  std::vector<std::uint8_t> used_up(network.roads.size(), 0);
+  for (int round = 0;; ++round) {
+    ends.trim = radius_trim;
+    planes = given_planes;
+    out.overlaps.clear();
+    std::size_t ends_trimmed = 0;
+    std::vector<std::uint8_t> stuck(network.roads.size(), 0);
+    for (const Junction& j : network.junctions) {
+      if (!(ends.radius[j.id] > 0.0) || ends.clusters.members[j.id].empty()) continue;
+      ends_trimmed += grow_apart(ends, j, stuck, out, planes);
+    }
+    out.ends_trimmed = ends_trimmed;
+    if (!mark_used_up_roads(ends, radius_trim, stuck, used_up) || round + 1 == kMaxJoinRounds) break;
+    ends.clusters = join_junctions(network, ends.radius, ends.road_length, ends.has_height,
+                                   ends.options.min_kept_length_m, used_up);
+  }
+  return out;
+}
+
+void trim_stray_ends(JunctionEnds& ends, bool report, Diagnostics& diagnostics, RoadModelStats& stats) {
+  const RoadNetwork& network = ends.network;
+  std::vector<double> widths(network.roads.size());
+  for (const Road& road : network.roads) widths[road.id] = half_width(road);
+  StrayEndOptions stray;
+  stray.gap_m = ends.options.junction_end_gap_m;
+  stray.min_kept_length_m = ends.options.min_kept_length_m;
+  const std::vector<StrayEnd> strays = clear_stray_ends(network, ends.profiles, widths, ends.trim, stray);
+  if (!report) return;
+  for (const StrayEnd& e : strays) {
+    const Road& road = network.roads[static_cast<std::size_t>(e.road)];
+    const Road& other = network.roads[static_cast<std::size_t>(e.other_road)];
+    const auto way = [](const Road& r) {
+      return r.osm_way_ids.empty() ? std::string("?") : std::to_string(r.osm_way_ids.front());
+    };
+    std::ostringstream msg;
+    msg.precision(1);
+    msg << std::fixed << "the dead end of OSM way " << way(road) << " lies on OSM way " << way(other)
+        << " (no shared node; ways closer than their widths): "
+        << (e.cleared ? "trimmed back " : "still there after trimming back ") << e.trimmed_m << " m";
+    Diagnostic d;
+    d.severity = e.cleared ? Severity::info : Severity::warning;
+    d.code = e.cleared ? codes::kModelStrayEndTrimmed : codes::kModelStrayEndOverlap;
+    d.message = msg.str();
+    if (!road.osm_way_ids.empty()) d.osm_way_id = road.osm_way_ids.front();
+    diagnostics.report(std::move(d));
+    ++(e.cleared ? stats.stray_ends_trimmed : stats.stray_ends_left);
+  }
+}
+
+void report_end_overlaps(const RoadNetwork& network, const EndTrimResult& trims, const RoadModel& model,
+                         const std::vector<int>& model_road_of, Diagnostics& diagnostics,
+                         RoadModelStats& stats) {
+  for (const auto& [junction, roads] : trims.overlaps) {
+    std::string ids;
+    for (const int r : roads) {
+      if (model_road_of[r] < 0) continue;
+      ids += (ids.empty() ? "" : ", ") + std::to_string(model.roads[model_road_of[r]].id);
+    }
+    Diagnostic d;
+    d.code = codes::kModelJunctionEndsOverlap;
+    d.message = "the ends of roads " + ids + " at the junction of OSM node " +
+                std::to_string(network.junctions[junction].osm_node_id) +
+                " still overlap after trimming them by the largest share allowed";
+    d.osm_node_id = network.junctions[junction].osm_node_id;
+    diagnostics.report(std::move(d));
+    ++stats.junction_ends_overlap;
+  }
+}
+
+}  // namespace relief::detail
