@@ -12,16 +12,6 @@ LaneModel constant_lane(int id, double width_m, RoadMark::Type mark) {
   return l;
 }
 
-PlanGeometry line_record(double s, const Vec2& start, double heading, double length_m) {
-  PlanGeometry g;
-  g.kind = PlanGeometry::Kind::line;
-  g.s = s;
-  g.start = start;
-  g.heading = heading;
-  g.length = length_m;
-  return g;
-}
-
 ModelRoad straight_road(int id, const Vec2& start, double heading, double length_m, double z0, double grade) {
   ModelRoad road;
   road.id = id;

@@ -4,14 +4,12 @@
 
 #include "relief/geometry/triangle_mesh.h"
 #include "relief/roads/road_model.h"
+#include "support/plan_records.h"
 
 namespace relief::test {
 
 /// Lane `id` of constant `width_m` with road mark `mark` on its outer border.
 [[nodiscard]] LaneModel constant_lane(int id, double width_m, RoadMark::Type mark = RoadMark::Type::none);
-
-/// A plan-view line record from `start` along `heading` (rad), starting at `s`.
-[[nodiscard]] PlanGeometry line_record(double s, const Vec2& start, double heading, double length_m);
 
 /// A straight road along `heading` from `start`, z = z0 + grade * s, no lane offset, one lane
 /// section with lane 1 of 3 m and lane -1 of 3.5 m.
