@@ -12,17 +12,15 @@
 #include <unordered_map>
 #include <unordered_set>
 
-#include "relief/core/errors.h"
 #include "export/sumo_lane_locator.h"
+#include "relief/core/errors.h"
 #include "relief/roads/road_surface.h"
 
 namespace relief {
 namespace {
 
 using detail::LaneLocator;
-using detail::LanePoint;
 using detail::load_net;
-using detail::param_int;
 using detail::parse_shape;
 
 constexpr double kStepRiseM = 0.1;     // a height step: more than this rise...

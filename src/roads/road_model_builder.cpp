@@ -778,6 +778,7 @@ RoadModelBuild build_model(const RoadNetwork& network, const std::vector<RoadPro
           if (capped[k]) stuck[ends[k]->road] = 1;
         }
         std::vector<int> roads;
+        roads.reserve(ends.size());
         for (const RoadEnd* e : ends) roads.push_back(e->road);
         overlaps.emplace_back(static_cast<int>(j.id), roads);
         // Road ends that still overlap would cross each other once tilted differently: the
