@@ -19,7 +19,7 @@ std::filesystem::path temporary_name(const std::filesystem::path& path) {
 // Writes `write`'s output to a fresh temporary beside `path` and returns its name.
 std::filesystem::path write_temporary(const std::filesystem::path& path,
                                       const std::function<void(std::ostream&)>& write) {
-  const auto tmp = temporary_name(path);
+  auto tmp = temporary_name(path);
   try {
     std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
     if (!out) throw IoError("cannot create '" + tmp.string() + "' for writing");

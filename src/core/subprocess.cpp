@@ -13,7 +13,7 @@
 
 #include "relief/core/errors.h"
 
-extern char** environ;
+extern char** environ;  // NOLINT(readability-redundant-declaration): glibc declares it only with _GNU_SOURCE
 
 namespace relief {
 namespace {
@@ -76,10 +76,12 @@ ProcessResult run_process(const std::vector<std::string>& argv, const Environmen
   }
   for (const auto& [key, value] : env) env_text.push_back(key + "=" + value);
   std::vector<char*> envp;
+  envp.reserve(env_text.size() + 1);
   for (std::string& e : env_text) envp.push_back(e.data());
   envp.push_back(nullptr);
 
   std::vector<char*> args;
+  args.reserve(argv.size() + 1);
   for (const std::string& a : argv) args.push_back(const_cast<char*>(a.c_str()));
   args.push_back(nullptr);
   pid_t pid = 0;

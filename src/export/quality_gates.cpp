@@ -80,7 +80,7 @@ const std::vector<std::string>& GateThresholds::names() {
 
 std::vector<Gate> evaluate_gates(const RunReport& r, const GateThresholds& t) {
   std::vector<Gate> gates;
-  const auto at_most = [&](const char* name, double value, double threshold, std::string where = {}) {
+  const auto at_most = [&](const char* name, double value, double threshold, const std::string& where = {}) {
     gates.push_back({name, value, threshold, value <= threshold, value <= threshold ? std::string() : where});
   };
   if (r.fit) {

@@ -610,6 +610,8 @@ struct ColourScale {
   }
 };
 
+// NOLINTBEGIN(bugprone-suspicious-missing-comma): each label is split after its \x escape, so
+// that the digit after the en dash is not read as part of it.
 ColourScale grade_scale() {
   return {"g",
           {2, 4, 6, 8, 10, 12, 15, 20},
@@ -650,6 +652,7 @@ ColourScale departure_scale() {
            "2",
            "fill &gt; 2 m"}};
 }
+// NOLINTEND(bugprone-suspicious-missing-comma)
 
 constexpr double kMapPieceM = 5.0;      // colour resolution along a road
 constexpr double kMapToleranceM = 0.5;  // Douglas–Peucker tolerance

@@ -20,9 +20,7 @@ namespace relief {
 namespace {
 
 using detail::LaneLocator;
-using detail::LanePoint;
 using detail::load_net;
-using detail::param_int;
 using detail::parse_shape;
 
 constexpr double kStepRiseM = 0.1;     // a height step: more than this rise...

@@ -151,7 +151,7 @@ class LaneLocator {
       for (const pugi::xml_node& c : net.children("connection")) {
         const std::string from = c.attribute("from").as_string();
         const std::string via = c.attribute("via").as_string();
-        if (from.empty() || from[0] != ':' || via.empty() || lanes_.count(via)) continue;
+        if (from.empty() || from[0] != ':' || via.empty() || lanes_.contains(via)) continue;
         const auto it = lanes_.find(from + "_" + c.attribute("fromLane").as_string());
         if (it == lanes_.end()) continue;
         lanes_[via] = it->second;

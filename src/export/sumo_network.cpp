@@ -37,7 +37,6 @@ int priority_of(HighwayClass c) {
     case HighwayClass::tertiary:
       return 10;
     case HighwayClass::tertiary_link:
-      return 5;
     case HighwayClass::unclassified:
       return 5;
     case HighwayClass::residential:
@@ -139,7 +138,7 @@ class NodeTable {
  public:
   // Node id of (road index, end) with end 0 = start, 1 = end.
   std::string& at(int road, int end) { return ids_[key(road, end)]; }
-  [[nodiscard]] bool has(int road, int end) const { return ids_.count(key(road, end)) > 0; }
+  [[nodiscard]] bool has(int road, int end) const { return ids_.contains(key(road, end)); }
 
  private:
   static std::int64_t key(int road, int end) { return static_cast<std::int64_t>(road) * 2 + end; }
@@ -181,7 +180,7 @@ SumoPlainNetwork build_sumo_network(const RoadModel& model, const std::vector<Su
       std::string id;
       if (link && link->element == RoadLink::Element::junction) {
         id = "J" + std::to_string(link->id);
-        const bool signalled = options.signalled_junctions.count(link->id) > 0;
+        const bool signalled = options.signalled_junctions.contains(link->id);
         add_to_node(id, p, signalled ? "traffic_light" : "priority", link->id);
       } else if (link && link->element == RoadLink::Element::road) {
         // Both roads name the node after the smaller (road id, end) so that they meet.
@@ -405,7 +404,7 @@ SumoPlainNetwork build_sumo_network(const RoadModel& model, const std::vector<Su
   std::unordered_map<std::string, const SumoEdge*> edge_by_id;
   for (const SumoEdge& e : net.edges) edge_by_id[e.id] = &e;
   std::erase_if(net.connections, [&](const SumoConnection& c) {
-    return !edge_by_id.count(c.from) || !edge_by_id.count(c.to);  // to or from a road left out
+    return !edge_by_id.contains(c.from) || !edge_by_id.contains(c.to);  // to or from a road left out
   });
   const auto lane_shape = [&](const std::string& edge, int index) -> const Polyline3* {
     const auto it = edge_by_id.find(edge);
@@ -427,7 +426,7 @@ SumoPlainNetwork build_sumo_network(const RoadModel& model, const std::vector<Su
   net.stats.traffic_lights = static_cast<std::size_t>(std::count_if(
       net.nodes.begin(), net.nodes.end(), [](const SumoNode& n) { return n.type == "traffic_light"; }));
   for (const int j : options.signalled_junctions) {
-    if (!node_index.count("J" + std::to_string(j))) {
+    if (!node_index.contains("J" + std::to_string(j))) {
       diagnostics.report(Severity::warning, codes::kSumoSignalWithoutNode,
                          "junction " + std::to_string(j) + " has a traffic signal but no SUMO node");
     }

@@ -289,7 +289,7 @@ CubicProfile hermite_profile(double length, double z0, double g0, double z1, dou
 
 CubicProfile slope_bounded_profile(double length, double z0, double g0, double z1, double g1,
                                    double allowance) {
-  const CubicProfile cubic = hermite_profile(length, z0, g0, z1, g1);
+  CubicProfile cubic = hermite_profile(length, z0, g0, z1, g1);
   if (!(allowance >= 0.0)) throw InvalidInput("slope-bounded profile: the allowance must be >= 0");
   const double rise = z1 - z0;
   const double bound = std::max({std::abs(g0), std::abs(g1), std::abs(rise) / length + allowance});

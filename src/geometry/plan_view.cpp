@@ -124,14 +124,14 @@ constexpr int kArcIntervals = 32;
 
 }  // namespace
 
-std::vector<double> param_poly3_arc_table(const PlanGeometry& g) {
-  const double p_end = g.normalized ? 1.0 : g.length;
-  const auto f = [&](double p) { return speed(g.u, g.v, p); };
+std::vector<double> param_poly3_arc_table(const PlanGeometry& record) {
+  const double p_end = record.normalized ? 1.0 : record.length;
+  const auto f = [&](double p) { return speed(record.u, record.v, p); };
   std::vector<double> cumulative(kArcIntervals + 1, 0.0);
   for (int i = 0; i < kArcIntervals; ++i) {
     const double a = p_end * i / kArcIntervals;
     const double b = p_end * (i + 1) / kArcIntervals;
-    cumulative[static_cast<std::size_t>(i + 1)] = cumulative[static_cast<std::size_t>(i)] + gauss16(f, a, b);
+    cumulative[static_cast<std::size_t>(i) + 1] = cumulative[static_cast<std::size_t>(i)] + gauss16(f, a, b);
   }
   return cumulative;
 }
@@ -158,7 +158,7 @@ Pose2 evaluate_param_poly3(const PlanGeometry& g, double ds, const std::vector<d
     const double base = cumulative[static_cast<std::size_t>(i)];
     const double p0 = lo;
     p = lo + (hi - lo) *
-                 std::clamp((target - base) / (cumulative[static_cast<std::size_t>(i + 1)] - base), 0.0, 1.0);
+                 std::clamp((target - base) / (cumulative[static_cast<std::size_t>(i) + 1] - base), 0.0, 1.0);
     for (int iter = 0; iter < 60; ++iter) {
       const double err = base + gauss16(f, p0, p) - target;
       if (std::abs(err) < 1e-12 * std::max(1.0, total)) break;

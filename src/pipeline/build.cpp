@@ -263,8 +263,8 @@ BuildResult build(const BuildOptions& options, Diagnostics& diagnostics, const P
   OutputSet files;
   const auto path_of = [&](const std::string& suffix) { return options.out_dir / (report.name + suffix); };
   std::optional<RoadModelBuild> built;
-  if (options.outputs.count(Output::xodr) || options.outputs.count(Output::sumo) ||
-      options.outputs.count(Output::mesh)) {
+  if (options.outputs.contains(Output::xodr) || options.outputs.contains(Output::sumo) ||
+      options.outputs.contains(Output::mesh)) {
     built = timer.run("build road model", [&] {
       // The junction planes of relief's fit tilt the lanes at junctions onto them; the other
       // methods have none and keep every cross-section level.
@@ -289,11 +289,11 @@ BuildResult build(const BuildOptions& options, Diagnostics& diagnostics, const P
   // starts first and runs in the background while the other outputs are written.
   std::optional<SumoStageInput> sumo_in;
   std::optional<SumoJob> sumo;
-  if (options.outputs.count(Output::sumo)) {
+  if (options.outputs.contains(Output::sumo)) {
     sumo_in.emplace(SumoStageInput{options, loaded, built->model, report.name, diagnostics});
     sumo = start_sumo(*sumo_in);
   }
-  if (options.outputs.count(Output::geojson)) {
+  if (options.outputs.contains(Output::geojson)) {
     timer.run("write GeoJSON", [&] {
       files.add(path_of(".geojson"), [&](std::ostream& out) { write_geojson(out, network, profiles); });
       return 0;
@@ -302,7 +302,7 @@ BuildResult build(const BuildOptions& options, Diagnostics& diagnostics, const P
     result.written.push_back(path_of(".geojson"));
   }
   std::optional<BackgroundStage<OpenDriveSummary>> xodr_check;
-  if (options.outputs.count(Output::xodr)) {
+  if (options.outputs.contains(Output::xodr)) {
     const RoadModel& model = built->model;
     std::string xodr = timer.run("write OpenDRIVE", [&] {
       OpenDriveOptions odr;
@@ -344,7 +344,7 @@ BuildResult build(const BuildOptions& options, Diagnostics& diagnostics, const P
     report.outputs.push_back(report.name + ".xodr");
     result.written.push_back(path_of(".xodr"));
   }
-  if (options.outputs.count(Output::mesh)) {
+  if (options.outputs.contains(Output::mesh)) {
     MeshStageInput in{options, network, built->model, dem, report.name, diagnostics};
     report.mesh = write_mesh_outputs(in, files, timer, result.written, report.outputs);
   }
@@ -357,8 +357,8 @@ BuildResult build(const BuildOptions& options, Diagnostics& diagnostics, const P
                        "quality gate " + g.name + " failed: " + std::to_string(g.value) + " against " +
                            std::to_string(g.threshold) + (g.where.empty() ? "" : ", " + g.where));
   }
-  if (options.outputs.count(Output::html)) {
-    report.outputs.push_back("report.html");
+  if (options.outputs.contains(Output::html)) {
+    report.outputs.emplace_back("report.html");
     result.written.push_back(options.out_dir / "report.html");
     report.timings_s = timer.timings();
     report.wall_s = timer.elapsed();
@@ -373,8 +373,8 @@ BuildResult build(const BuildOptions& options, Diagnostics& diagnostics, const P
       return 0;
     });
   }
-  if (options.outputs.count(Output::report)) {
-    report.outputs.push_back("report.json");
+  if (options.outputs.contains(Output::report)) {
+    report.outputs.emplace_back("report.json");
     result.written.push_back(options.out_dir / "report.json");
     report.timings_s = timer.timings();
     report.wall_s = timer.elapsed();

@@ -28,7 +28,7 @@ InfoResult inspect(const BuildOptions& options, Diagnostics& diagnostics) {
   const ElevationSamples samples = sample_elevation(loaded.network, dem, sampling, quiet);
   info.samples = samples.samples;
   if (samples.samples > 0) {
-    const double n = static_cast<double>(samples.samples);
+    const auto n = static_cast<double>(samples.samples);
     info.void_percent = 100.0 * static_cast<double>(samples.void_samples) / n;
     info.uncovered_percent = 100.0 * static_cast<double>(samples.uncovered_samples) / n;
     info.covered_percent = 100.0 - info.void_percent - info.uncovered_percent;

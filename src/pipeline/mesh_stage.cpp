@@ -87,7 +87,7 @@ MeshSummary write_mesh_outputs(const MeshStageInput& in, OutputSet& files, Stage
   const std::string report = mesh_report_json(quality, extras);
   files.add(options.out_dir / "mesh_report.json", [&](std::ostream& out) { out << report; });
   written.push_back(options.out_dir / "mesh_report.json");
-  names.push_back("mesh_report.json");
+  names.emplace_back("mesh_report.json");
   return summary;
 }
 

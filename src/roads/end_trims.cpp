@@ -77,6 +77,7 @@ std::size_t grow_apart(JunctionEnds& state, const Junction& j, std::vector<std::
       if (capped[k]) stuck[ends[k]->road] = 1;
     }
     std::vector<int> roads;
+    roads.reserve(ends.size());
     for (const RoadEnd* e : ends) roads.push_back(e->road);
     out.overlaps.emplace_back(static_cast<int>(j.id), roads);
     // Road ends that still overlap would cross each other once tilted differently: the

@@ -41,17 +41,17 @@ class XodrReader {
   double number_or(const pugi::xml_node& node, const char* name, double fallback) const;
   int integer(const pugi::xml_node& node, const char* name) const;
   int integer_or(const pugi::xml_node& node, const char* name, int fallback) const;
-  Poly3 poly(const pugi::xml_node& node) const;
+  [[nodiscard]] Poly3 poly(const pugi::xml_node& node) const;
   CubicProfile profile(const pugi::xml_node& parent, const char* element, const char* s_name) const;
   RoadLink::Contact contact(const pugi::xml_node& node, const char* name) const;
 
-  GeoFrame frame(const pugi::xml_node& header) const;
+  [[nodiscard]] static GeoFrame frame(const pugi::xml_node& header);
   ModelRoad road(const pugi::xml_node& node);
-  PlanView plan_view(const pugi::xml_node& road) const;
-  PlanGeometry poly3_geometry(const pugi::xml_node& poly3, PlanGeometry g) const;
-  LaneSection lane_section(const pugi::xml_node& node) const;
-  LaneModel lane(const pugi::xml_node& node) const;
-  RoadMark road_mark(const pugi::xml_node& lane) const;
+  [[nodiscard]] PlanView plan_view(const pugi::xml_node& road) const;
+  [[nodiscard]] PlanGeometry poly3_geometry(const pugi::xml_node& node, PlanGeometry g) const;
+  [[nodiscard]] LaneSection lane_section(const pugi::xml_node& node) const;
+  [[nodiscard]] LaneModel lane(const pugi::xml_node& node) const;
+  [[nodiscard]] RoadMark road_mark(const pugi::xml_node& lane) const;
   JunctionModel junction(const pugi::xml_node& node);
 
   std::string source_;
@@ -121,7 +121,7 @@ RoadLink::Contact XodrReader::contact(const pugi::xml_node& node, const char* na
   fail_attribute(node, name, "is neither 'start' nor 'end': '" + std::string(text) + "'");
 }
 
-GeoFrame XodrReader::frame(const pugi::xml_node& header) const {
+GeoFrame XodrReader::frame(const pugi::xml_node& header) {
   // relief's own records restore the frame exactly; otherwise the geoReference PROJ string
   // becomes the CRS, with origin 0 (the coordinates are in that CRS).
   std::string crs;

@@ -166,7 +166,7 @@ std::optional<std::pair<double, double>> clip_segment(const LonLat& a, const Lon
 // keyed by its segment's node pair (lower id first) and parameter along it, so two ways sharing
 // the segment get the same synthetic id; parameters are computed in that normalised direction
 // so that they are bit-identical for both.
-std::vector<OsmWay> clip_ways(std::vector<OsmWay> ways, const LonLatBox& box,
+std::vector<OsmWay> clip_ways(const std::vector<OsmWay>& ways, const LonLatBox& box,
                               std::int64_t first_synthetic_id) {
   std::map<std::tuple<std::int64_t, std::int64_t, double>, std::int64_t> crossing_ids;
   std::int64_t next_id = first_synthetic_id;
@@ -275,7 +275,7 @@ OsmRoads read_osm(const std::filesystem::path& path, const OsmReadOptions& optio
 
   if (options.bbox) {
     const std::int64_t first_synthetic_id = std::min<std::int64_t>(-1, handler.min_node_id() - 1);
-    roads.ways = clip_ways(std::move(roads.ways), *options.bbox, first_synthetic_id);
+    roads.ways = clip_ways(roads.ways, *options.bbox, first_synthetic_id);
   }
 
   if (roads.ways.empty()) {

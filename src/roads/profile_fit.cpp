@@ -60,7 +60,7 @@ double price(FitLimit limit) {
 class VariableMap {
  public:
   explicit VariableMap(const RoadNetwork& network, const std::vector<RoadProfile>& profiles)
-      : network_(network), junction_base_(0) {
+      : network_(network) {
     road_base_.reserve(profiles.size());
     std::size_t next = 0;
     for (const RoadProfile& p : profiles) {
@@ -94,7 +94,7 @@ class VariableMap {
  private:
   const RoadNetwork& network_;
   std::vector<std::size_t> road_base_;
-  std::size_t junction_base_;
+  std::size_t junction_base_ = 0;
   std::vector<std::size_t> gradient_index_;
   std::size_t count_ = 0;
 };

@@ -280,7 +280,7 @@ HeightValidator::HeightValidator(const std::vector<RoadProfile>& stations, const
     first_midpoint_.push_back(mids.size());
     first_station_.push_back(n_stations);
     n_stations += p.size();
-    for (std::size_t i = 0; i + 1 < p.size(); ++i) mids.push_back(0.5 * (p.xy[i] + p.xy[i + 1]));
+    for (std::size_t i = 0; i + 1 < p.size(); ++i) mids.emplace_back(0.5 * (p.xy[i] + p.xy[i + 1]));
   }
   first_midpoint_.push_back(mids.size());
   first_station_.push_back(n_stations);
@@ -290,7 +290,7 @@ HeightValidator::HeightValidator(const std::vector<RoadProfile>& stations, const
   probes.reserve(n * 5);
   probes.insert(probes.end(), mids.begin(), mids.end());
   for (const Vec2& offset : {Vec2(step, 0), Vec2(-step, 0), Vec2(0, step), Vec2(0, -step)}) {
-    for (const Vec2& m : mids) probes.push_back(m + offset);
+    for (const Vec2& m : mids) probes.emplace_back(m + offset);
   }
   std::vector<std::optional<double>> heights(probes.size());
   dem.heights_at(probes, heights);

@@ -26,7 +26,7 @@ void structures_on_the_ground(const TriangleMesh& road, const DemSampler& dem, d
   used.erase(std::unique(used.begin(), used.end()), used.end());
   std::vector<Vec2> xy;
   xy.reserve(used.size());
-  for (const std::uint32_t v : used) xy.push_back(road.vertices[v].head<2>());
+  for (const std::uint32_t v : used) xy.emplace_back(road.vertices[v].head<2>());
   std::vector<std::optional<double>> z_dem(used.size());
   dem.heights_at(xy, z_dem);
   const auto dem_at = [&](std::uint32_t v) {

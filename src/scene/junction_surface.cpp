@@ -201,6 +201,7 @@ std::string build_junction_surface(const RoadModel& model, const JunctionModel& 
   }
   std::sort(order.begin(), order.end());
   std::vector<JunctionEnd> sorted;
+  sorted.reserve(order.size());
   for (const auto& [angle, k] : order) sorted.push_back(std::move(ends[k]));
 
   // Whether p lies behind an end's edge (outside the junction), across from the edge itself.
@@ -223,7 +224,7 @@ std::string build_junction_surface(const RoadModel& model, const JunctionModel& 
     // road it leaves) lies over that road's mesh: the two surfaces would cross there.
     std::erase_if(gaps[k].points, [&](const Vec3& p) { return over_end(a, p) || over_end(b, p); });
   }
-  const std::string failed = triangulate_junction(sorted, gaps, junction.id, mesh);
+  std::string failed = triangulate_junction(sorted, gaps, junction.id, mesh);
   if (failed.empty()) return failed;
   // A kerb line that cuts across a neighbouring road end (a sharp fork): straight gaps instead.
   for (OutlineGap& gap : gaps) gap.points.clear();

@@ -20,7 +20,6 @@ namespace relief {
 namespace {
 
 using detail::JunctionEnd;
-using detail::kNoVertex;
 using detail::LoftedRoad;
 using detail::MeshBuilder;
 

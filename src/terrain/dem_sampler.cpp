@@ -349,7 +349,8 @@ void report_missing_grid(const DemInfo& info, const std::string& frame_crs, Diag
 std::vector<double> cell_sizes_m(const PixelGrid& grid, const gdal::PixelWindow& window,
                                  const CrsTransform& to_raster) {
   const int stride = std::max(1, window.rows / 64);
-  const double col = window.col0 + window.cols / 2;
+  const int centre_col = window.col0 + window.cols / 2;  // whole column
+  const double col = centre_col;
   const auto centre = [&](double c, double r) {
     return Vec2(grid.x0 + (c + 0.5) * grid.dx, grid.y0 + (r + 0.5) * grid.dy);
   };

@@ -75,7 +75,8 @@ struct GridSamples {
   [[nodiscard]] std::size_t size() const { return flags.size(); }
   [[nodiscard]] Vec2 xy(std::size_t k) const {
     const auto n = static_cast<long>(k);
-    return origin + step_m * Vec2(static_cast<double>(n % nx), static_cast<double>(n / nx));
+    const long row = n / nx;
+    return origin + step_m * Vec2(static_cast<double>(n % nx), static_cast<double>(row));
   }
   [[nodiscard]] Point point(std::size_t k) const {
     const Vec2 p = xy(k);

@@ -16,6 +16,7 @@
 
 #include "relief/core/errors.h"
 #include "relief/roads/opendrive_reader.h"
+#include "support/plan_records.h"
 #include "support/test_data.h"
 
 namespace relief {
@@ -26,22 +27,8 @@ namespace fs = std::filesystem;
 // ---------------------------------------------------------------------------------------------
 // Models built in code.
 
-PlanGeometry line(double s, Vec2 start, double heading, double length) {
-  PlanGeometry g;
-  g.kind = PlanGeometry::Kind::line;
-  g.s = s;
-  g.start = start;
-  g.heading = heading;
-  g.length = length;
-  return g;
-}
-
-PlanGeometry arc(double s, Vec2 start, double heading, double length, double curvature) {
-  PlanGeometry g = line(s, start, heading, length);
-  g.kind = PlanGeometry::Kind::arc;
-  g.curvature = curvature;
-  return g;
-}
+using test::arc_record;
+using test::line_record;
 
 // The next record starting where `g` ends.
 Pose2 end_of(const PlanGeometry& g) {
@@ -78,8 +65,9 @@ RoadModel sample_model() {
   r1.id = 1;
   r1.name = "Main \"Street\"";
   r1.source_road = 0;
-  const PlanGeometry l1 = line(0.0, Vec2(0.0, 0.0), 0.0, 50.0);
-  const PlanGeometry a1 = arc(50.0, end_of(l1).position, end_of(l1).heading, 10.0 * std::numbers::pi, 0.02);
+  const PlanGeometry l1 = line_record(0.0, Vec2(0.0, 0.0), 0.0, 50.0);
+  const PlanGeometry a1 =
+      arc_record(50.0, end_of(l1).position, end_of(l1).heading, 10.0 * std::numbers::pi, 0.02);
   r1.plan = PlanView({l1, a1});
   r1.elevation = CubicProfile({{0.0, {10.0, 0.02, 0.0, 0.0}}, {40.0, {10.8, 0.02, 1e-4, -1e-6}}});
   r1.lane_offset = CubicProfile({{0.0, {0.25, 0.0, 0.0, 0.0}}, {30.0, {0.25, 0.0, -3e-4, 4e-6}}});
@@ -128,8 +116,8 @@ RoadModel sample_model() {
   r2.name = "Second";
   r2.type = "rural";
   const Pose2 p3 = end_of(c);
-  const PlanGeometry l2 = line(0.0, p3.position, p3.heading, 20.0);
-  PlanGeometry sp = line(20.0, end_of(l2).position, end_of(l2).heading, 30.0);
+  const PlanGeometry l2 = line_record(0.0, p3.position, p3.heading, 20.0);
+  PlanGeometry sp = line_record(20.0, end_of(l2).position, end_of(l2).heading, 30.0);
   sp.kind = PlanGeometry::Kind::spiral;
   sp.curvature_start = 0.0;
   sp.curvature_end = -0.01;
@@ -165,8 +153,8 @@ RoadModel tiny_model() {
   ModelRoad r;
   r.id = 7;
   r.name = "Quarter";
-  const PlanGeometry l = line(0.0, Vec2(0.0, 0.0), 0.0, 10.0);
-  r.plan = PlanView({l, arc(10.0, Vec2(10.0, 0.0), 0.0, 5.0 * std::numbers::pi, 0.1)});
+  const PlanGeometry l = line_record(0.0, Vec2(0.0, 0.0), 0.0, 10.0);
+  r.plan = PlanView({l, arc_record(10.0, Vec2(10.0, 0.0), 0.0, 5.0 * std::numbers::pi, 0.1)});
   r.elevation = CubicProfile(std::vector<CubicPiece>{{0.0, {5.0, 0.01, 0.0, 0.0}}});
   r.speed_mps = 13.889;
   LaneSection s;

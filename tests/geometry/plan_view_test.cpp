@@ -7,31 +7,18 @@
 #include <numbers>
 
 #include "relief/core/errors.h"
+#include "support/plan_records.h"
 
 namespace relief {
 namespace {
 
 constexpr double kPi = std::numbers::pi;
 
-PlanGeometry line(double s, Vec2 start, double heading, double length) {
-  PlanGeometry g;
-  g.kind = PlanGeometry::Kind::line;
-  g.s = s;
-  g.start = start;
-  g.heading = heading;
-  g.length = length;
-  return g;
-}
-
-PlanGeometry arc(double s, Vec2 start, double heading, double length, double curvature) {
-  PlanGeometry g = line(s, start, heading, length);
-  g.kind = PlanGeometry::Kind::arc;
-  g.curvature = curvature;
-  return g;
-}
+using test::arc_record;
+using test::line_record;
 
 PlanGeometry spiral(double length, double k0, double k1) {
-  PlanGeometry g = line(0.0, Vec2::Zero(), 0.0, length);
+  PlanGeometry g = line_record(0.0, Vec2::Zero(), 0.0, length);
   g.kind = PlanGeometry::Kind::spiral;
   g.curvature_start = k0;
   g.curvature_end = k1;
@@ -67,7 +54,7 @@ Vec2 clothoid_end(double a, double length) {
 }
 
 TEST(PlanView, LineMovesAlongItsHeading) {
-  const auto g = line(0.0, {1.0, 2.0}, kPi / 6.0, 10.0);
+  const auto g = line_record(0.0, {1.0, 2.0}, kPi / 6.0, 10.0);
   const Pose2 p = evaluate(g, 4.0);
   EXPECT_NEAR(p.position.x(), 1.0 + 4.0 * std::cos(kPi / 6.0), 1e-12);
   EXPECT_NEAR(p.position.y(), 2.0 + 4.0 * std::sin(kPi / 6.0), 1e-12);
@@ -77,25 +64,25 @@ TEST(PlanView, LineMovesAlongItsHeading) {
 
 TEST(PlanView, QuarterArcsTurnLeftAndRight) {
   const double r = 10.0;
-  const auto left = evaluate(arc(0.0, Vec2::Zero(), 0.0, 0.5 * kPi * r, 1.0 / r), 0.5 * kPi * r);
+  const auto left = evaluate(arc_record(0.0, Vec2::Zero(), 0.0, 0.5 * kPi * r, 1.0 / r), 0.5 * kPi * r);
   EXPECT_NEAR(left.position.x(), 10.0, 1e-12);
   EXPECT_NEAR(left.position.y(), 10.0, 1e-12);
   EXPECT_NEAR(left.heading, 0.5 * kPi, 1e-15);
   EXPECT_NEAR(left.curvature, 0.1, 1e-15);
 
-  const auto right = evaluate(arc(0.0, Vec2::Zero(), 0.0, 0.5 * kPi * r, -1.0 / r), 0.5 * kPi * r);
+  const auto right = evaluate(arc_record(0.0, Vec2::Zero(), 0.0, 0.5 * kPi * r, -1.0 / r), 0.5 * kPi * r);
   EXPECT_NEAR(right.position.x(), 10.0, 1e-12);
   EXPECT_NEAR(right.position.y(), -10.0, 1e-12);
   EXPECT_NEAR(right.heading, -0.5 * kPi, 1e-15);
 
   // A point at an arbitrary ds lies on the circle centred at (0, r).
-  const auto mid = evaluate(arc(0.0, Vec2::Zero(), 0.0, 50.0, 1.0 / r), 13.7);
+  const auto mid = evaluate(arc_record(0.0, Vec2::Zero(), 0.0, 50.0, 1.0 / r), 13.7);
   EXPECT_NEAR((mid.position - Vec2(0.0, r)).norm(), r, 1e-12);
   EXPECT_NEAR(mid.heading, 1.37, 1e-15);
 }
 
 TEST(PlanView, TinyArcCurvatureMatchesLine) {
-  const auto p = evaluate(arc(0.0, Vec2::Zero(), 0.3, 100.0, 1e-12), 100.0);
+  const auto p = evaluate(arc_record(0.0, Vec2::Zero(), 0.3, 100.0, 1e-12), 100.0);
   EXPECT_NEAR(p.position.x(), 100.0 * std::cos(0.3), 1e-8);
   EXPECT_NEAR(p.position.y(), 100.0 * std::sin(0.3), 1e-8);
 }
@@ -118,7 +105,7 @@ TEST(PlanView, ClothoidMatchesFresnelSeriesWithinNanometre) {
 
 TEST(PlanView, SpiralWithConstantCurvatureIsAnArc) {
   const auto s = spiral(800.0, -0.02, -0.02);
-  const auto a = arc(0.0, Vec2::Zero(), 0.0, 800.0, -0.02);
+  const auto a = arc_record(0.0, Vec2::Zero(), 0.0, 800.0, -0.02);
   for (double ds : {10.0, 400.0, 800.0}) {
     EXPECT_LT((evaluate(s, ds).position - evaluate(a, ds).position).norm(), 1e-9) << ds;
     EXPECT_NEAR(evaluate(s, ds).heading, evaluate(a, ds).heading, 1e-12);
@@ -153,7 +140,7 @@ TEST(PlanView, ParamPoly3LengthOfAParabola) {
 }
 
 TEST(PlanView, ParamPoly3EvaluatesByArcLength) {
-  PlanGeometry g = line(0.0, {100.0, 50.0}, kPi / 2.0, 0.0);
+  PlanGeometry g = line_record(0.0, {100.0, 50.0}, kPi / 2.0, 0.0);
   g.kind = PlanGeometry::Kind::param_poly3;
   g.u = Poly3{0.0, 10.0, 0.0, 0.0};
   g.v = Poly3{0.0, 0.0, 5.0, 0.0};
@@ -169,7 +156,7 @@ TEST(PlanView, ParamPoly3EvaluatesByArcLength) {
 }
 
 TEST(PlanView, ParamPoly3WithArcLengthRange) {
-  PlanGeometry g = line(0.0, Vec2::Zero(), 0.0, 7.0);
+  PlanGeometry g = line_record(0.0, Vec2::Zero(), 0.0, 7.0);
   g.kind = PlanGeometry::Kind::param_poly3;
   g.normalized = false;
   g.u = Poly3{0.0, 1.0, 0.0, 0.0};
@@ -180,14 +167,15 @@ TEST(PlanView, ParamPoly3WithArcLengthRange) {
 }
 
 TEST(PlanView, EvaluateClampsDs) {
-  const auto g = line(0.0, Vec2::Zero(), 0.0, 5.0);
+  const auto g = line_record(0.0, Vec2::Zero(), 0.0, 5.0);
   EXPECT_NEAR(evaluate(g, -1.0).position.x(), 0.0, 1e-15);
   EXPECT_NEAR(evaluate(g, 9.0).position.x(), 5.0, 1e-15);
 }
 
 PlanView line_then_arc() {
   const double r = 20.0;
-  return PlanView({line(0.0, Vec2::Zero(), 0.0, 10.0), arc(10.0, {10.0, 0.0}, 0.0, 0.5 * kPi * r, 1.0 / r)});
+  return PlanView({line_record(0.0, Vec2::Zero(), 0.0, 10.0),
+                   arc_record(10.0, {10.0, 0.0}, 0.0, 0.5 * kPi * r, 1.0 / r)});
 }
 
 TEST(PlanView, TotalTurnIntegratesAbsoluteCurvature) {
@@ -197,13 +185,13 @@ TEST(PlanView, TotalTurnIntegratesAbsoluteCurvature) {
   const double r = 20.0;
   PlanGeometry s = spiral(20.0, -0.1, 0.3);
   s.s = 10.0 + 0.5 * kPi * r;
-  PlanGeometry p = line(s.s + 20.0, Vec2::Zero(), 0.0, 0.0);
+  PlanGeometry p = line_record(s.s + 20.0, Vec2::Zero(), 0.0, 0.0);
   p.kind = PlanGeometry::Kind::param_poly3;
   p.u = Poly3{0.0, 10.0, 0.0, 0.0};
   p.v = Poly3{0.0, 0.0, 5.0, 0.0};
   p.length = param_poly3_length(p.u, p.v, 1.0);
-  const PlanView plan(
-      {line(0.0, Vec2::Zero(), 0.0, 10.0), arc(10.0, {10.0, 0.0}, 0.0, 0.5 * kPi * r, 1.0 / r), s, p});
+  const PlanView plan({line_record(0.0, Vec2::Zero(), 0.0, 10.0),
+                       arc_record(10.0, {10.0, 0.0}, 0.0, 0.5 * kPi * r, 1.0 / r), s, p});
   EXPECT_EQ(plan.total_turn(0.0, 10.0), 0.0);
   EXPECT_NEAR(plan.total_turn(0.0, s.s), 0.5 * kPi, 1e-12);
   EXPECT_NEAR(plan.total_turn(10.0 + 0.25 * kPi * r, s.s), 0.25 * kPi, 1e-12);  // half the arc
@@ -240,7 +228,7 @@ TEST(PlanView, LengthRecordAtAndClampedPoses) {
 
 TEST(PlanView, RecordAtOnManyRecordsIsBinarySearch) {
   std::vector<PlanGeometry> records;
-  for (int i = 0; i < 1000; ++i) records.push_back(line(2.0 * i, {2.0 * i, 0.0}, 0.0, 2.0));
+  for (int i = 0; i < 1000; ++i) records.push_back(line_record(2.0 * i, {2.0 * i, 0.0}, 0.0, 2.0));
   const PlanView plan(records);
   EXPECT_EQ(plan.record_at(0.5), 0u);
   EXPECT_EQ(plan.record_at(1001.0), 500u);
@@ -249,17 +237,18 @@ TEST(PlanView, RecordAtOnManyRecordsIsBinarySearch) {
 }
 
 TEST(PlanView, ConstructorRejectsBadRecords) {
-  EXPECT_THROW(PlanView({line(0.0, Vec2::Zero(), 0.0, 0.0)}), InvalidInput);
-  EXPECT_THROW(PlanView({line(0.0, Vec2::Zero(), 0.0, -1.0)}), InvalidInput);
-  EXPECT_THROW(PlanView({line(0.0, Vec2::Zero(), 0.0, std::numeric_limits<double>::infinity())}),
+  EXPECT_THROW(PlanView({line_record(0.0, Vec2::Zero(), 0.0, 0.0)}), InvalidInput);
+  EXPECT_THROW(PlanView({line_record(0.0, Vec2::Zero(), 0.0, -1.0)}), InvalidInput);
+  EXPECT_THROW(PlanView({line_record(0.0, Vec2::Zero(), 0.0, std::numeric_limits<double>::infinity())}),
                InvalidInput);
-  EXPECT_THROW(PlanView({line(0.0, Vec2::Zero(), 0.0, std::nan(""))}), InvalidInput);
-  EXPECT_THROW(PlanView({line(0.0, Vec2(std::nan(""), 0.0), 0.0, 1.0)}), InvalidInput);
-  EXPECT_THROW(PlanView({line(5.0, Vec2::Zero(), 0.0, 1.0), line(1.0, Vec2::Zero(), 0.0, 1.0)}),
+  EXPECT_THROW(PlanView({line_record(0.0, Vec2::Zero(), 0.0, std::nan(""))}), InvalidInput);
+  EXPECT_THROW(PlanView({line_record(0.0, Vec2(std::nan(""), 0.0), 0.0, 1.0)}), InvalidInput);
+  EXPECT_THROW(PlanView({line_record(5.0, Vec2::Zero(), 0.0, 1.0), line_record(1.0, Vec2::Zero(), 0.0, 1.0)}),
                InvalidInput);
-  EXPECT_THROW(PlanView({line(0.0, Vec2::Zero(), 0.0, 1.0), line(0.0, Vec2::Zero(), 0.0, 1.0)}),
+  EXPECT_THROW(PlanView({line_record(0.0, Vec2::Zero(), 0.0, 1.0), line_record(0.0, Vec2::Zero(), 0.0, 1.0)}),
                InvalidInput);
-  EXPECT_NO_THROW(PlanView({line(0.0, Vec2::Zero(), 0.0, 1.0), line(1.0, {1.0, 0.0}, 0.0, 1.0)}));
+  EXPECT_NO_THROW(
+      PlanView({line_record(0.0, Vec2::Zero(), 0.0, 1.0), line_record(1.0, {1.0, 0.0}, 0.0, 1.0)}));
 }
 
 TEST(PlanView, EmptyPlanViewCannotBeEvaluated) {

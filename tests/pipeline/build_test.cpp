@@ -3,12 +3,15 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <fstream>
 #include <iostream>
 
 #include "pipeline/sf_options.h"
 #include "relief/core/errors.h"
 #include "relief/pipeline/info.h"
+#include "relief/roads/opendrive_reader.h"
 #include "support/test_data.h"
 
 namespace relief {
@@ -154,15 +157,60 @@ TEST(Build, PotreroWithReferenceDem) {
   EXPECT_TRUE(r.fit->converged);
 }
 
+// The same inputs read with IDW and with bilinear interpolation: two different road models,
+// each close to its own reading of the DEM.
 TEST(Build, PotreroIdwDiffersFromBilinear) {
   RELIEF_REQUIRE_SHARED_DATA();
-  BuildOptions o = potrero_options("build_potrero_idw");
-  o.dem.interpolation = Interpolation::idw;
-  Diagnostics d;
-  const RunReport idw = build(o, d).report;
-  EXPECT_EQ(idw.interpolation, Interpolation::idw);
-  // IDW over four cells flattens towards cell values: steps between samples, so its road model
-  // departs from a bilinear reading and its grades are noisier.
+  const auto run = [](Interpolation interpolation, const std::string& out) {
+    BuildOptions o = potrero_options(out);
+    o.dem.interpolation = interpolation;
+    o.outputs = {Output::report, Output::xodr};
+    Diagnostics d;
+    const BuildResult result = build(o, d);
+    EXPECT_EQ(result.report.interpolation, interpolation);
+    const auto xodr = std::find_if(result.written.begin(), result.written.end(),
+                                   [](const std::filesystem::path& p) { return p.extension() == ".xodr"; });
+    if (xodr == result.written.end()) throw std::runtime_error("no .xodr written");
+    return std::make_pair(result.report, read_opendrive(*xodr));
+  };
+  const auto [idw, idw_model] = run(Interpolation::idw, "build_potrero_idw");
+  const auto [bilinear, bilinear_model] = run(Interpolation::bilinear, "build_potrero_bilinear");
+  // Road by road, every metre: the elevations the two OpenDRIVE files carry.
+  ASSERT_EQ(idw_model.roads.size(), bilinear_model.roads.size());
+  double sum_squares = 0.0, max_difference = 0.0;
+  std::size_t n = 0;
+  for (std::size_t k = 0; k < idw_model.roads.size(); ++k) {
+    const ModelRoad& a = idw_model.roads[k];
+    const ModelRoad& b = bilinear_model.roads[k];
+    ASSERT_EQ(a.id, b.id);
+    ASSERT_NEAR(a.length(), b.length(), 1e-6) << a.id;
+    for (double s = 0.0; s <= a.length(); s += 1.0, ++n) {
+      const double dz = a.elevation.value(s) - b.elevation.value(s);
+      sum_squares += dz * dz;
+      max_difference = std::max(max_difference, std::abs(dz));
+    }
+  }
+  const double rms_difference = std::sqrt(sum_squares / static_cast<double>(n));
+  std::cout << "IDW - bilinear over " << n << " stations: rms " << rms_difference << " m, max "
+            << max_difference << " m; vs DEM rmse idw " << method(idw, "relief").ground.vs_dem.rmse_m
+            << " bilinear " << method(bilinear, "relief").ground.vs_dem.rmse_m << " m, drape idw "
+            << method(idw, "raw").ground.vs_dem.rmse_m << " bilinear "
+            << method(bilinear, "raw").ground.vs_dem.rmse_m << " m\n";
+  // Measured: rms 0.027 m, max 0.25 m over 9967 stations. IDW keeps to each cell's value near
+  // its centre, bilinear blends across it: centimetres apart on average, decimetres at most.
+  EXPECT_GT(rms_difference, 0.01);
+  EXPECT_LT(rms_difference, 0.1);
+  EXPECT_GT(max_difference, 0.1);
+  EXPECT_LT(max_difference, 1.0);
+  // Each fit stays as close to its own reading of the DEM as in PotreroWithReferenceDem
+  // (measured: 0.14 m IDW, 0.12 m bilinear). Between the drape's 1 m samples bilinear bends
+  // by millimetres (0.003 m); IDW's steps leave centimetres (0.031 m).
+  for (const RunReport* r : {&idw, &bilinear}) EXPECT_LT(method(*r, "relief").ground.vs_dem.rmse_m, 0.5);
+  EXPECT_LT(method(bilinear, "raw").ground.vs_dem.rmse_m, 0.01);
+  EXPECT_GT(method(idw, "raw").ground.vs_dem.rmse_m, 0.01);
+  EXPECT_LT(method(idw, "raw").ground.vs_dem.rmse_m, 0.1);
+  // IDW over four cells flattens towards cell values: steps between samples, so its grades
+  // are noisier.
   EXPECT_GT(idw.gradient.max_percent, 10.0);
 }
 

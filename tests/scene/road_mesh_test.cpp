@@ -14,6 +14,7 @@
 #include "relief/geometry/mesh_quality.h"
 #include "relief/roads/opendrive_reader.h"
 #include "relief/roads/road_surface.h"
+#include "support/road_models.h"
 
 namespace relief {
 namespace {
@@ -24,47 +25,8 @@ std::filesystem::path golden(const std::string& name) {
   return std::filesystem::path(RELIEF_SOURCE_DIR) / "tests/pipeline/golden" / name;
 }
 
-LaneModel lane(int id, double width, RoadMark::Type mark = RoadMark::Type::none) {
-  LaneModel l;
-  l.id = id;
-  l.width = CubicProfile::constant(width);
-  l.mark.type = mark;
-  return l;
-}
-
-PlanGeometry line(double s, const Vec2& start, double heading, double length) {
-  PlanGeometry g;
-  g.kind = PlanGeometry::Kind::line;
-  g.s = s;
-  g.start = start;
-  g.heading = heading;
-  g.length = length;
-  return g;
-}
-
-// A straight road along `heading` from `start`, z = z0 + grade * s, lane 1 of 3 m and lane -1
-// of 3.5 m.
-ModelRoad straight_road(int id, const Vec2& start, double heading, double length, double z0, double grade) {
-  ModelRoad road;
-  road.id = id;
-  road.plan = PlanView({line(0.0, start, heading, length)});
-  road.elevation = CubicProfile({CubicPiece{0.0, {z0, grade, 0.0, 0.0}}});
-  road.lane_offset = CubicProfile::constant(0.0);
-  LaneSection section;
-  section.left = {lane(1, 3.0)};
-  section.right = {lane(-1, 3.5)};
-  road.sections = {section};
-  return road;
-}
-
-double area(const TriangleMesh& mesh) {
-  double sum = 0.0;
-  for (const auto& t : mesh.triangles) {
-    const Vec3& a = mesh.vertices[t[0]];
-    sum += 0.5 * (mesh.vertices[t[1]] - a).cross(mesh.vertices[t[2]] - a).norm();
-  }
-  return sum;
-}
+using test::all_facing_up;
+using test::straight_road;
 
 std::map<Edge, int> edge_uses(const TriangleMesh& mesh) {
   std::map<Edge, int> uses;
@@ -105,14 +67,6 @@ std::size_t components(const TriangleMesh& mesh) {
   return count;
 }
 
-bool all_facing_up(const TriangleMesh& mesh) {
-  for (const auto& t : mesh.triangles) {
-    const Vec3& a = mesh.vertices[t[0]];
-    if (!((mesh.vertices[t[1]] - a).cross(mesh.vertices[t[2]] - a).z() > 0.0)) return false;
-  }
-  return true;
-}
-
 TEST(RoadMesh, StraightRoadOnAPlaneHasElevenStationsAndExactArea) {
   RoadModel model;
   model.roads = {straight_road(7, Vec2(10.0, 20.0), 0.3, 100.0, 5.0, 0.03)};
@@ -132,7 +86,7 @@ TEST(RoadMesh, StraightRoadOnAPlaneHasElevenStationsAndExactArea) {
   for (const Vec3& v : meshes.road.vertices) {
     EXPECT_NEAR(v.z(), 5.0 + 0.03 * (v.head<2>() - Vec2(10.0, 20.0)).dot(dir), 1e-9);
   }
-  EXPECT_NEAR(area(meshes.road), 100.0 * std::sqrt(1.0 + 0.03 * 0.03) * 6.5, 1e-9);
+  EXPECT_NEAR(test::mesh_area(meshes.road), 100.0 * std::sqrt(1.0 + 0.03 * 0.03) * 6.5, 1e-9);
   EXPECT_LT(meshes.max_surface_deviation_m, 1e-9);
   EXPECT_TRUE(all_facing_up(meshes.road));
   for (const Vec3& n : meshes.road.normals) EXPECT_GT(n.z(), 0.99);
@@ -142,7 +96,7 @@ TEST(RoadMesh, StraightRoadOnAPlaneHasElevenStationsAndExactArea) {
 TEST(RoadMesh, CurvedRoadMeetsTheToleranceAndVerticesLieOnTheSurface) {
   // 40 m of arc, radius 30 m, with a crest: the tolerance, not max_spacing_m, sets the stations.
   ModelRoad road = straight_road(3, Vec2::Zero(), 0.0, 40.0, 10.0, 0.05);
-  PlanGeometry arc = line(0.0, Vec2::Zero(), 0.0, 40.0);
+  PlanGeometry arc = test::line_record(0.0, Vec2::Zero(), 0.0, 40.0);
   arc.kind = PlanGeometry::Kind::arc;
   arc.curvature = 1.0 / 30.0;
   road.plan = PlanView({arc});
@@ -186,10 +140,11 @@ TEST(RoadMesh, CurvedRoadMeetsTheToleranceAndVerticesLieOnTheSurface) {
 
 TEST(RoadMesh, SectionStartsAndRecordBoundariesAreStations) {
   ModelRoad road = straight_road(1, Vec2::Zero(), 0.0, 30.0, 0.0, 0.0);
-  road.plan = PlanView({line(0.0, Vec2::Zero(), 0.0, 12.5), line(12.5, Vec2(12.5, 0.0), 0.0, 17.5)});
+  road.plan = PlanView(
+      {test::line_record(0.0, Vec2::Zero(), 0.0, 12.5), test::line_record(12.5, Vec2(12.5, 0.0), 0.0, 17.5)});
   LaneSection second = road.sections.front();
   second.s = 20.0;
-  second.left = {lane(1, 3.0), lane(2, 2.0)};
+  second.left = {test::constant_lane(1, 3.0), test::constant_lane(2, 2.0)};
   road.sections.push_back(second);
   RoadModel model;
   model.roads = {road};
@@ -205,7 +160,7 @@ TEST(RoadMesh, SectionStartsAndRecordBoundariesAreStations) {
   std::size_t at_seam = 0;
   for (const Vec2& uv : meshes.road.uvs) at_seam += uv.y() == 20.0 ? 1 : 0;
   EXPECT_EQ(at_seam, 4u);
-  EXPECT_NEAR(area(meshes.road), 30.0 * 6.5 + 10.0 * 2.0, 1e-9);
+  EXPECT_NEAR(test::mesh_area(meshes.road), 30.0 * 6.5 + 10.0 * 2.0, 1e-9);
   EXPECT_EQ(non_manifold_edges(meshes.road), 0u);
   EXPECT_EQ(components(meshes.road), 1u);
 }
@@ -387,7 +342,7 @@ TEST(RoadMesh, MarkingsAreStripsOnTheirBorders) {
   const RoadMeshes meshes = build_road_meshes(model, options, diagnostics);
   // Solid: 100 m x 0.12 m; double solid: twice that; broken: 3 m every 9 m from s = 0, the
   // last dash (s = 99) cut to 1 m.
-  EXPECT_NEAR(area(meshes.marking), 3.0 * 100.0 * 0.12 + (11.0 * 3.0 + 1.0) * 0.12, 1e-9);
+  EXPECT_NEAR(test::mesh_area(meshes.marking), 3.0 * 100.0 * 0.12 + (11.0 * 3.0 + 1.0) * 0.12, 1e-9);
   for (const Vec3& v : meshes.marking.vertices) {
     EXPECT_NEAR(v.z(), 4.01, 1e-12);
     const double y = v.y();
@@ -402,15 +357,15 @@ TEST(RoadMesh, MarkingsAreStripsOnTheirBorders) {
 
 TEST(RoadMesh, SidewalkLanesGoToTheSidewalkMesh) {
   ModelRoad road = straight_road(1, Vec2::Zero(), 0.0, 20.0, 0.0, 0.0);
-  LaneModel walk = lane(-2, 2.0);
+  LaneModel walk = test::constant_lane(-2, 2.0);
   walk.type = "sidewalk";
   road.sections[0].right.push_back(walk);
   RoadModel model;
   model.roads = {road};
   Diagnostics diagnostics;
   const RoadMeshes meshes = build_road_meshes(model, {}, diagnostics);
-  EXPECT_NEAR(area(meshes.road), 20.0 * 6.5, 1e-9);
-  EXPECT_NEAR(area(meshes.sidewalk), 20.0 * 2.0, 1e-9);
+  EXPECT_NEAR(test::mesh_area(meshes.road), 20.0 * 6.5, 1e-9);
+  EXPECT_NEAR(test::mesh_area(meshes.sidewalk), 20.0 * 2.0, 1e-9);
   EXPECT_EQ(meshes.sidewalk.vertices.size(), 6u);
 }
 

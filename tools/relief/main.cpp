@@ -6,7 +6,9 @@
 #include "commands.h"
 #include "relief/export/report_writer.h"
 
-int main(int argc, char** argv) {
+// The runners catch every exception (options.cpp); CLI11 throws from the set-up below only for a
+// defect in the option definitions, which may abort.
+int main(int argc, char** argv) {  // NOLINT(bugprone-exception-escape)
   using namespace relief::cli;
   CLI::App app{"relief " + relief::relief_version() +
                ": elevation-aware 3D road networks from OpenStreetMap and DEMs\n"

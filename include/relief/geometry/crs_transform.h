@@ -20,8 +20,8 @@ class CrsTransform {
   /// Throws ProjectionError if either CRS is unknown or no operation exists.
   CrsTransform(std::string_view from, std::string_view to, std::optional<LonLatBox> area = std::nullopt);
   ~CrsTransform();
-  CrsTransform(CrsTransform&&) noexcept;
-  CrsTransform& operator=(CrsTransform&&) noexcept;
+  CrsTransform(CrsTransform&& other) noexcept;
+  CrsTransform& operator=(CrsTransform&& other) noexcept;
   CrsTransform(const CrsTransform&) = delete;
   CrsTransform& operator=(const CrsTransform&) = delete;
 

@@ -24,6 +24,7 @@ namespace relief {
 /// - Roads are ordered by their first piece in the input (which keeps its direction), junctions
 ///   by first appearance along the roads; ids are indices. Runs in linear time.
 /// Throws InvalidInput when no road is left, ProjectionError when a node cannot be projected.
-[[nodiscard]] RoadNetwork build_network(const OsmRoads& osm, const GeoFrame& frame, Diagnostics& diagnostics);
+[[nodiscard]] RoadNetwork build_network(const OsmRoads& input, const GeoFrame& frame,
+                                        Diagnostics& diagnostics);
 
 }  // namespace relief

@@ -99,8 +99,8 @@ class DemSampler {
   DemSampler(const std::vector<std::string>& paths, const GeoFrame& frame, const Aabb2& area,
              const DemOptions& options = {}, Diagnostics* diagnostics = nullptr);
   ~DemSampler();
-  DemSampler(DemSampler&&) noexcept;
-  DemSampler& operator=(DemSampler&&) noexcept;
+  DemSampler(DemSampler&& other) noexcept;
+  DemSampler& operator=(DemSampler&& other) noexcept;
 
   /// Height at one point, or nullopt where no raster has a valid value.
   [[nodiscard]] std::optional<double> height_at(const Vec2& local) const;
