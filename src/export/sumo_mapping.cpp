@@ -1,16 +1,25 @@
 #include "relief/export/sumo_mapping.h"
 
+#include <nlohmann/json.hpp>
+
 #include <string>
 
-#include "export/html_text.h"
 #include "relief/core/number_format.h"
 
 namespace relief {
 
+namespace {
+
+// A JSON string literal, quoted and escaped.
+std::string quoted(const std::string& text) {
+  return nlohmann::json(text).dump();
+}
+
+}  // namespace
+
 void write_sumo_mapping(std::ostream& out, const SumoPlainNetwork& net) {
-  std::string s = "{\n  \"frame\": {\"crs\": \"";
-  html::append_escaped(s, net.frame.crs());
-  s += "\", \"origin\": [";
+  std::string s = "{\n  \"frame\": {\"crs\": " + quoted(net.frame.crs());
+  s += ", \"origin\": [";
   append_fixed(s, net.frame.origin().x(), 3);
   s += ", ";
   append_fixed(s, net.frame.origin().y(), 3);
@@ -20,9 +29,8 @@ void write_sumo_mapping(std::ostream& out, const SumoPlainNetwork& net) {
     for (const SumoLane& l : e.lanes) {
       s += first ? "\n" : ",\n";
       first = false;
-      s += "    {\"sumo_lane\": \"" + e.id + "_" + std::to_string(l.index) +
-           "\", \"odr_road\": " + std::to_string(e.odr_road) +
-           ", \"odr_lane\": " + std::to_string(l.odr_lane) +
+      s += "    {\"sumo_lane\": " + quoted(e.id + "_" + std::to_string(l.index)) +
+           ", \"odr_road\": " + std::to_string(e.odr_road) + ", \"odr_lane\": " + std::to_string(l.odr_lane) +
            ", \"along_s\": " + (e.along_s ? "true" : "false") + "}";
     }
   }
@@ -32,9 +40,10 @@ void write_sumo_mapping(std::ostream& out, const SumoPlainNetwork& net) {
     if (c.odr_road < 0) continue;
     s += first ? "\n" : ",\n";
     first = false;
-    s += "    {\"from_lane\": \"" + c.from + "_" + std::to_string(c.from_lane) + "\", \"to_lane\": \"" +
-         c.to + "_" + std::to_string(c.to_lane) + "\", \"odr_road\": " + std::to_string(c.odr_road) +
-         ", \"odr_lane\": " + std::to_string(c.odr_lane) + "}";
+    s += "    {\"from_lane\": " + quoted(c.from + "_" + std::to_string(c.from_lane)) +
+         ", \"to_lane\": " + quoted(c.to + "_" + std::to_string(c.to_lane)) +
+         ", \"odr_road\": " + std::to_string(c.odr_road) + ", \"odr_lane\": " + std::to_string(c.odr_lane) +
+         "}";
   }
   s += "\n  ]\n}\n";
   out << s;

@@ -58,5 +58,18 @@ TEST(SumoMapping, DirectLinksAreLeftOutAndAnEmptyNetworkIsValidJson) {
   EXPECT_TRUE(empty["connections"].empty());
 }
 
+// The CRS is the user's (--crs takes any PROJ string) and ids come from the data: the file is
+// JSON whatever they hold (the HTML escaper used before made '&' an entity and left '"' and
+// '\\' to break the file).
+TEST(SumoMapping, CrsAndIdsAreJsonEscaped) {
+  SumoPlainNetwork net = ramp_network();
+  const std::string crs = "+proj=tmerc +title=\"a & b\" +path=C:\\grids";
+  net.frame = GeoFrame(crs, net.frame.origin());
+  net.edges.front().id = "edge\"1\\";
+  const nlohmann::json j = nlohmann::json::parse(mapping_text(net));
+  EXPECT_EQ(j["frame"]["crs"], crs);
+  EXPECT_EQ(j["lanes"][0]["sumo_lane"], "edge\"1\\_0");
+}
+
 }  // namespace
 }  // namespace relief
