@@ -7,6 +7,7 @@
 #include <unordered_map>
 
 #include "export/sumo_shapes.h"
+#include "geometry/outline_order.h"
 #include "relief/core/diagnostic_codes.h"
 #include "relief/core/errors.h"
 #include "relief/roads/road_surface.h"
@@ -203,36 +204,40 @@ SumoPlainNetwork build_sumo_network(const RoadModel& model, const std::vector<Su
     }
   }
   for (std::size_t i = 0; i < net.nodes.size(); ++i) net.nodes[i].position /= node_points[i];
-  // Junction outlines: the outer corners of every road end, road ends in angular order around
-  // the centre and each end's two corners counter-clockwise, so the ring does not interleave.
-  std::unordered_map<std::string, std::vector<std::pair<Vec3, Vec3>>> road_ends;
+  // Junction outlines: the outer corners of every road end, each end's two corners from its
+  // right to its left looking out of the junction along the road (counter-clockwise around the
+  // junction whatever the end's position) and the ends in the order of junction_end_order, so the
+  // ring is simple. A ring ordered by the angle of the ends' midpoints around the centre cut across
+  // a road whose end lies beside the centre: netconvert cut that lane there, metres short of its
+  // internal lanes.
+  struct RingEnd {
+    Vec3 right, left;
+    Vec2 out;
+  };
+  std::unordered_map<std::string, std::vector<RingEnd>> road_ends;
   for (const ModelRoad& road : model.roads) {
     if (road.junction >= 0 || road.sections.empty()) continue;
     for (int end = 0; end < 2; ++end) {
       const std::optional<RoadLink>& link = end == 0 ? road.predecessor : road.successor;
       if (!link || link->element != RoadLink::Element::junction) continue;
-      road_ends["J" + std::to_string(link->id)].push_back(
-          cross_section(road, end == 0 ? 0.0 : road.length()));
+      const auto [left, right] = cross_section(road, end == 0 ? 0.0 : road.length());
+      // At the road's start "out of the junction" is along s, with the right border on the right.
+      RingEnd ring_end = end == 0 ? RingEnd{right, left, {}} : RingEnd{left, right, {}};
+      ring_end.out = -outward(road, end);
+      road_ends["J" + std::to_string(link->id)].push_back(ring_end);
     }
   }
   for (SumoNode& node : net.nodes) {
     auto it = road_ends.find(node.id);
     if (it == road_ends.end() || it->second.size() < 2) continue;
-    const Vec2 c = node.position.head<2>();
-    const auto angle = [&](const Vec3& p) { return std::atan2(p.y() - c.y(), p.x() - c.x()); };
-    auto& ends = it->second;
-    for (auto& [a, b] : ends) {
-      const Vec2 da = a.head<2>() - c, db = b.head<2>() - c;
-      if (da.x() * db.y() - da.y() * db.x() < 0.0) std::swap(a, b);
-    }
-    std::sort(ends.begin(), ends.end(), [&](const auto& x, const auto& y) {
-      return angle(0.5 * (x.first + x.second)) < angle(0.5 * (y.first + y.second));
-    });
+    std::vector<detail::PlanEnd> plan_ends;
+    for (const RingEnd& e : it->second) plan_ends.push_back({e.right.head<2>(), e.left.head<2>(), e.out});
     Polyline3 ring;
-    for (const auto& [a, b] : ends) {
-      ring.push_back(a);
-      ring.push_back(b);
+    for (const std::size_t k : detail::junction_end_order(plan_ends)) {
+      ring.push_back(it->second[k].right);
+      ring.push_back(it->second[k].left);
     }
+    const Vec2 c = node.position.head<2>();
     for (Vec3& p : ring) {
       const Vec2 d = c - p.head<2>();
       const double len = d.norm();

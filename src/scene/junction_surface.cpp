@@ -21,10 +21,10 @@
 #include <CGAL/Triangulation_vertex_base_with_info_2.h>
 #pragma GCC diagnostic pop
 
+#include "geometry/outline_order.h"
 #include "relief/core/errors.h"
 #include "relief/roads/road_surface.h"
 #include "scene/lane_loft.h"
-#include "scene/outline_order.h"
 
 namespace relief::detail {
 
@@ -194,15 +194,18 @@ std::string build_junction_surface(const RoadModel& model, const JunctionModel& 
   Vec2 centre = Vec2::Zero();
   for (const JunctionEnd& e : ends) centre += midpoint(e);
   centre /= static_cast<double>(ends.size());
-  std::vector<std::pair<double, std::size_t>> order;
-  for (std::size_t k = 0; k < ends.size(); ++k) {
-    const Vec2 d = midpoint(ends[k]) - centre;
-    order.emplace_back(std::atan2(d.y(), d.x()), k);
+  // The same order as the node outlines given to netconvert (junction_end_order).
+  std::vector<PlanEnd> plan_ends;
+  for (const JunctionEnd& e : ends) {
+    const ModelRoad& road = model.roads[static_cast<std::size_t>(e.road_index)];
+    const double h = heading_at(road, e.at_start ? 0.0 : road.length());
+    const Vec2 along(std::cos(h), std::sin(h));
+    plan_ends.push_back({vertices[e.vertices.front()].head<2>(), vertices[e.vertices.back()].head<2>(),
+                         e.at_start ? along : Vec2(-along)});
   }
-  std::sort(order.begin(), order.end());
   std::vector<JunctionEnd> sorted;
-  sorted.reserve(order.size());
-  for (const auto& [angle, k] : order) sorted.push_back(std::move(ends[k]));
+  sorted.reserve(ends.size());
+  for (const std::size_t k : junction_end_order(plan_ends)) sorted.push_back(std::move(ends[k]));
 
   // Whether p lies behind an end's edge (outside the junction), across from the edge itself.
   const auto over_end = [&](const JunctionEnd& e, const Vec3& p) {

@@ -1,6 +1,7 @@
-#include "scene/outline_order.h"
+#include "geometry/outline_order.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <limits>
 #include <utility>
@@ -51,6 +52,18 @@ class Search {
     descend(0.0);
     if (best_.empty()) return std::nullopt;
     return best_;
+  }
+
+  // Whether the chains in this order make a simple counter-clockwise polygon.
+  bool simple(const std::vector<std::size_t>& order) {
+    points_.clear();
+    segments_.clear();
+    for (const std::size_t k : order) {
+      if (k >= chains_.size() || !append(chains_[k])) return false;
+    }
+    if (points_.size() < 3) return false;
+    close(0.0);
+    return best_gaps_ < std::numeric_limits<double>::infinity();
   }
 
  private:
@@ -144,6 +157,39 @@ class Search {
 std::optional<std::vector<std::size_t>> simple_outline_order(const std::vector<Polyline2>& chains,
                                                              std::size_t budget) {
   return Search(chains, budget).run();
+}
+
+bool is_simple_outline(const std::vector<Polyline2>& chains, const std::vector<std::size_t>& order) {
+  return Search(chains, 0).simple(order);
+}
+
+std::vector<std::size_t> junction_end_order(const std::vector<PlanEnd>& ends) {
+  std::vector<std::size_t> order(ends.size());
+  for (std::size_t k = 0; k < ends.size(); ++k) order[k] = k;
+  if (ends.size() < 2) return order;
+  Vec2 centre = Vec2::Zero();
+  for (const PlanEnd& e : ends) centre += 0.5 * (e.right + e.left);
+  centre /= static_cast<double>(ends.size());
+  double reach = 0.0;
+  for (const PlanEnd& e : ends) reach = std::max(reach, (0.5 * (e.right + e.left) - centre).norm());
+  std::vector<double> angle(ends.size());
+  for (std::size_t k = 0; k < ends.size(); ++k) {
+    const Vec2 ahead = 0.5 * (ends[k].right + ends[k].left) + reach * ends[k].out - centre;
+    angle[k] = std::atan2(ahead.y(), ahead.x());
+  }
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::size_t a, std::size_t b) { return angle[a] < angle[b]; });
+  std::vector<Polyline2> chains;
+  chains.reserve(ends.size());
+  for (const PlanEnd& e : ends) chains.push_back({e.right, e.left});
+  if (is_simple_outline(chains, order)) return order;
+  std::vector<Polyline2> sorted;
+  for (const std::size_t k : order) sorted.push_back(chains[k]);
+  const std::optional<std::vector<std::size_t>> simple = simple_outline_order(sorted);
+  if (!simple) return order;
+  std::vector<std::size_t> reordered;
+  for (const std::size_t k : *simple) reordered.push_back(order[k]);
+  return reordered;
 }
 
 }  // namespace relief::detail

@@ -1,4 +1,4 @@
-#include "scene/outline_order.h"
+#include "geometry/outline_order.h"
 
 #include <gtest/gtest.h>
 
@@ -118,6 +118,50 @@ TEST(SimpleOutlineOrder, StopsWithinItsBudget) {
     EXPECT_GT(a.x() * b.y() - a.y() * b.x(), 0.0) << "not counter-clockwise at step " << k;
   }
   EXPECT_FALSE(simple_outline_order(chains, 3));
+}
+
+// The cyclic order `order` rotated to start at `first`.
+std::vector<std::size_t> starting_at(std::vector<std::size_t> order, std::size_t first) {
+  std::rotate(order.begin(), std::find(order.begin(), order.end(), first), order.end());
+  return order;
+}
+
+TEST(JunctionEndOrder, AnEndBesideTheCentreSortsByItsRoadsDirection) {
+  // NE's J286 in small: road A leaves east from an end lying west of the ends' centroid, B south,
+  // C north. By its midpoint's angle A would come after C (the ring then crosses itself and,
+  // in netconvert, cut A's lane metres in); by a point ahead along its road, between B and C.
+  const std::vector<PlanEnd> ends = {
+      {{-5, -3}, {-5, 3}, {1, 0}},   // A: looking east, right is south
+      {{-6, -8}, {0, -8}, {0, -1}},  // B: looking south, right is west
+      {{0, 6}, {-8, 6}, {0, 1}},     // C: looking north, right is east
+  };
+  std::vector<Polyline2> chains;
+  for (const PlanEnd& e : ends) chains.push_back({e.right, e.left});
+  EXPECT_FALSE(is_simple_outline(chains, {1, 2, 0})) << "the midpoint order this test guards against";
+  const std::vector<std::size_t> order = junction_end_order(ends);
+  EXPECT_EQ(starting_at(order, 1), (std::vector<std::size_t>{1, 0, 2}));
+  EXPECT_TRUE(is_simple_outline(chains, order));
+  EXPECT_TRUE(simple_and_counter_clockwise(chains, order));
+}
+
+TEST(JunctionEndOrder, ASimpleOrderIsFoundWhereTheDirectionsMislead) {
+  // A joined junction: two ends far apart both leaving north, a third between them leaving
+  // south-west across under the first. Whatever the sort gives, the result must be simple.
+  const std::vector<PlanEnd> ends = {
+      {{30, 0}, {24, 0}, {0, 1}},        // leaves north, east side
+      {{-24, 0}, {-30, 0}, {0, 1}},      // leaves north, west side
+      {{-2, -3}, {4, -3}, {0.6, -0.8}},  // leaves south between them
+  };
+  std::vector<Polyline2> chains;
+  for (const PlanEnd& e : ends) chains.push_back({e.right, e.left});
+  const std::vector<std::size_t> order = junction_end_order(ends);
+  ASSERT_EQ(order.size(), 3u);
+  EXPECT_TRUE(simple_and_counter_clockwise(chains, order));
+}
+
+TEST(JunctionEndOrder, FewerThanTwoEndsKeepTheirOrder) {
+  EXPECT_TRUE(junction_end_order({}).empty());
+  EXPECT_EQ(junction_end_order({{{0, 0}, {1, 0}, {0, -1}}}), (std::vector<std::size_t>{0}));
 }
 
 }  // namespace
