@@ -6,6 +6,7 @@
 #include <string_view>
 
 #include "export/sumo_lane_locator.h"
+#include "export/sumo_seams.h"
 #include "relief/roads/road_surface.h"
 
 namespace relief {
@@ -24,6 +25,13 @@ SumoDrape drape_sumo_net(std::string& net_xml, const RoadModel& model, const std
   const pugi::xml_node net = detail::load_net(doc, net_xml, file);
   detail::LaneLocator locator(net, model);
   SumoDrape out;
+  const detail::SumoSeams seams = detail::close_handover_gaps(net, locator);
+  out.ends_extended = seams.extended;
+  out.max_extension_m = seams.max_extension_m;
+  out.max_extension_lane = seams.max_extension_lane;
+  out.ends_snapped = seams.snapped;
+  out.max_snap_m = seams.max_snap_m;
+  out.max_snap_lane = seams.max_snap_lane;
   char z_text[64];
   for (pugi::xml_node edge : net.children("edge")) {
     for (pugi::xml_node lane : edge.children("lane")) {

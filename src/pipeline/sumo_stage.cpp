@@ -163,6 +163,11 @@ SumoSummary finish_sumo(const SumoStageInput& in, SumoJob& job, OutputSet& files
     summary.draped_points_moved = result.drape.points_moved;
     summary.drape_max_move_m = result.drape.max_move_m;
     summary.drape_max_move_lane = result.drape.max_move_lane;
+    summary.handover_ends_extended = result.drape.ends_extended;
+    summary.handover_max_extension_m = result.drape.max_extension_m;
+    summary.handover_max_extension_lane = result.drape.max_extension_lane;
+    summary.handover_ends_snapped = result.drape.ends_snapped;
+    summary.handover_max_snap_m = result.drape.max_snap_m;
     summary.xy_max_m = check.xy_max_m;
     summary.xy_max_lane = check.xy_max_lane;
     summary.max_handover_step_m = check.max_handover_step_m;

@@ -18,39 +18,7 @@ using test::ramp_model;
 // atan(0.1) in degrees: SUMO's slope on a 10 % ramp.
 const double kRampDeg = std::atan(0.1) * 180.0 / std::numbers::pi;
 
-// The network netconvert would write for ramp_model(): lane centres at y = -1.5 (along s) and
-// y = +1.5 (against s) on the plane z = 0.1 x. The connection carries no params (as from
-// netconvert 1.15), so its internal lane is found through the model's junction; its shape is
-// relief's (the OpenDRIVE lane centre).
-const char* const kNet = R"(<net version="1.9">
-  <edge id=":J_0" function="internal">
-    <lane id=":J_0_0" index="0" speed="10" length="10.05" shape="100,-1.5,10 110,-1.5,11"/>
-  </edge>
-  <edge id="-1" from="J" to="A">
-    <lane id="-1_0" index="0" speed="10" length="100.5" shape="100,1.5,10 0,1.5,0">
-      <param key="odr.lane" value="1"/>
-    </lane>
-    <param key="odr.road" value="1"/>
-  </edge>
-  <edge id="1" from="A" to="J">
-    <lane id="1_0" index="0" speed="10" length="100.5" shape="0,-1.5,0 100,-1.5,10">
-      <param key="odr.lane" value="-1"/>
-    </lane>
-    <param key="odr.road" value="1"/>
-  </edge>
-  <edge id="3" from="J" to="B">
-    <lane id="3_0" index="0" disallow="truck" speed="10" length="100.5" shape="110,-1.5,11 210,-1.5,21">
-      <param key="odr.lane" value="-1"/>
-    </lane>
-    <param key="odr.road" value="3"/>
-  </edge>
-  <junction id="A" type="dead_end" x="0" y="0"/>
-  <junction id="J" type="priority" x="105" y="0"/>
-  <junction id="B" type="dead_end" x="210" y="0"/>
-  <connection from="1" to="3" fromLane="0" toLane="0" shape="100,-1.5,10 110,-1.5,11" via=":J_0_0" dir="s" state="M"/>
-  <connection from=":J_0" to="3" fromLane="0" toLane="0" dir="s" state="M"/>
-</net>
-)";
+const char* const kNet = test::ramp_net_xml();
 
 std::string fcd_sample(const std::string& id, double x, double y, double z, double slope,
                        const std::string& lane) {

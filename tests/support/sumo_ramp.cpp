@@ -62,4 +62,36 @@ RoadModel ramp_model() {
   return model;
 }
 
+const char* ramp_net_xml() {
+  return R"(<net version="1.9">
+  <edge id=":J_0" function="internal">
+    <lane id=":J_0_0" index="0" speed="10" length="10.05" shape="100,-1.5,10 110,-1.5,11"/>
+  </edge>
+  <edge id="-1" from="J" to="A">
+    <lane id="-1_0" index="0" speed="10" length="100.5" shape="100,1.5,10 0,1.5,0">
+      <param key="odr.lane" value="1"/>
+    </lane>
+    <param key="odr.road" value="1"/>
+  </edge>
+  <edge id="1" from="A" to="J">
+    <lane id="1_0" index="0" speed="10" length="100.5" shape="0,-1.5,0 100,-1.5,10">
+      <param key="odr.lane" value="-1"/>
+    </lane>
+    <param key="odr.road" value="1"/>
+  </edge>
+  <edge id="3" from="J" to="B">
+    <lane id="3_0" index="0" disallow="truck" speed="10" length="100.5" shape="110,-1.5,11 210,-1.5,21">
+      <param key="odr.lane" value="-1"/>
+    </lane>
+    <param key="odr.road" value="3"/>
+  </edge>
+  <junction id="A" type="dead_end" x="0" y="0"/>
+  <junction id="J" type="priority" x="105" y="0"/>
+  <junction id="B" type="dead_end" x="210" y="0"/>
+  <connection from="1" to="3" fromLane="0" toLane="0" shape="100,-1.5,10 110,-1.5,11" via=":J_0_0" dir="s" state="M"/>
+  <connection from=":J_0" to="3" fromLane="0" toLane="0" dir="s" state="M"/>
+</net>
+)";
+}
+
 }  // namespace relief::test

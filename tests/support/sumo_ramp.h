@@ -11,4 +11,10 @@ namespace relief::test {
 /// (x 110..210, right lane -1 only). No lane offset: lane centres lie at y = +-1.5.
 [[nodiscard]] RoadModel ramp_model();
 
+/// The .net.xml netconvert would write for ramp_model(): lane centres at y = -1.5 (along s) and
+/// y = +1.5 (against s) on the plane z = 0.1 x. The connection carries no params (as from
+/// netconvert 1.15), so its internal lane :J_0_0 (x 100..110) is found through the model's
+/// junction; its shape is relief's (the OpenDRIVE lane centre).
+[[nodiscard]] const char* ramp_net_xml();
+
 }  // namespace relief::test

@@ -101,6 +101,14 @@ struct SumoSummary {
   std::size_t draped_points_moved = 0;
   double drape_max_move_m = 0.0;
   std::string drape_max_move_lane;
+  /// Internal lanes made to meet their lanes (sumo_seams.h): ends extended along a lane
+  /// netconvert cut short and the longest extension; ends moved onto a lane end beside or
+  /// behind them and the farthest move.
+  std::size_t handover_ends_extended = 0;
+  double handover_max_extension_m = 0.0;
+  std::string handover_max_extension_lane;
+  std::size_t handover_ends_snapped = 0;
+  double handover_max_snap_m = 0.0;
   double xy_max_m = 0.0;             ///< lane centre points vs the OpenDRIVE lane centres
   std::string xy_max_lane;           ///< SUMO lane of the xy_max_m point
   double max_handover_step_m = 0.0;  ///< lane <-> internal lane height step
@@ -203,7 +211,8 @@ struct RunReport {
 /// checked}, sumo{file, nodes, edges, connections, junctions, traffic_lights, lanes,
 /// internal_lanes, internal_lanes_by_netconvert, signals_mid_road, restricted_edges{class: n},
 /// max_grade_percent{class: %}, points_checked, z_max_m, z_p99_m, z_max_lane, netconvert_lanes_z_max_m,
-/// draped_points_moved, drape_max_move_m, drape_max_move_lane,
+/// draped_points_moved, drape_max_move_m, drape_max_move_lane, handover_ends_extended,
+/// handover_max_extension_m, handover_max_extension_lane, handover_ends_snapped, handover_max_snap_m,
 /// xy_max_m, xy_max_lane, max_handover_step_m, max_lane_grade_percent, max_internal_lane_grade_percent,
 /// max_profile_grade_percent, netconvert_warnings, routes, step_length_s} | null, profiles{method, fit{...},
 /// paper{...}}, methods{raw|paper|relief: {vs_dem, vs_dem_ground, vs_dem_structures, vs_reference, gradient,

@@ -5,7 +5,10 @@
 // end can lie decimetres off the road surface (0.88 m on Liechtenstein). Every point of every
 // lane (internal lanes included) that maps to an OpenDRIVE road (sumo_checks.h: through the
 // net's params, else the model's junction connections) takes the surface height at its (x, y)
-// on that road; x and y are kept as netconvert wrote them.
+// on that road; x and y are kept as netconvert wrote them. Before that, an internal lane whose
+// end lies away from its lane's (netconvert cut the lane where its outline reaches over the
+// road) is extended along the OpenDRIVE lane to meet it, and one whose end lies beside or behind
+// its lane's end is cut there (sumo_seams.h).
 
 #include <cstddef>
 #include <string>
@@ -20,6 +23,12 @@ struct SumoDrape {
   std::size_t points_unmapped = 0;  ///< points whose OpenDRIVE road is unknown (left as they are)
   double max_move_m = 0.0;          ///< largest height change
   std::string max_move_lane;        ///< the lane of that change
+  std::size_t ends_extended = 0;    ///< internal lane ends extended to a lane netconvert cut short
+  double max_extension_m = 0.0;     ///< longest such extension (plan length)
+  std::string max_extension_lane;   ///< the internal lane of that extension
+  std::size_t ends_snapped = 0;     ///< internal lane ends moved onto a lane end beside or behind
+  double max_snap_m = 0.0;          ///< farthest such move (plan)
+  std::string max_snap_lane;        ///< the internal lane of that move
 };
 
 /// Rewrites the z of every mapped lane shape point of `net_xml` (a .net.xml, named `file` in
