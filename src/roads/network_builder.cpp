@@ -13,6 +13,7 @@
 #include "relief/core/errors.h"
 #include "relief/geometry/crs_transform.h"
 #include "relief/geometry/polyline.h"
+#include "roads/close_roads.h"
 #include "roads/way_crossings.h"
 
 namespace relief {
@@ -319,6 +320,7 @@ RoadNetwork build_network(const OsmRoads& input, const GeoFrame& frame, Diagnost
                        " ways are empty or shorter than 1 cm");
   }
   build_junctions(network, osm, table);
+  (void)detail::narrow_close_roads(network, diagnostics);
   return network;
 }
 

@@ -40,6 +40,9 @@ inline constexpr DiagnosticCode kOsmCrossingWithoutNode{
     "ways crossing on one level without a shared node are joined by a node there"};
 inline constexpr DiagnosticCode kNetworkDegenerateWay{
     "network.degenerate_way", "a piece of a way between two junctions shorter than 1 cm is dropped"};
+inline constexpr DiagnosticCode kNetworkRoadsNarrowed{"network.roads_narrowed",
+                                                      "roads on one level drawn closer than their widths get "
+                                                      "narrower lanes, so their pavements do not overlap"};
 
 // Elevation sampling (roads/elevation_sampling.h).
 inline constexpr DiagnosticCode kElevationVoid{"elevation.void",
@@ -117,6 +120,7 @@ inline constexpr std::array kAll{kDemDatumGridMissing,
                                  kOsmTagValue,
                                  kOsmCrossingWithoutNode,
                                  kNetworkDegenerateWay,
+                                 kNetworkRoadsNarrowed,
                                  kElevationVoid,
                                  kElevationUncovered,
                                  kElevationRoadWithoutHeight,

@@ -1,0 +1,168 @@
+#include "roads/close_roads.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <numbers>
+#include <sstream>
+#include <unordered_map>
+#include <vector>
+
+#include "relief/core/diagnostic_codes.h"
+#include "roads/lane_layout.h"
+
+namespace relief::detail {
+namespace {
+
+constexpr double kMaxAngle = 30.0 * std::numbers::pi / 180.0;    // from parallel
+constexpr double kMergeAngle = 10.0 * std::numbers::pi / 180.0;  // a Y this sharp is still a junction's
+constexpr double kDuplicateShare = 0.25;  // of the half widths' sum: one road drawn twice
+
+struct Sample {
+  int road = -1;
+  Vec2 p, dir;
+};
+
+// The two carriageways of one road: one-ways of the same name, on one level.
+bool carriageways(const WayAttributes& a, const WayAttributes& b) {
+  return a.oneway && b.oneway && !a.name.empty() && a.name == b.name && !a.bridge && !a.tunnel && !b.bridge &&
+         !b.tunnel && a.layer == b.layer;
+}
+
+// The closest approach of a road to one neighbour: the smallest distance and how many samples
+// of the road lie too close to it.
+struct Approach {
+  double distance = std::numeric_limits<double>::infinity();
+  double needed = 0.0;  // the half widths' sum
+  int samples = 0;
+};
+
+}  // namespace
+
+std::size_t narrow_close_roads(RoadNetwork& network, Diagnostics& diagnostics,
+                               const CloseRoadOptions& options) {
+  std::vector<Sample> samples;
+  double widest = 0.0;
+  for (const Road& road : network.roads) {
+    widest = std::max(widest, half_width(road));
+    for (std::size_t i = 0; i + 1 < road.points.size(); ++i) {
+      const Vec2 a = road.points[i], b = road.points[i + 1];
+      const double length = (b - a).norm();
+      if (!(length > 0.0)) continue;
+      const int n = std::max(1, static_cast<int>(std::ceil(length / options.sample_step_m)));
+      for (int k = 0; k < n; ++k)
+        samples.push_back({road.id, a + (b - a) * (k / static_cast<double>(n)), (b - a) / length});
+    }
+  }
+  if (samples.empty()) return 0;
+  // Grid of cells as wide as the farthest two roads can reach: neighbours lie in adjacent cells.
+  const double cell = std::max(2.0 * widest, options.sample_step_m);
+  const auto key = [&](const Vec2& p) {
+    const auto cx = static_cast<std::int64_t>(std::floor(p.x() / cell));
+    const auto cy = static_cast<std::int64_t>(std::floor(p.y() / cell));
+    return (static_cast<std::uint64_t>(cx) << 32) ^ static_cast<std::uint64_t>(cy & 0xffffffff);
+  };
+  std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> cells;
+  for (std::uint32_t i = 0; i < samples.size(); ++i) cells[key(samples[i].p)].push_back(i);
+
+  // Shared junction positions of two roads, for the merge exclusion.
+  const auto shared_junctions = [&](const Road& a, const Road& b) {
+    std::vector<Vec2> out;
+    for (const int ja : {a.start_junction, a.end_junction}) {
+      if (ja >= 0 && (ja == b.start_junction || ja == b.end_junction))
+        out.push_back(network.junctions[static_cast<std::size_t>(ja)].position);
+    }
+    return out;
+  };
+  // Per road, its closest too-close neighbour.
+  std::vector<std::unordered_map<int, Approach>> approaches(network.roads.size());
+  for (const Sample& s : samples) {
+    const Road& a = network.roads[static_cast<std::size_t>(s.road)];
+    const auto cx = static_cast<std::int64_t>(std::floor(s.p.x() / cell));
+    const auto cy = static_cast<std::int64_t>(std::floor(s.p.y() / cell));
+    for (std::int64_t dx = -1; dx <= 1; ++dx) {
+      for (std::int64_t dy = -1; dy <= 1; ++dy) {
+        const auto it = cells.find((static_cast<std::uint64_t>(cx + dx) << 32) ^
+                                   static_cast<std::uint64_t>((cy + dy) & 0xffffffff));
+        if (it == cells.end()) continue;
+        for (const std::uint32_t j : it->second) {
+          const Sample& t = samples[j];
+          if (t.road == s.road) continue;
+          const Road& b = network.roads[static_cast<std::size_t>(t.road)];
+          // Carriageways run against each other.
+          if (!carriageways(a.attributes, b.attributes) || s.dir.dot(t.dir) > -std::cos(kMaxAngle)) continue;
+          const double needed = half_width(a) + half_width(b);
+          const Vec2 d = t.p - s.p;
+          const double across = std::abs(s.dir.x() * d.y() - s.dir.y() * d.x());
+          const double along = std::abs(s.dir.dot(d));
+          // The neighbour's point beside this one (within half a sample step along), too close.
+          if (along > 0.5 * options.sample_step_m || !(across < needed)) continue;
+          if (across < kDuplicateShare * needed) continue;
+          const double reach = needed / std::sin(kMergeAngle);
+          bool near_shared = false;
+          for (const Vec2& j_pos : shared_junctions(a, b))
+            near_shared |= (s.p - j_pos).norm() < reach || (t.p - j_pos).norm() < reach;
+          if (near_shared) continue;
+          Approach& ap = approaches[static_cast<std::size_t>(s.road)][t.road];
+          ap.distance = std::min(ap.distance, across);
+          ap.needed = needed;
+          ++ap.samples;
+        }
+      }
+    }
+  }
+  const int min_samples =
+      std::max(1, static_cast<int>(std::ceil(options.min_overlap_m / options.sample_step_m)));
+  std::vector<double> factor(network.roads.size(), 1.0);
+  std::vector<int> neighbour(network.roads.size(), -1);
+  std::vector<double> distance(network.roads.size(), 0.0), needed(network.roads.size(), 0.0);
+  for (std::size_t r = 0; r < network.roads.size(); ++r) {
+    for (const auto& [other, ap] : approaches[r]) {
+      // Both roads must be too close over the length, seen from each (a road's end beside the
+      // other's middle is seen by one only).
+      const auto back = approaches[static_cast<std::size_t>(other)].find(static_cast<int>(r));
+      if (ap.samples < min_samples || back == approaches[static_cast<std::size_t>(other)].end() ||
+          back->second.samples < min_samples)
+        continue;
+      const double f =
+          std::max(0.0, std::min(ap.distance, back->second.distance) - options.margin_m) / ap.needed;
+      // A pair that would need lanes under the minimum is left alone (and to the mesh checks);
+      // both roads of every other pair take at least its narrowing, so their pavements meet.
+      const double narrowest =
+          std::min(network.roads[r].attributes.lane_width_m,
+                   network.roads[static_cast<std::size_t>(other)].attributes.lane_width_m);
+      if (narrowest * f < options.min_lane_width_m) continue;
+      if (f < factor[r] || (f == factor[r] && neighbour[r] < 0)) {
+        factor[r] = f;
+        neighbour[r] = other;
+        distance[r] = std::min(ap.distance, back->second.distance);
+        needed[r] = ap.needed;
+      }
+    }
+  }
+  std::size_t narrowed = 0;
+  for (Road& road : network.roads) {
+    const auto r = static_cast<std::size_t>(road.id);
+    if (!(factor[r] < 1.0)) continue;
+    WayAttributes& a = road.attributes;
+    const double before = a.lane_width_m;
+    const double after = before * factor[r];
+    a.lane_width_m = after;
+    ++narrowed;
+    const Road& other = network.roads[static_cast<std::size_t>(neighbour[r])];
+    std::ostringstream text;
+    text.precision(3);
+    text << "road " << road.id << " (OSM way " << road.osm_way_ids.front()
+         << (a.name.empty() ? "" : ", " + a.name) << ") is drawn " << distance[r] << " m from road "
+         << other.id << " (OSM way " << other.osm_way_ids.front()
+         << (other.attributes.name.empty() ? "" : ", " + other.attributes.name)
+         << "), closer than their pavements reach (" << needed[r] << " m): its lanes are narrowed from "
+         << before << " to " << after << " m";
+    diagnostics.report({Severity::warning, std::string(codes::kNetworkRoadsNarrowed), text.str(),
+                        road.osm_way_ids.front(), std::nullopt, road.id});
+  }
+  return narrowed;
+}
+
+}  // namespace relief::detail
