@@ -270,6 +270,7 @@ std::string report_json(const RunReport& r) {
                  {"handover_max_extension_lane", o.handover_max_extension_lane},
                  {"handover_ends_snapped", o.handover_ends_snapped},
                  {"handover_max_snap_m", round_to(o.handover_max_snap_m, 1e-2)},
+                 {"handover_max_snap_lane", o.handover_max_snap_lane},
                  {"xy_max_m", round_to(o.xy_max_m, 1e-4)},
                  {"xy_max_lane", o.xy_max_lane},
                  {"max_handover_step_m", round_to(o.max_handover_step_m, 1e-4)},

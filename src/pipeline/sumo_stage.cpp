@@ -168,6 +168,7 @@ SumoSummary finish_sumo(const SumoStageInput& in, SumoJob& job, OutputSet& files
     summary.handover_max_extension_lane = result.drape.max_extension_lane;
     summary.handover_ends_snapped = result.drape.ends_snapped;
     summary.handover_max_snap_m = result.drape.max_snap_m;
+    summary.handover_max_snap_lane = result.drape.max_snap_lane;
     summary.xy_max_m = check.xy_max_m;
     summary.xy_max_lane = check.xy_max_lane;
     summary.max_handover_step_m = check.max_handover_step_m;

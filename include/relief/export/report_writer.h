@@ -109,6 +109,7 @@ struct SumoSummary {
   std::string handover_max_extension_lane;
   std::size_t handover_ends_snapped = 0;
   double handover_max_snap_m = 0.0;
+  std::string handover_max_snap_lane;
   double xy_max_m = 0.0;             ///< lane centre points vs the OpenDRIVE lane centres
   std::string xy_max_lane;           ///< SUMO lane of the xy_max_m point
   double max_handover_step_m = 0.0;  ///< lane <-> internal lane height step
@@ -213,11 +214,11 @@ struct RunReport {
 /// max_grade_percent{class: %}, points_checked, z_max_m, z_p99_m, z_max_lane, netconvert_lanes_z_max_m,
 /// draped_points_moved, drape_max_move_m, drape_max_move_lane, handover_ends_extended,
 /// handover_max_extension_m, handover_max_extension_lane, handover_ends_snapped, handover_max_snap_m,
-/// xy_max_m, xy_max_lane, max_handover_step_m, max_lane_grade_percent, max_internal_lane_grade_percent,
-/// max_profile_grade_percent, netconvert_warnings, routes, step_length_s} | null, profiles{method, fit{...},
-/// paper{...}}, methods{raw|paper|relief: {vs_dem, vs_dem_ground, vs_dem_structures, vs_reference, gradient,
-/// junctions, cut_fill, clearance}}, diagnostics{total, counts{code: n}, messages[]}, timings_s{stage: s},
-/// outputs[].
+/// handover_max_snap_lane, xy_max_m, xy_max_lane, max_handover_step_m, max_lane_grade_percent,
+/// max_internal_lane_grade_percent, max_profile_grade_percent, netconvert_warnings, routes, step_length_s} |
+/// null, profiles{method, fit{...}, paper{...}}, methods{raw|paper|relief: {vs_dem, vs_dem_ground,
+/// vs_dem_structures, vs_reference, gradient, junctions, cut_fill, clearance}}, diagnostics{total,
+/// counts{code: n}, messages[]}, timings_s{stage: s}, outputs[].
 [[nodiscard]] std::string report_json(const RunReport& report);
 
 /// relief's version string ("0.1.0").
