@@ -18,6 +18,7 @@
 #include "relief/geometry/plane.h"
 #include "relief/geometry/soft_qp.h"
 #include "relief/roads/vertical_curves.h"
+#include "roads/transition_roads.h"
 
 namespace relief {
 namespace {
@@ -685,7 +686,10 @@ ProfileFitResult fit_profiles(const RoadNetwork& network, const std::vector<Road
     return std::array<Vec2, 3>{p.xy[k] - t * normal, p.xy[k], p.xy[k] + t * normal};
   };
   for (const Junction& j : network.junctions) {
-    if (j.ends.size() < 3) continue;  // two ends: the road's own grade rows hold
+    // Two ends: where one road continues the other their own grade rows hold; where a transition
+    // road bends from one to the other it cuts the corner (a sharp node: at 90 degrees 1.27 times
+    // the polyline's grade), and the rows between their cut ends hold it.
+    if (j.ends.size() < 2 || (j.ends.size() == 2 && !detail::needs_transition(network, j))) continue;
     double room = 0.0;
     for (const RoadEnd& e : j.ends) room = std::max(room, half_width(e.road) + kJunctionRoomMargin_m);
     std::vector<std::pair<int, std::size_t>> leaving;  // road, station

@@ -3,14 +3,14 @@
 // steep analytic DEMs with voids. Every build must finish with every output written and every
 // quality gate evaluated (the CLI then exits 0 or 4), junctions exactly continuous, and never
 // throw, crash or hang. 30 seeds in CI (about 5 s); more by hand:
-// RELIEF_FUZZ_SEEDS=200 build/tests/relief_pipeline_tests --gtest_filter="Fuzz*" (200 seeds: 35 s,
-// all built, every fit converged; 156 passed every gate (114 before grades were limited along
-// inner lanes and the elevation records bounded by the samples' grades, 103 before connecting
-// roads were bounded by their ends' grades); of the 44 others, which exited 4, 25 fail the
-// ground's RMSE on the steepest terrains, 20 road grades over their cap (the ones looked at: a
-// transition road cutting the corner of a sharp two-road node is shorter than the polyline the
-// fit saw), 11 connecting roads', 10 SUMO height steps and none the SUMO hand-over gap since
-// internal lanes meet the lanes netconvert cuts (a seed can fail several)).
+// RELIEF_FUZZ_SEEDS=200 build/tests/relief_pipeline_tests --gtest_filter="Fuzz*" (200 seeds: 49 s,
+// all built, every fit converged; 170 passed every gate (156 before the fit held the grade
+// across a two-road node that a transition road bends through, 114 before grades were limited
+// along inner lanes and the elevation records bounded by the samples' grades, 103 before
+// connecting roads were bounded by their ends' grades); of the 30 others, which exited 4, 26
+// fail the ground's RMSE on the steepest terrains (roads capped at their grade cannot follow
+// them), 11 connecting roads' grade and 4 SUMO height steps (a seed can fail several); none a
+// road's grade (20 before) or the SUMO hand-over gap).
 #include <gtest/gtest.h>
 
 #include <cmath>
