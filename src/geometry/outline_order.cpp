@@ -184,10 +184,12 @@ std::vector<std::size_t> junction_end_order(const std::vector<PlanEnd>& ends) {
   for (const PlanEnd& e : ends) chains.push_back({e.right, e.left});
   if (is_simple_outline(chains, order)) return order;
   std::vector<Polyline2> sorted;
+  sorted.reserve(order.size());
   for (const std::size_t k : order) sorted.push_back(chains[k]);
   const std::optional<std::vector<std::size_t>> simple = simple_outline_order(sorted);
   if (!simple) return order;
   std::vector<std::size_t> reordered;
+  reordered.reserve(simple->size());
   for (const std::size_t k : *simple) reordered.push_back(order[k]);
   return reordered;
 }
