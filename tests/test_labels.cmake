@@ -11,20 +11,18 @@ set(relief_tools_tests
   # builds with the SUMO output (netconvert)
   "^Build\\.(SyntheticPlaneHasExactGrades|CallersSignalledJunctionsJoinTheOsmOnes|PotreroWithReferenceDem)$"
   "^Build\\.BrokenDemWithVoidsIsFilledAndReported$"
-  "^(Corpus|Fuzz|Regions|Sumo|OpenDrive)\\."
-  "^Build\\.NortheastQuadrant$"
+  "^(Corpus|Fuzz|Regions|Sumo)\\."
   # xmllint, python3 (xmlschema, the HTML parse), blender
   "^OpenDriveWriter\\.(ValidatesAgainstTheOpenDrive1[78]Schema|WritesOpenDrive14WithWholeSpeedsAndNoOffset)$"
   "^ReportHtml\\.(OpenDriveFiguresAppearWhenAFileWasWritten|ParsesAsXmlWithOnePlotPerProfileHistogramAndMaps)$"
-  "^(MeshWriter\\.BlenderImportsFbxGlbAndObjInMetresZUp|MeshPipeline\\.PotreroFbxImportsInBlender)$")
+  "^MeshWriter\\.BlenderImportsFbxGlbAndObjInMetresZUp$")
 set(relief_realdata_tests
   "^(DemSamplerRealData|InspectDemRealData|ProfileFitRealData)\\."
   "^(NetworkBuilder|OsmReader)\\.(PotreroRealData|NortheastRealData)$"
   "^OsmReader\\.(TruncatedRealGzipThrowsInvalidInput|PotreroAsPbfReadsLikeGzip)$"
   "^Build\\.(FailedRunLeavesNoOutputs|PotreroIdwDiffersFromBilinear)$"
   "^Info\\.DescribesPotreroWithoutWriting$"
-  "^MeshPipeline\\.(PotreroTilesAddUpToTheScene|PotreroSceneFigures|PotreroFilesReimportWithAssimp)$"
-  "^MeshPipeline\\.NorthEastSceneFiguresAndReimport$")
+  "^MeshPipeline\\.PotreroTilesAddUpToTheScene$")
 
 foreach(module IN LISTS relief_test_modules)
   foreach(test IN LISTS relief_${module}_tests_TESTS)
