@@ -214,11 +214,10 @@ TEST(Build, PotreroIdwDiffersFromBilinear) {
   EXPECT_GT(idw.gradient.max_percent, 10.0);
 }
 
-TEST(Build, NortheastQuadrant) {
+// The default build (every output, the methods compared), shared with the suite's other tests.
+TEST(SfNortheast, BuildReport) {
   RELIEF_REQUIRE_SHARED_DATA();
-  BuildOptions o = ne_options("build_ne");
-  Diagnostics d;
-  const RunReport r = build(o, d).report;
+  const RunReport& r = test::sf_northeast().result.report;
   print(r);
   EXPECT_GT(r.network.intersections, 300u);
   EXPECT_GE(r.network.tunnels, 2u);  // Broadway and Stockton tunnels

@@ -52,10 +52,22 @@ SceneBuild build_scene(const BuildOptions& options) {
   return b;
 }
 
-// Potrero is built once per process (the Potrero tests share it when run in one process; under
-// ctest each builds it, ~0.5 s).
+// The default build of an SF set, shared with the other tests of its suite (test::sf_potrero):
+// its scene in all three formats, with mesh_report.json read back.
+SceneBuild scene_of(const test::SfBuild& sf) {
+  SceneBuild b{sf.options, sf.result, {}, sf.diagnostics};
+  std::ifstream in(sf.options.out_dir / "mesh_report.json");
+  b.mesh_report = nlohmann::json::parse(in);
+  return b;
+}
+
 const SceneBuild& potrero() {
-  static const SceneBuild b = build_scene(scene_options(test::potrero_options("mesh_potrero")));
+  static const SceneBuild b = scene_of(test::sf_potrero());
+  return b;
+}
+
+const SceneBuild& northeast() {
+  static const SceneBuild b = scene_of(test::sf_northeast());
   return b;
 }
 
@@ -223,7 +235,7 @@ void expect_files_reimport(const SceneBuild& b) {
 
 // --- San Francisco ---------------------------------------------------------------------------
 
-TEST(MeshPipeline, PotreroSceneFigures) {
+TEST(SfPotrero, MeshSceneFigures) {
   RELIEF_REQUIRE_SHARED_DATA();
   const SceneBuild& b = potrero();
   const MeshSummary& m = summary(b);
@@ -247,9 +259,9 @@ TEST(MeshPipeline, PotreroSceneFigures) {
   expect_structure_warning(b, m);
 }
 
-TEST(MeshPipeline, NorthEastSceneFiguresAndReimport) {
+TEST(SfNortheast, MeshSceneFiguresAndReimport) {
   RELIEF_REQUIRE_SHARED_DATA();
-  const SceneBuild b = build_scene(scene_options(test::ne_options("mesh_ne")));
+  const SceneBuild& b = northeast();
   const MeshSummary& m = summary(b);
   print("sf-ne", m);
   // Measured: 170 road triangles lie under other roads in plan (the Broadway and Stockton tunnel
@@ -285,7 +297,7 @@ TEST(MeshPipeline, NorthEastSceneFiguresAndReimport) {
   expect_files_reimport(b);
 }
 
-TEST(MeshPipeline, PotreroFilesReimportWithAssimp) {
+TEST(SfPotrero, MeshFilesReimportWithAssimp) {
   RELIEF_REQUIRE_SHARED_DATA();
   expect_files_reimport(potrero());
 }
@@ -328,7 +340,7 @@ TEST(MeshPipeline, PotreroTilesAddUpToTheScene) {
     EXPECT_EQ(triangles[mesh.name], mesh.triangles.size()) << mesh.name;
 }
 
-TEST(MeshPipeline, PotreroFbxImportsInBlender) {
+TEST(SfPotrero, MeshFbxImportsInBlender) {
   RELIEF_REQUIRE_SHARED_DATA();
   if (!test::have_blender()) GTEST_SKIP() << "blender is not on PATH";
   const SceneBuild& b = potrero();

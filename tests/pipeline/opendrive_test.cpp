@@ -9,6 +9,7 @@
 #include <regex>
 #include <sstream>
 
+#include "pipeline/sf_options.h"
 #include "relief/pipeline/build.h"
 #include "relief/roads/opendrive_reader.h"
 #include "relief/roads/road_surface.h"
@@ -26,16 +27,11 @@ struct Built {
   std::filesystem::path xodr;
 };
 
-Built build_set(const std::string& name, const std::string& osm, const std::string& dem) {
-  BuildOptions o;
-  o.osm_path = test::shared_data(osm);
-  o.dem_paths = {test::shared_data(dem).string()};
-  o.out_dir = test::scratch_dir("odr_" + name);
-  o.outputs = {Output::xodr};
-  o.compare_methods = false;
-  o.name = name;
-  Diagnostics d;
-  return {build(o, d).report, o.out_dir / (name + ".xodr")};
+// The OpenDRIVE of an SF set's default build, shared with the other tests of its suite
+// (test::sf_potrero); the tests write only into their own scratch directories.
+Built shared_build(const test::SfBuild& sf) {
+  const RunReport& r = sf.result.report;
+  return {r, sf.options.out_dir / (r.name + ".xodr")};
 }
 
 void check_set(const Built& b) {
@@ -67,29 +63,29 @@ void check_set(const Built& b) {
       std::filesystem::weakly_canonical(test::shared_data("").parent_path().parent_path() /
                                         "opendrive-xsd/1.7.0/opendrive_17_core.xsd")
           .string();
+  const auto log = test::scratch_dir("odr_xmllint") / (b.xodr.filename().string() + ".xmllint");
   const std::string cmd =
-      "xmllint --noout --schema '" + xsd + "' '" + b.xodr.string() + "' 2>" + b.xodr.string() + ".xmllint";
-  EXPECT_EQ(std::system(cmd.c_str()), 0) << "see " << b.xodr << ".xmllint";
+      "xmllint --noout --schema '" + xsd + "' '" + b.xodr.string() + "' 2>" + log.string();
+  EXPECT_EQ(std::system(cmd.c_str()), 0) << "see " << log;
 }
 
-TEST(OpenDrive, PotreroValidatesAndReadsBack) {
+TEST(SfPotrero, OpenDriveValidatesAndReadsBack) {
   RELIEF_REQUIRE_SHARED_DATA();
-  check_set(build_set("potrero", "sf-potrero/sf-potrero.osm.gz",
-                      "sf-potrero/USGS_13_n38w123-subsection-small-potrero.tif"));
+  check_set(shared_build(test::sf_potrero()));
 }
 
-TEST(OpenDrive, NortheastValidatesAndReadsBack) {
+TEST(SfNortheast, OpenDriveValidatesAndReadsBack) {
   RELIEF_REQUIRE_SHARED_DATA();
-  check_set(build_set("ne", "sf-ne/sf_ne_drive_2017.osm.gz", "sf-ne/sf_ne_usgs24k_30m_nad27utm10_m.tif"));
+  check_set(shared_build(test::sf_northeast()));
 }
 
-TEST(OpenDrive, NetconvertImportsItWithOurHeights) {
+TEST(SfPotrero, NetconvertImportsOpenDriveWithOurHeights) {
   RELIEF_REQUIRE_SHARED_DATA();
   if (!have("netconvert")) GTEST_SKIP() << "SUMO netconvert not installed";
-  const Built b = build_set("potrero_sumo", "sf-potrero/sf-potrero.osm.gz",
-                            "sf-potrero/USGS_13_n38w123-subsection-small-potrero.tif");
-  const auto net = b.xodr.parent_path() / "imported.net.xml";
-  const auto log = b.xodr.parent_path() / "netconvert.log";
+  const Built b = shared_build(test::sf_potrero());
+  const auto dir = test::scratch_dir("odr_netconvert");
+  const auto net = dir / "imported.net.xml";
+  const auto log = dir / "netconvert.log";
   const std::string cmd = "SUMO_HOME=${SUMO_HOME:-/usr/share/sumo} netconvert --opendrive-files '" +
                           b.xodr.string() + "' -o '" + net.string() +
                           "' --offset.disable-normalization true 2>'" + log.string() + "'";

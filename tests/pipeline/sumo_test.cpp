@@ -90,11 +90,11 @@ void expect_on_surface(const SumoSummary& s, double z_max_m, double xy_max_m, do
   EXPECT_GT(s.restricted_edges.at("truck"), 0u);
 }
 
-TEST(Sumo, PotreroNetworkLoadsAndLiesOnTheSurface) {
+// The default build of each set, shared with the other tests of its suite.
+TEST(SfPotrero, SumoNetworkLoadsAndLiesOnTheSurface) {
   RELIEF_REQUIRE_SHARED_DATA();
-  const BuildOptions o = sumo_build(test::potrero_options("sumo_potrero"));
-  Diagnostics d;
-  const RunReport r = build(o, d).report;
+  const BuildOptions& o = test::sf_potrero().options;
+  const RunReport& r = test::sf_potrero().result.report;
   ASSERT_TRUE(r.sumo);
   const SumoSummary& s = *r.sumo;
   print(r.name, s);
@@ -109,11 +109,10 @@ TEST(Sumo, PotreroNetworkLoadsAndLiesOnTheSurface) {
   EXPECT_EQ(s.traffic_lights, 0u);  // the extract has no signalled intersection
 }
 
-TEST(Sumo, NortheastNetworkLoadsAndLiesOnTheSurface) {
+TEST(SfNortheast, SumoNetworkLoadsAndLiesOnTheSurface) {
   RELIEF_REQUIRE_SHARED_DATA();
-  const BuildOptions o = sumo_build(test::ne_options("sumo_ne"));
-  Diagnostics d;
-  const RunReport r = build(o, d).report;
+  const BuildOptions& o = test::sf_northeast().options;
+  const RunReport& r = test::sf_northeast().result.report;
   ASSERT_TRUE(r.sumo);
   const SumoSummary& s = *r.sumo;
   print(r.name, s);
