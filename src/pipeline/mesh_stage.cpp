@@ -10,11 +10,7 @@ namespace relief {
 MeshSummary write_mesh_outputs(const MeshStageInput& in, OutputSet& files, StageTimer& timer,
                                std::vector<std::filesystem::path>& written, std::vector<std::string>& names) {
   const BuildOptions& options = in.options;
-  SceneOptions scene_options;
-  scene_options.road_mesh = options.road_mesh;
-  scene_options.terrain = options.terrain;
-  scene_options.terrain_options = options.terrain_options;
-  scene_options.tunnel_portal_height_m = options.tunnel_portal_height_m;
+  SceneOptions scene_options = options.scene;
   scene_options.checks = false;  // run below, beside the file writers
   const Scene built =
       build_scene(in.model, in.network, in.dem, scene_options, in.diagnostics, timer.stage_progress());

@@ -92,7 +92,7 @@ Built build_case(const test::CorpusCase& c, const std::filesystem::path& dir) {
   o.osm.bbox = c.bbox;
   // An Int16 DEM is quantised to whole metres: a terrain tolerance under half a metre meshes the
   // staircase of a 1 m DEM cell by cell (572 000 TIN vertices, 14 s, 0.7 GB on the hairpins).
-  if (c.cell_m < 10.0) o.terrain_options.vertical_tolerance_m = 1.0;
+  if (c.cell_m < 10.0) o.scene.terrain_options.vertical_tolerance_m = 1.0;
   Diagnostics d;
   const auto t0 = std::chrono::steady_clock::now();
   BuildResult result = build(o, d);

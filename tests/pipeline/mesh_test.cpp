@@ -623,7 +623,7 @@ TEST(MeshPipeline, TunnelMouthsStayOpen) {
   for (const Vec3& t : terrain->vertices) {
     for (const Vec3& r : road->vertices) {
       if ((t.head<2>() - r.head<2>()).norm() < 1e-3 &&
-          std::abs(t.z() - r.z() - o.tunnel_portal_height_m) < 1e-3)
+          std::abs(t.z() - r.z() - o.scene.tunnel_portal_height_m) < 1e-3)
         ++top_edge;
     }
   }

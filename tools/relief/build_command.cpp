@@ -139,12 +139,12 @@ Runner add_build_command(CLI::App& app) {
          "3D scene formats: comma-separated glb, obj, fbx")
       ->default_str(list_text(o.mesh_formats));
   cmd->add_flag_callback(
-      "--no-terrain", [&o] { o.terrain = false; }, "3D scene: roads only, no Terrain mesh");
-  cmd->add_option("--mesh-tolerance", o.road_mesh.tolerance_m,
+      "--no-terrain", [&o] { o.scene.terrain = false; }, "3D scene: roads only, no Terrain mesh");
+  cmd->add_option("--mesh-tolerance", o.scene.road_mesh.tolerance_m,
                   "3D scene: largest distance of the road mesh from the OpenDRIVE surface, m")
       ->capture_default_str()
       ->check(finite_positive());
-  cmd->add_option("--terrain-tolerance", o.terrain_options.vertical_tolerance_m,
+  cmd->add_option("--terrain-tolerance", o.scene.terrain_options.vertical_tolerance_m,
                   "3D scene: largest vertical error of the simplified terrain vs the DEM, m")
       ->capture_default_str()
       ->check(finite_positive());

@@ -21,9 +21,8 @@
 #include "relief/roads/profile_fit.h"
 #include "relief/roads/road_model_builder.h"
 #include "relief/roads/validation.h"
-#include "relief/scene/road_mesh.h"
+#include "relief/scene/scene.h"
 #include "relief/terrain/dem_sampler.h"
-#include "relief/terrain/terrain_tin.h"
 
 namespace relief {
 
@@ -71,12 +70,9 @@ struct BuildOptions {
   /// Random trips for a quick SUMO run (NAME.rou.xml + NAME.sumocfg); trips = 0: none.
   DemandOptions demand;
   double signal_snap_m = 30.0;  ///< an OSM signal this close to an intersection controls it
-  RoadMeshOptions road_mesh;
-  bool terrain = true;  ///< the Terrain mesh under and around the roads
-  TerrainOptions terrain_options;
-  /// Height of a tunnel mouth: the terrain meets the top edge of the mouth, this far above the
-  /// road's end edge where it enters a tunnel, so that the way in stays open.
-  double tunnel_portal_height_m = 5.0;
+  /// The 3D scene (road meshes, the terrain, its openings at tunnel mouths), as given; the
+  /// pipeline runs the scene's checks beside the file writers whatever `scene.checks` says.
+  SceneOptions scene;
   std::set<MeshFormat> mesh_formats = {MeshFormat::glb, MeshFormat::obj, MeshFormat::fbx};
   /// Thresholds of the quality gates checked on the outputs (quality_gates.h).
   GateThresholds gates;
