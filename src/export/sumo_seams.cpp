@@ -122,9 +122,13 @@ class Seams {
     const Vec3 target = into_junction ? out.back() : in.front();
     Polyline3 line = internal.shape;
     if (!into_junction) std::reverse(line.begin(), line.end());
+    // Searched over the lane's first half only: a U-turn's other end may pass near the target.
+    const double half = 0.5 * plan_length(line);
     std::size_t best = 0;
     double best_d = std::numeric_limits<double>::infinity();
-    for (std::size_t i = 0; i + 1 < line.size(); ++i) {
+    double along = 0.0;
+    for (std::size_t i = 0; i + 1 < line.size() && (i == 0 || along < half); ++i) {
+      along += (line[i + 1] - line[i]).head<2>().norm();
       const Vec2 p = line[i].head<2>(), q = line[i + 1].head<2>(), d = q - p;
       const double u =
           d.squaredNorm() > 0.0 ? std::clamp((target.head<2>() - p).dot(d) / d.squaredNorm(), 0.0, 1.0) : 0.0;
