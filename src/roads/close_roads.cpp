@@ -7,6 +7,7 @@
 #include <numbers>
 #include <sstream>
 #include <unordered_map>
+#include <utility>
 #include <vector>
 
 #include "relief/core/diagnostic_codes.h"
@@ -58,13 +59,18 @@ std::size_t narrow_close_roads(RoadNetwork& network, Diagnostics& diagnostics,
   if (samples.empty()) return 0;
   // Grid of cells as wide as the farthest two roads can reach: neighbours lie in adjacent cells.
   const double cell = std::max(2.0 * widest, options.sample_step_m);
-  const auto key = [&](const Vec2& p) {
-    const auto cx = static_cast<std::int64_t>(std::floor(p.x() / cell));
-    const auto cy = static_cast<std::int64_t>(std::floor(p.y() / cell));
+  const auto cell_of = [&](const Vec2& p) {
+    return std::pair(static_cast<std::int64_t>(std::floor(p.x() / cell)),
+                     static_cast<std::int64_t>(std::floor(p.y() / cell)));
+  };
+  const auto key = [](std::int64_t cx, std::int64_t cy) {
     return (static_cast<std::uint64_t>(cx) << 32) ^ static_cast<std::uint64_t>(cy & 0xffffffff);
   };
   std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> cells;
-  for (std::uint32_t i = 0; i < samples.size(); ++i) cells[key(samples[i].p)].push_back(i);
+  for (std::uint32_t i = 0; i < samples.size(); ++i) {
+    const auto [cx, cy] = cell_of(samples[i].p);
+    cells[key(cx, cy)].push_back(i);
+  }
 
   // Shared junction positions of two roads, for the merge exclusion.
   const auto shared_junctions = [&](const Road& a, const Road& b) {
@@ -79,26 +85,24 @@ std::size_t narrow_close_roads(RoadNetwork& network, Diagnostics& diagnostics,
   std::vector<std::unordered_map<int, Approach>> approaches(network.roads.size());
   for (const Sample& s : samples) {
     const Road& a = network.roads[static_cast<std::size_t>(s.road)];
-    const auto cx = static_cast<std::int64_t>(std::floor(s.p.x() / cell));
-    const auto cy = static_cast<std::int64_t>(std::floor(s.p.y() / cell));
+    const auto [cx, cy] = cell_of(s.p);
     for (std::int64_t dx = -1; dx <= 1; ++dx) {
       for (std::int64_t dy = -1; dy <= 1; ++dy) {
-        const auto it = cells.find((static_cast<std::uint64_t>(cx + dx) << 32) ^
-                                   static_cast<std::uint64_t>((cy + dy) & 0xffffffff));
+        const auto it = cells.find(key(cx + dx, cy + dy));
         if (it == cells.end()) continue;
         for (const std::uint32_t j : it->second) {
           const Sample& t = samples[j];
           if (t.road == s.road) continue;
-          const Road& b = network.roads[static_cast<std::size_t>(t.road)];
-          // Carriageways run against each other.
-          if (!carriageways(a.attributes, b.attributes) || s.dir.dot(t.dir) > -std::cos(kMaxAngle)) continue;
-          const double needed = half_width(a) + half_width(b);
+          // Carriageways run against each other; the neighbour's point lies beside this one
+          // (within half a sample step along) and too close (cheap tests first).
+          if (s.dir.dot(t.dir) > -std::cos(kMaxAngle)) continue;
           const Vec2 d = t.p - s.p;
+          if (std::abs(s.dir.dot(d)) > 0.5 * options.sample_step_m) continue;
+          const Road& b = network.roads[static_cast<std::size_t>(t.road)];
+          const double needed = half_width(a) + half_width(b);
           const double across = std::abs(s.dir.x() * d.y() - s.dir.y() * d.x());
-          const double along = std::abs(s.dir.dot(d));
-          // The neighbour's point beside this one (within half a sample step along), too close.
-          if (along > 0.5 * options.sample_step_m || !(across < needed)) continue;
-          if (across < kDuplicateShare * needed) continue;
+          if (!(across < needed) || across < kDuplicateShare * needed) continue;
+          if (!carriageways(a.attributes, b.attributes)) continue;
           const double reach = needed / std::sin(kMergeAngle);
           bool near_shared = false;
           for (const Vec2& j_pos : shared_junctions(a, b))
