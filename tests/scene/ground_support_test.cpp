@@ -99,25 +99,27 @@ TEST(GroundSupport, DecksWithinOneMetreOfTheDemAndTunnelsWithoutCoverCountAsGrou
   //  1 deck 0.999 m above the DEM - on it (within 1 m);
   //  2 deck 1.001 m above          - a structure;
   //  3 deck 5 m below the DEM      - on it (below counts too);
-  //  4 deck 10 m up but one corner 0.5 m up - on it (one corner is enough);
+  //  4 deck 10 m up but its first corner 0.5 m up - on it (one corner is enough);
   //  5 tunnel under 4.99 m of DEM  - open (less than the mouth height);
   //  6 tunnel under 5.01 m         - a tunnel;
-  //  7 tunnel 3 m above the DEM    - open (no cover at all).
+  //  7 tunnel 3 m above the DEM    - open (no cover at all);
+  //  8 tunnel under 10 m but its first corner under 2 m - open (one corner is enough).
   Scene sc = triangles({{{50, 50, 50}},
                         {{20.999, 20.999, 20.999}},
                         {{21.001, 21.001, 21.001}},
                         {{15, 15, 15}},
-                        {{30, 30, 20.5}},
+                        {{20.5, 30, 30}},
                         {{15.01, 15.01, 15.01}},
                         {{14.99, 14.99, 14.99}},
-                        {{23, 23, 23}}},
-                       {1, 0, 0, 0, 0, 0, 0, 0}, {0, 0, 0, 0, 0, 1, 1, 1});
+                        {{23, 23, 23}},
+                        {{18, 10, 10}}},
+                       {1, 0, 0, 0, 0, 0, 0, 0, 0}, {0, 0, 0, 0, 0, 1, 1, 1, 1});
   structures_on_the_ground(sc.road, dem, 5.0, sc.support);
-  EXPECT_EQ(sc.support.ground, (Flags{1, 1, 0, 1, 1, 1, 0, 1}));
-  EXPECT_EQ(sc.support.tunnel, (Flags{0, 0, 0, 0, 0, 0, 1, 0}));
-  EXPECT_EQ(sc.support.counted_as_ground, (Flags{0, 1, 0, 1, 1, 2, 0, 2}));
+  EXPECT_EQ(sc.support.ground, (Flags{1, 1, 0, 1, 1, 1, 0, 1, 1}));
+  EXPECT_EQ(sc.support.tunnel, (Flags{0, 0, 0, 0, 0, 0, 1, 0, 0}));
+  EXPECT_EQ(sc.support.counted_as_ground, (Flags{0, 1, 0, 1, 1, 2, 0, 2, 2}));
   EXPECT_EQ(sc.support.decks_on_ground, 3u);
-  EXPECT_EQ(sc.support.tunnels_open, 2u);
+  EXPECT_EQ(sc.support.tunnels_open, 3u);
 }
 
 TEST(GroundSupport, StructuresWithoutDemUnderThemStayStructures) {
