@@ -161,6 +161,23 @@ TEST(StrayEnds, AnEndSharingAJunctionIsNoDeadEnd) {
   for (const auto& t : w.trim) EXPECT_EQ(t, (std::array<double, 2>{0.0, 0.0}));
 }
 
+TEST(StrayEnds, AnEndInAnotherGridCellThanTheRoadItLiesNearIsFound) {
+  // The segment grid has 25 m cells. A street along y = 21 (half width 3.5 m) is filed under
+  // the cells of y in [17.5, 24.5] only; a side road ending at y = 25.2 lies in the next row
+  // of cells, 25.2 - 21 - 3.5 = 0.7 m from the street's pavement. With a 2 m gap it must be
+  // found there and trimmed until 4.2 + t - 3.5 >= 2, t >= 1.3: 1.5 m in 0.5 m steps.
+  World w;
+  w.net = test::make_network({{{-100, 21}, {100, 21}}, {{0, 25.2}, {0, 60}}});
+  w.profiles = test::drape(w.net, [](const Vec2&) { return 0.0; });
+  detail::StrayEndOptions options;
+  options.gap_m = 2.0;
+  const std::vector<detail::StrayEnd> stray = clear(w, options);
+  ASSERT_EQ(stray.size(), 1u);
+  EXPECT_EQ(stray[0].other_road, 0);
+  EXPECT_NEAR(stray[0].trimmed_m, 1.5, 1e-9);
+  EXPECT_TRUE(stray[0].cleared);
+}
+
 TEST(StrayEnds, AnEndCrossingTheStreetIsTrimmedBackToClearItsFarSide) {
   // The side road runs down through the street to y = -2: its end cross-section at y = -2 + t
   // clears the pavement (|y| >= 4) only at y = 4 on the near side: t = 6.
