@@ -25,7 +25,8 @@ struct OutlineGap {
   std::vector<Vec3> points;  ///< interior points only; empty for a straight segment
 };
 
-/// Orders the ends counter-clockwise around the centroid of their midpoints, closes the gap
+/// Orders the ends counter-clockwise (junction_end_order: by a point ahead along each road, the
+/// order netconvert's node outlines take too), closes the gap
 /// between consecutive ends with the outermost lane border of a connecting road (of
 /// `connecting_roads`, indices into model.roads) that joins those two road ends, else a straight
 /// segment, and triangulates the outline (triangulate_junction); when that outline is not simple
