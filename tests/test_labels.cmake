@@ -12,6 +12,8 @@ set(relief_tools_tests
   "^Build\\.(SyntheticPlaneHasExactGrades|CallersSignalledJunctionsJoinTheOsmOnes|PotreroWithReferenceDem)$"
   "^Build\\.BrokenDemWithVoidsIsFilledAndReported$"
   "^(Corpus|Fuzz|Regions|Sumo)\\."
+  # a relief build with the SUMO output, then SUMO in this process (libsumo)
+  "^(Cosim|SumoSession)\\."
   # xmllint, python3 (xmlschema, the HTML parse), blender
   "^OpenDriveWriter\\.(ValidatesAgainstTheOpenDrive1[78]Schema|WritesOpenDrive14WithWholeSpeedsAndNoOffset)$"
   "^ReportHtml\\.(OpenDriveFiguresAppearWhenAFileWasWritten|ParsesAsXmlWithOnePlotPerProfileHistogramAndMaps)$"

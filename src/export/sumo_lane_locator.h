@@ -99,6 +99,7 @@ struct LanePoint {
   const ModelRoad* road = nullptr;
   double s = 0.0, t = 0.0;
   LaneRoad lane;
+  double beyond = 0.0;  ///< how far the point lies past that road's ends (Projection::beyond)
 };
 
 /// The internal lane of a connection without params: the model's connecting road that joins the
@@ -178,11 +179,11 @@ class LaneLocator {
         if (std::abs(on.beyond) <= kPastEnd_m) {
           LaneRoad lane = it->second;
           lane.lane.reset();  // not on this road's lane centre: height only
-          return LanePoint{next, on.s, on.t, lane};
+          return LanePoint{next, on.s, on.t, lane, on.beyond};
         }
       }
     }
-    return LanePoint{road, at.s, at.t, it->second};
+    return LanePoint{road, at.s, at.t, it->second, at.beyond};
   }
 
  private:

@@ -185,6 +185,32 @@ assert c.find("input/route-files").get("value") == "hill.rou.xml"
 PY
 check "sumo runs the config" bash -c "cd '$out' && sumo -c hill.sumocfg --end 30 --no-step-log true >'$RELIEF_TMP/sumo.log' 2>&1 \
   || { cat '$RELIEF_TMP/sumo.log'; exit 1; }"
+# cosim: SUMO on that configuration, every vehicle set on the road surface at 20 Hz for 30 s (this
+# build wrote no scene: the .xodr's roads are lofted, without terrain for a wheel off the road).
+cs="$out/cosim"
+check "cosim runs" run 0 "$cs" cosim --sumocfg "$out/hill.sumocfg" --out "$cs" --end 30
+check "cosim outputs" python3 - "$cs" <<'PY'
+import csv, json, sys, xml.etree.ElementTree as ET
+d = sys.argv[1]
+r = json.load(open(d + "/cosim.json"))
+assert r["steps"] == 600 and abs(r["simulated_s"] - 30) < 1e-9, r
+assert r["inputs"]["scene"] == "" and r["vehicles"] > 0, r
+assert r["unplaced_vehicle_steps"] <= 0.01 * r["vehicle_steps"], r
+assert r["z_error_m"]["max"] <= 0.05 and r["sumo_z_error_m"]["max"] <= 0.05, r
+rows = list(csv.reader(open(d + "/hill.trajectories.csv")))
+assert len(rows) == r["vehicle_steps"] + 1, (len(rows), r["vehicle_steps"])
+steps = ET.parse(d + "/hill.fcd.xml").getroot().findall("timestep")
+assert len(steps) == 600 and steps[-1].find("vehicle").get("pitch") is not None
+print("cosim hill: %d vehicles, z error max %.4f m, SUMO z error max %.4f m" %
+      (r["vehicles"], r["z_error_m"]["max"], r["sumo_z_error_m"]["max"]))
+PY
+check "cosim without config" run 2 "$RELIEF_TMP/cosim_none" cosim --out "$RELIEF_TMP/cosim_none"
+check "cosim missing config" run 3 "$RELIEF_TMP/cosim_missing" cosim --sumocfg "$RELIEF_TMP/nowhere.sumocfg" \
+  --out "$RELIEF_TMP/cosim_missing"
+check "cosim missing config names it" stderr_has "nowhere.sumocfg"
+check "cosim missing config no outputs" no_outputs "$RELIEF_TMP/cosim_missing"
+check "cosim bad step" run 2 "$RELIEF_TMP/cosim_step" cosim --sumocfg "$out/hill.sumocfg" --out "$RELIEF_TMP/cosim_step" \
+  --step 0
 # --mesh-tile-size: the scene also cut into tiles; a size that is not positive is exit 2.
 out="$RELIEF_TMP/tiles"
 check "mesh tiles" run 0 "$out" build --osm "$fix/hill.osm" --dem "$fix/hill_dem.asc" --out "$out" --quiet \
@@ -331,6 +357,33 @@ r = json.load(open(sys.argv[1]))
 assert r["elevation"]["vs_dem"]["rmse_m"] < 1.0 and r["gradient"]["max_percent"] <= 35.0, r["elevation"]
 assert r["diagnostics"]["counts"].get("elevation.void", 0) >= 2, r["diagnostics"]["counts"]
 assert r["elevation"]["void_samples"] >= 2, r["elevation"]
+PY
+fi
+
+# cosim on Potrero's hills: relief's own random trips, 120 s at 20 Hz. Every vehicle on the
+# scene (no wheel off every surface), SUMO's lane heights on the OpenDRIVE surface; on the roads
+# the vehicles' heights within the mesh's 0.02 m of it (p99). In junctions the patch spans its
+# outline and the connecting roads disagree where they overlap: measured and printed, not yet
+# within 0.02 m (README, co-simulation).
+if [ -d "$potrero" ]; then
+  out="$RELIEF_TMP/potrero_cosim"
+  check "potrero build with routes" run 0 "$out" build --osm "$potrero/sf-potrero.osm.gz" \
+    --dem "$potrero/USGS_13_n38w123-subsection-small-potrero.tif" --out "$out" --quiet --outputs xodr,sumo,mesh \
+    --mesh-formats glb --routes 200
+  check "potrero cosim" run 0 "$out/cosim" cosim --sumocfg "$out/sf-potrero.sumocfg" --out "$out/cosim" --end 120
+  check "potrero cosim figures" python3 - "$out/cosim/cosim.json" <<'PY'
+import json, sys
+r = json.load(open(sys.argv[1]))
+print("cosim potrero: %d vehicles, %d placements; z vs OpenDRIVE on roads p99 %.4f max %.4f m, in junctions p99 %.4f "
+      "max %.4f m; SUMO z max %.4f m; pitch vs slope p99 %.3f deg; wheels under %d; %.1fx real time" %
+      (r["vehicles"], r["vehicle_steps"], r["z_error_on_roads_m"]["p99"], r["z_error_on_roads_m"]["max"],
+       r["z_error_in_junctions_m"]["p99"], r["z_error_in_junctions_m"]["max"], r["sumo_z_error_m"]["max"],
+       r["pitch_error_deg"]["p99"], r["wheels_under_road"], r["real_time_factor"]))
+assert r["inputs"]["scene"].endswith("sf-potrero.glb"), r["inputs"]
+assert r["vehicles"] >= 40 and r["unplaced_vehicle_steps"] == 0, r
+assert r["sumo_z_error_m"]["max"] <= 0.05, r["sumo_z_error_m"]
+assert r["z_error_on_roads_m"]["p99"] <= 0.03, r["z_error_on_roads_m"]
+assert r["unmapped_vehicle_steps"] <= 0.05 * r["vehicle_steps"], r["unmapped_vehicle_steps"]
 PY
 fi
 

@@ -19,6 +19,7 @@ int main(int argc, char** argv) {  // NOLINT(bugprone-exception-escape)
   const Runner build = add_build_command(app);
   const Runner info = add_info_command(app);
   const Runner mesh_report = add_mesh_report_command(app);
+  const Runner cosim = add_cosim_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::Success& e) {
@@ -30,5 +31,6 @@ int main(int argc, char** argv) {  // NOLINT(bugprone-exception-escape)
   if (app.got_subcommand("build")) return build();
   if (app.got_subcommand("info")) return info();
   if (app.got_subcommand("mesh-report")) return mesh_report();
+  if (app.got_subcommand("cosim")) return cosim();
   return kUsage;
 }

@@ -108,6 +108,13 @@ inline constexpr DiagnosticCode kSumoSignalMidRoad{
 inline constexpr DiagnosticCode kSumoUnmappedLanePoints{"sumo.unmapped_lane_points",
                                                         "SUMO lane points have no OpenDRIVE road under them"};
 
+// Co-simulation (cosim/cosim.h).
+inline constexpr DiagnosticCode kCosimVehicleOffSurface{
+    "cosim.vehicle_off_surface", "a SUMO vehicle has a wheel where the road surface mesh has no triangle"};
+inline constexpr DiagnosticCode kCosimLaneUnmapped{
+    "cosim.lane_unmapped",
+    "a SUMO vehicle drives a lane with no OpenDRIVE road; its placement is not measured"};
+
 // Quality gates (export/quality_gates.h).
 inline constexpr DiagnosticCode kGateFailed{"gate.failed", "a quality gate failed (the build exits with 4)"};
 
@@ -146,6 +153,8 @@ inline constexpr std::array kAll{kDemDatumGridMissing,
                                  kSumoSignalWithoutNode,
                                  kSumoSignalMidRoad,
                                  kSumoUnmappedLanePoints,
+                                 kCosimVehicleOffSurface,
+                                 kCosimLaneUnmapped,
                                  kGateFailed};
 
 }  // namespace codes

@@ -1,0 +1,92 @@
+#pragma once
+// The co-simulation loop (issue 16): SUMO runs the traffic in lockstep steps (0.05 s, 20 Hz), and
+// every SUMO vehicle, every step, is set down on relief's 3D road surface (the Road_Road mesh
+// lofted from the .xodr) on its four wheel contacts (vehicle_pose.h): z, pitch and roll from the
+// surface, plan position and heading from SUMO. Each placement is measured against the
+// OpenDRIVE surface S(road, s, t) of the vehicle's lane (sumo_surface.h): the vehicle's height,
+// its pitch against the road's slope along its heading, and SUMO's own lane height.
+//
+// Inputs come from one relief build: NAME.sumocfg names NAME.net.xml (its net-file), and
+// NAME.xodr and NAME.glb lie beside that net. The surface is the scene the .glb carries (roads,
+// junctions, sidewalks, terrain: a wheel that leaves the pavement finds the ground), read as it
+// was shipped; without a .glb, the .xodr's roads lofted within mesh_tolerance_m.
+
+#include <cstddef>
+#include <filesystem>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "relief/core/diagnostics.h"
+
+namespace relief {
+
+/// The figures of a run, in the output directory.
+inline constexpr const char* kCosimReportFile = "cosim.json";
+
+struct CosimInputs {
+  std::filesystem::path sumocfg;
+  std::filesystem::path net;    ///< the configuration's net-file
+  std::filesystem::path xodr;   ///< beside the net: NAME.xodr for NAME.net.xml
+  std::filesystem::path scene;  ///< beside the net: NAME.glb; empty when there is none
+};
+
+/// Finds the net, the .xodr and the scene of a SUMO configuration written for a relief build.
+/// Throws IoError when the net or the .xodr is missing, InvalidInput when the configuration is
+/// not XML or names no net-file (the messages name the file).
+[[nodiscard]] CosimInputs find_cosim_inputs(const std::filesystem::path& sumocfg);
+
+struct CosimOptions {
+  double step_s = 0.05;               ///< lockstep step (SUMO's --step-length)
+  std::optional<double> end_s;        ///< stop at this simulated time; default: the configuration's end,
+                                      ///< or when SUMO has no vehicle left to run
+  double mesh_tolerance_m = 0.005;    ///< chord tolerance of the road surface lofted without a .glb
+  double wheel_under_limit_m = 0.05;  ///< a wheel whose surface lies this far above the body counts
+  /// A wheel's surface must lie this close to where SUMO has the vehicle (vehicle_pose.h).
+  double max_contact_gap_m = 1.0;
+  double trajectory_period_s = 0.0;    ///< trajectory rows this often (0: every step)
+  std::vector<std::string> sumo_args;  ///< extra SUMO command-line arguments
+  /// Called about once per simulated 10 s: (simulated time, vehicles now).
+  std::function<void(double, std::size_t)> progress;
+  /// Polled every step; true ends the run cleanly (what was simulated is written).
+  std::function<bool()> stop_requested;
+};
+
+/// Percentiles of a measure over every vehicle and step.
+struct Spread {
+  double p50 = 0.0, p99 = 0.0, max = 0.0;
+  std::size_t count = 0;
+};
+
+struct CosimResult {
+  std::size_t steps = 0;
+  double simulated_s = 0.0;
+  std::size_t vehicles = 0;          ///< distinct vehicles seen
+  std::size_t vehicle_steps = 0;     ///< vehicles x steps placed
+  std::size_t max_vehicles = 0;      ///< most at one step
+  std::size_t unplaced = 0;          ///< vehicle-steps with two or more contacts on no surface near
+  std::size_t unmapped = 0;          ///< vehicle-steps whose centre is on no OpenDRIVE road of its lanes
+  std::size_t off_pavement = 0;      ///< wheel contacts on a surface other than road or junction
+  std::size_t contacts_missing = 0;  ///< wheel contacts with no surface near (vehicle_pose.h)
+  double wall_s = 0.0, sumo_s = 0.0, relief_s = 0.0, setup_s = 0.0;
+  bool stopped = false;               ///< ended by stop_requested
+  Spread z_error_m;                   ///< |placed z - S(road, s, t).z| at the vehicle's centre
+  Spread z_error_on_roads_m;          ///< the same where the centre is on a road's lane
+  Spread z_error_in_junctions_m;      ///< the same where it is on an internal lane (a junction)
+  Spread sumo_z_error_m;              ///< |SUMO's z - S(road, s, t).z| at the front bumper
+  Spread pitch_error_deg;             ///< |pitch - atan(surface slope along the heading)|
+  Spread wheel_under_m;               ///< the deepest contact per vehicle-step (0 when none is under)
+  std::size_t wheels_under_road = 0;  ///< contacts deeper than wheel_under_limit_m
+  std::string worst_z_place;          ///< vehicle, time, lane and (x, y) of the largest z error
+  [[nodiscard]] double real_time_factor() const { return wall_s > 0.0 ? simulated_s / wall_s : 0.0; }
+};
+
+/// Runs the co-simulation and writes, in `out_dir` (created), cosim.json, NAME.fcd.xml (SUMO's
+/// FCD format, each vehicle with pitch and roll added) and NAME.trajectories.csv, all
+/// atomically after the run. Throws IoError / InvalidInput for unreadable inputs (the file and
+/// the problem), Error when SUMO fails.
+CosimResult run_cosim(const CosimInputs& inputs, const CosimOptions& options,
+                      const std::filesystem::path& out_dir, Diagnostics& diagnostics);
+
+}  // namespace relief

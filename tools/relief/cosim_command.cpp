@@ -1,0 +1,99 @@
+// `relief cosim`: SUMO's traffic set down on the 3D road surface of a relief build, every step.
+#include <csignal>
+#include <filesystem>
+#include <iomanip>
+#include <iostream>
+#include <memory>
+
+#include "commands.h"
+#include "console.h"
+#include "options.h"
+#include "relief/cosim/cosim.h"
+
+namespace relief::cli {
+namespace {
+
+volatile std::sig_atomic_t interrupted = 0;
+
+extern "C" void on_interrupt(int /*signal*/) {
+  interrupted = 1;
+}
+
+struct CosimArgs {
+  std::string sumocfg;
+  std::string out;
+  CosimOptions options;
+  double end_s = 0.0;
+};
+
+void print_spread(const char* label, const Spread& s, const char* unit, int digits) {
+  std::cout << "  " << std::left << std::setw(16) << label << "p50 " << fixed(s.p50, digits) << unit
+            << ", p99 " << fixed(s.p99, digits) << unit << ", max " << fixed(s.max, digits) << unit << "\n";
+}
+
+void print_result(const CosimResult& r, const std::string& out) {
+  std::cout << "cosim      " << r.steps << " steps, " << fixed(r.simulated_s, 2) << " s simulated"
+            << (r.stopped ? " (interrupted)" : "") << ", " << r.vehicles << " vehicles (at most "
+            << r.max_vehicles << " at once), " << r.vehicle_steps << " placements\n";
+  print_spread("z vs OpenDRIVE", r.z_error_m, " m", 4);
+  print_spread("  on roads", r.z_error_on_roads_m, " m", 4);
+  print_spread("  in junctions", r.z_error_in_junctions_m, " m", 4);
+  print_spread("SUMO z vs ODR", r.sumo_z_error_m, " m", 4);
+  print_spread("pitch vs slope", r.pitch_error_deg, " deg", 3);
+  std::cout << "  wheels under   " << r.wheels_under_road << " (deepest " << fixed(r.wheel_under_m.max, 4)
+            << " m)\n"
+            << "time       " << fixed(r.wall_s, 2) << " s wall (setup " << fixed(r.setup_s, 2) << " s, SUMO "
+            << fixed(r.sumo_s, 2) << " s, relief " << fixed(r.relief_s, 2) << " s), "
+            << fixed(r.real_time_factor(), 1) << "x real time\n"
+            << "wrote      " << (std::filesystem::path(out) / kCosimReportFile).string()
+            << " and the trajectories\n";
+}
+
+}  // namespace
+
+Runner add_cosim_command(CLI::App& app) {
+  auto* cmd = app.add_subcommand(
+      "cosim", "Run SUMO on a relief build and set every vehicle, every step, on the 3D road surface");
+  auto args = std::make_shared<CosimArgs>();
+  cmd->add_option("--sumocfg", args->sumocfg,
+                  "SUMO configuration whose net-file is a relief build's NAME.net.xml")
+      ->required();
+  cmd->add_option(
+         "--out", args->out,
+         std::string("Output directory (") + kCosimReportFile + ", NAME.fcd.xml, NAME.trajectories.csv)")
+      ->required();
+  cmd->add_option("--step", args->options.step_s, "Lockstep step in seconds (SUMO's --step-length)")
+      ->check(finite_positive())
+      ->capture_default_str();
+  cmd->add_option("--end", args->end_s,
+                  "Stop at this simulated time in seconds (default: the configuration's end)")
+      ->check(finite_positive());
+  cmd->add_option("--trajectory-period", args->options.trajectory_period_s,
+                  "Write trajectory rows this often in seconds (0: every step)")
+      ->check(finite_non_negative())
+      ->capture_default_str();
+  cmd->add_option("--mesh-tolerance", args->options.mesh_tolerance_m,
+                  "Chord tolerance in metres of the road surface the vehicles are set on")
+      ->check(finite_positive())
+      ->capture_default_str();
+  return [args, cmd] {
+    return run_reporting_errors([&] {
+      if (cmd->count("--end") > 0) args->options.end_s = args->end_s;
+      args->options.progress = [](double t, std::size_t vehicles) {
+        std::cerr << "relief: cosim t = " << fixed(t, 1) << " s, " << vehicles << " vehicles\n";
+      };
+      args->options.stop_requested = [] { return interrupted != 0; };
+      std::signal(SIGINT, on_interrupt);
+      Diagnostics diagnostics;
+      print_diagnostics_live(diagnostics, false);
+      const CosimResult result =
+          run_cosim(find_cosim_inputs(args->sumocfg), args->options, args->out, diagnostics);
+      std::signal(SIGINT, SIG_DFL);
+      print_result(result, args->out);
+      print_diagnostics_summary(diagnostics);
+      return static_cast<int>(kOk);
+    });
+  };
+}
+
+}  // namespace relief::cli
