@@ -176,7 +176,9 @@ CosimResult run_cosim(const CosimInputs& inputs, const CosimOptions& options,
   std::unordered_map<std::string, std::array<std::string, 3>> recent;
   double worst_z = -1.0;
   std::string first_unplaced, first_unmapped;
-  double next_progress = kProgressEvery_s, next_row = 0.0;
+  double next_progress = kProgressEvery_s, next_row = 0.0, next_key = 0.0;
+  std::unordered_map<std::string, ReplayTrack> replay;
+  std::vector<std::string> replay_order;  // first appearance: the replay's node order
   for (;;) {
     const double now = sumo.time();
     if (end && now >= *end - 1e-9) break;
@@ -194,6 +196,8 @@ CosimResult run_cosim(const CosimInputs& inputs, const CosimOptions& options,
     result.simulated_s = sumo.time();
     result.max_vehicles = std::max(result.max_vehicles, vehicles.size());
     const bool write_rows = result.simulated_s >= next_row - 1e-9;
+    const bool add_keys = options.replay_period_s > 0.0 && result.simulated_s >= next_key - 1e-9;
+    if (add_keys) next_key = result.simulated_s + options.replay_period_s;
     if (write_rows) {
       next_row = result.simulated_s + options.trajectory_period_s;
       trajectories.begin_step(result.simulated_s);
@@ -264,6 +268,19 @@ CosimResult run_cosim(const CosimInputs& inputs, const CosimOptions& options,
           result.worst_z_place = where.str();
         }
       }
+      if (add_keys) {
+        auto [track, added] = replay.try_emplace(v.id);
+        if (added) {
+          replay_order.push_back(v.id);
+          track->second.name = v.id;
+          track->second.length_m = v.length_m;
+          track->second.width_m = v.width_m;
+          track->second.height_m = v.height_m > 0.0 ? v.height_m : 1.5;
+        }
+        track->second.keys.push_back({result.simulated_s, Vec3(centre.x(), centre.y(), pose->z_m), heading,
+                                      pose->pitch_rad, pose->roll_rad});
+        track->second.hide_after_s = result.simulated_s + options.replay_period_s;
+      }
       if (write_rows) {
         trajectories.add({&v.id, &v.type, &v.lane, centre.x(), centre.y(), pose->z_m, v.angle_deg,
                           v.speed_mps, pose->pitch_rad * kDegree, pose->roll_rad * kDegree});
@@ -296,7 +313,16 @@ CosimResult run_cosim(const CosimInputs& inputs, const CosimOptions& options,
                            "measured; the first on " +
                            first_unmapped);
   }
+  OutputSet outputs;
+  if (options.replay_period_s > 0.0) {
+    std::vector<ReplayTrack> tracks;
+    tracks.reserve(replay_order.size());
+    for (const std::string& id : replay_order) tracks.push_back(std::move(replay.at(id)));
+    const std::string bytes = encode_replay_glb(scene, tracks);
+    outputs.add(out_dir / kCosimReplayFile, [&](std::ostream& out) { out << bytes; });
+  }
   trajectories.commit();
+  outputs.commit();
   result.wall_s = seconds_since(start);
   write_cosim_json(out_dir / kCosimReportFile, inputs, options, result);
   return result;

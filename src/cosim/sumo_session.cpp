@@ -87,6 +87,7 @@ std::vector<SumoVehicleState> SumoSession::vehicles() const {
     v.speed_mps = libsumo::Vehicle::getSpeed(id);
     v.length_m = libsumo::Vehicle::getLength(id);
     v.width_m = libsumo::Vehicle::getWidth(id);
+    v.height_m = libsumo::Vehicle::getHeight(id);
     v.slope_deg = libsumo::Vehicle::getSlope(id);
     out.push_back(std::move(v));
   }

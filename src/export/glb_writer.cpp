@@ -32,8 +32,9 @@ class Document {
     const std::size_t offset = bin_.size();
     bin_.resize(offset + bytes);
     if (bytes > 0) std::memcpy(bin_.data() + offset, values.data(), bytes);
-    json_["bufferViews"].push_back(
-        {{"buffer", 0}, {"byteOffset", offset}, {"byteLength", bytes}, {"target", target}});
+    nlohmann::json view = {{"buffer", 0}, {"byteOffset", offset}, {"byteLength", bytes}};
+    if (target != 0) view["target"] = target;  // animation data has none
+    json_["bufferViews"].push_back(std::move(view));
     nlohmann::json accessor = {{"bufferView", json_["bufferViews"].size() - 1},
                                {"componentType", component_type},
                                {"count", values.size()},
@@ -83,7 +84,70 @@ class Document {
 
 }  // namespace
 
-std::string encode_glb(const fbx::SceneDesc& scene) {
+// Appends the unit box (a mesh of its own), a node per track and the animation "replay".
+void add_tracks(Document& doc, const std::vector<GlbTrack>& tracks, std::size_t material) {
+  nlohmann::json& j = doc.json();
+  std::vector<std::array<float, 3>> corners;
+  corners.reserve(8);
+  for (int k = 0; k < 8; ++k)
+    corners.push_back({(k & 1) ? 0.5f : -0.5f, (k & 2) ? 0.5f : -0.5f, (k & 4) ? 0.5f : -0.5f});
+  // Outward, counter-clockwise seen from outside.
+  const std::vector<std::array<std::uint32_t, 3>> faces = {{0, 2, 3}, {0, 3, 1}, {4, 5, 7}, {4, 7, 6},
+                                                           {0, 1, 5}, {0, 5, 4}, {2, 6, 7}, {2, 7, 3},
+                                                           {0, 4, 6}, {0, 6, 2}, {1, 3, 7}, {1, 7, 5}};
+  const int positions = doc.add(corners, "VEC3", kFloat, kArrayBuffer, /*bounds=*/true);
+  const int indices = doc.add(faces, "SCALAR", kUnsignedInt, kElementArrayBuffer, false);
+  j["accessors"][static_cast<std::size_t>(indices)]["count"] = 3 * faces.size();
+  j["meshes"].push_back({{"name", "Vehicle_Box"},
+                         {"primitives", nlohmann::json::array({{{"attributes", {{"POSITION", positions}}},
+                                                                {"indices", indices},
+                                                                {"material", material},
+                                                                {"mode", 4}}})}});
+  const std::size_t box = j["meshes"].size() - 1;
+  nlohmann::json samplers = nlohmann::json::array(), channels = nlohmann::json::array();
+  for (const GlbTrack& t : tracks) {
+    j["nodes"].push_back({{"name", t.name + "_box"},
+                          {"mesh", box},
+                          {"scale", t.size},
+                          {"translation", {0.0f, 0.5f * t.size[1], 0.0f}}});
+    const std::size_t child = j["nodes"].size() - 1;
+    j["nodes"].push_back({{"name", t.name}, {"children", {child}}, {"scale", {0.0f, 0.0f, 0.0f}}});
+    const std::size_t node = j["nodes"].size() - 1;
+    j["nodes"][0]["children"].push_back(node);
+    std::vector<std::array<float, 1>> times;
+    for (const float time : t.times) times.push_back({time});
+    const int input = doc.add(times, "SCALAR", kFloat, 0, /*bounds=*/true);
+    const auto sampler = [&](int output, const char* interpolation) {
+      samplers.push_back({{"input", input}, {"output", output}, {"interpolation", interpolation}});
+      return samplers.size() - 1;
+    };
+    channels.push_back({{"sampler", sampler(doc.add(t.translations, "VEC3", kFloat, 0, false), "LINEAR")},
+                        {"target", {{"node", node}, {"path", "translation"}}}});
+    channels.push_back({{"sampler", sampler(doc.add(t.rotations, "VEC4", kFloat, 0, false), "LINEAR")},
+                        {"target", {{"node", node}, {"path", "rotation"}}}});
+    // Shown from its first key to hide_after_s: a STEP scale of 1 there, 0 before and after.
+    std::vector<std::array<float, 1>> scale_times;
+    std::vector<std::array<float, 3>> scales;
+    if (t.times.front() > 0.0f) {
+      scale_times.push_back({0.0f});
+      scales.push_back({0.0f, 0.0f, 0.0f});
+    }
+    scale_times.push_back({t.times.front()});
+    scales.push_back({1.0f, 1.0f, 1.0f});
+    scale_times.push_back({t.hide_after_s});
+    scales.push_back({0.0f, 0.0f, 0.0f});
+    const int scale_input = doc.add(scale_times, "SCALAR", kFloat, 0, /*bounds=*/true);
+    samplers.push_back({{"input", scale_input},
+                        {"output", doc.add(scales, "VEC3", kFloat, 0, false)},
+                        {"interpolation", "STEP"}});
+    channels.push_back({{"sampler", samplers.size() - 1}, {"target", {{"node", node}, {"path", "scale"}}}});
+  }
+  j["animations"] =
+      nlohmann::json::array({{{"name", "replay"}, {"samplers", samplers}, {"channels", channels}}});
+}
+
+std::string encode_glb(const fbx::SceneDesc& scene, const std::vector<GlbTrack>& tracks,
+                       std::size_t track_material) {
   Document doc;
   nlohmann::json& j = doc.json();
   nlohmann::json extras = nlohmann::json::object();
@@ -121,6 +185,7 @@ std::string encode_glb(const fbx::SceneDesc& scene) {
     j["nodes"].push_back({{"name", mesh.name}, {"mesh", j["meshes"].size() - 1}});
     j["nodes"][0]["children"].push_back(j["nodes"].size() - 1);
   }
+  if (!tracks.empty()) add_tracks(doc, tracks, track_material);
   j["scenes"] = nlohmann::json::array({{{"nodes", {0}}}});
   j["scene"] = 0;
   return doc.glb();

@@ -1,5 +1,7 @@
 #include "relief/export/mesh_writer.h"
 
+#include <Eigen/Geometry>
+
 #include <assimp/material.h>
 #include <assimp/metadata.h>
 #include <assimp/postprocess.h>
@@ -298,6 +300,43 @@ std::vector<EncodedFile> encode_mesh_scene(const MeshScene& scene, MeshFormat fo
     return {{base_name + ".obj", std::move(text.obj)}, {mtl_name, std::move(text.mtl)}};
   }
   return {{base_name + ".glb", encode_glb(desc)}};
+}
+
+std::string encode_replay_glb(const MeshScene& scene, const std::vector<ReplayTrack>& tracks) {
+  fbx::SceneDesc desc = prepare_scene(scene);
+  const std::size_t material = desc.materials.size();
+  desc.materials.push_back({"Vehicle", {0.95f, 0.45f, 0.1f}});
+  // local -> file axes: file = C local, C = [1 0 0; 0 0 1; 0 -1 0]; a rotation R becomes C R C'.
+  Eigen::Matrix3d c;
+  c << 1, 0, 0, 0, 0, 1, 0, -1, 0;
+  std::vector<GlbTrack> out;
+  for (const ReplayTrack& t : tracks) {
+    if (t.keys.empty()) continue;
+    if (!(t.length_m > 0.0 && t.width_m > 0.0 && t.height_m > 0.0))
+      throw InvalidInput("replay track '" + t.name + "': its size must be > 0");
+    if (!(t.hide_after_s > t.keys.back().t_s))
+      throw InvalidInput("replay track '" + t.name + "': it must hide after its last key");
+    GlbTrack g;
+    g.name = t.name;
+    g.size = {static_cast<float>(t.length_m), static_cast<float>(t.height_m), static_cast<float>(t.width_m)};
+    g.hide_after_s = static_cast<float>(t.hide_after_s);
+    for (std::size_t k = 0; k < t.keys.size(); ++k) {
+      const ReplayKey& key = t.keys[k];
+      if (!(key.t_s >= 0.0) || (k > 0 && !(key.t_s > t.keys[k - 1].t_s)))
+        throw InvalidInput("replay track '" + t.name + "': key times must be >= 0 and strictly increasing");
+      const Eigen::Matrix3d r = (Eigen::AngleAxisd(key.heading_rad, Eigen::Vector3d::UnitZ()) *
+                                 Eigen::AngleAxisd(-key.pitch_rad, Eigen::Vector3d::UnitY()) *
+                                 Eigen::AngleAxisd(key.roll_rad, Eigen::Vector3d::UnitX()))
+                                    .toRotationMatrix();
+      const Eigen::Quaterniond q(c * r * c.transpose());
+      g.times.push_back(static_cast<float>(key.t_s));
+      g.translations.push_back(to_file_axes(key.position));
+      g.rotations.push_back({static_cast<float>(q.x()), static_cast<float>(q.y()), static_cast<float>(q.z()),
+                             static_cast<float>(q.w())});
+    }
+    out.push_back(std::move(g));
+  }
+  return encode_glb(desc, out, material);
 }
 
 MeshScene read_mesh_file(const std::filesystem::path& path) {

@@ -204,6 +204,7 @@ assert len(steps) == 600 and steps[-1].find("vehicle").get("pitch") is not None
 print("cosim hill: %d vehicles, z error max %.4f m, SUMO z error max %.4f m" %
       (r["vehicles"], r["z_error_m"]["max"], r["sumo_z_error_m"]["max"]))
 PY
+check "cosim replay" test -s "$cs/cosim.glb"
 check "cosim without config" run 2 "$RELIEF_TMP/cosim_none" cosim --out "$RELIEF_TMP/cosim_none"
 check "cosim missing config" run 3 "$RELIEF_TMP/cosim_missing" cosim --sumocfg "$RELIEF_TMP/nowhere.sumocfg" \
   --out "$RELIEF_TMP/cosim_missing"
@@ -385,6 +386,17 @@ assert r["sumo_z_error_m"]["max"] <= 0.05, r["sumo_z_error_m"]
 assert r["z_error_on_roads_m"]["p99"] <= 0.03, r["z_error_on_roads_m"]
 assert r["unmapped_vehicle_steps"] <= 0.05 * r["vehicle_steps"], r["unmapped_vehicle_steps"]
 PY
+  # The replay and the scene it carries: 0 errors in the Khronos glTF validator (npm; skipped,
+  # and said so, where node/npm or the registry is missing).
+  "$RELIEF_SOURCE_DIR/tools/gltf-validate.sh" "$out/cosim/cosim.glb" "$out/sf-potrero.glb" >"$RELIEF_TMP/gltf.log" 2>&1
+  code=$?
+  cat "$RELIEF_TMP/gltf.log"
+  if [ "$code" -eq 77 ]; then
+    echo "SKIP: glTF validator not available"
+  else
+    check "potrero replay valid glTF" test "$code" -eq 0
+    check "potrero replay animated" grep -q '"animations":1' "$RELIEF_TMP/gltf.log"
+  fi
 fi
 
 # Reproducible: two builds of Potrero with SOURCE_DATE_EPOCH set give byte-identical outputs

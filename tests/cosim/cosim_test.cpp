@@ -182,8 +182,16 @@ TEST(Cosim, ATrajectoryPeriodThinsTheRowsAndStopEndsCleanly) {
   std::size_t timesteps = 0;
   for ([[maybe_unused]] const pugi::xml_node& t : fcd.child("fcd-export").children("timestep")) ++timesteps;
   EXPECT_EQ(timesteps, 10u);  // t = 0.05, 1.05, ..., 9.05
-  EXPECT_TRUE(fs::exists(out / "cosim.json"));
+  EXPECT_TRUE(fs::exists(out / kCosimReportFile));
+  EXPECT_TRUE(fs::exists(out / kCosimReplayFile));
   EXPECT_FALSE(fs::exists(out / ".hill.fcd.xml.part"));
+  // No replay asked for: none written.
+  options.replay_period_s = 0.0;
+  polls = 0;
+  const fs::path bare = test::scratch_dir("cosim_hill_bare");
+  (void)run_cosim(find_cosim_inputs(config), options, bare, d);
+  EXPECT_TRUE(fs::exists(bare / kCosimReportFile));
+  EXPECT_FALSE(fs::exists(bare / kCosimReplayFile));
 }
 
 TEST(Cosim, InputsThatCannotServeSayWhich) {

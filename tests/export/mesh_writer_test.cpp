@@ -9,6 +9,7 @@
 #include <functional>
 #include <iostream>
 #include <map>
+#include <numbers>
 #include <set>
 
 #include "relief/core/errors.h"
@@ -364,6 +365,98 @@ TEST(MeshWriter, BlenderImportsFbxGlbAndObjInMetresZUp) {
     }
     std::cout << p.filename().string() << ": relief:proj on " << imported["proj_carriers"].dump() << "\n";
   }
+}
+
+// The float values of accessor `index` of a .glb (JSON `j`, binary chunk `bin`).
+std::vector<float> accessor_floats(const nlohmann::json& j, const std::string& bin, std::size_t index) {
+  const auto& a = j["accessors"][index];
+  const auto& view = j["bufferViews"][a["bufferView"].get<std::size_t>()];
+  const std::map<std::string, std::size_t> width = {{"SCALAR", 1}, {"VEC3", 3}, {"VEC4", 4}};
+  std::vector<float> out(a["count"].get<std::size_t>() * width.at(a["type"].get<std::string>()));
+  std::memcpy(out.data(), bin.data() + view["byteOffset"].get<std::size_t>(), out.size() * sizeof(float));
+  return out;
+}
+
+// Rotates v by the unit quaternion (x, y, z, w).
+std::array<double, 3> rotate(const float* q, const std::array<double, 3>& v) {
+  const double x = q[0], y = q[1], z = q[2], w = q[3];
+  const std::array<double, 3> u{x, y, z};
+  const auto cross = [](const std::array<double, 3>& a, const std::array<double, 3>& b) {
+    return std::array<double, 3>{a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2],
+                                 a[0] * b[1] - a[1] * b[0]};
+  };
+  const auto t = cross(u, v);
+  const std::array<double, 3> t2{2 * t[0], 2 * t[1], 2 * t[2]};
+  const auto c = cross(u, t2);
+  return {v[0] + w * t2[0] + c[0], v[1] + w * t2[1] + c[1], v[2] + w * t2[2] + c[2]};
+}
+
+// A replay: the scene plus a box per vehicle with its keys as node animation in the file's axes
+// (y up, z = -local y): the translation is the key's position, the rotation turns the box's
+// forward axis (file x) to the heading with the pitch, its up axis by the roll; the scale shows
+// the box from the first key until it hides.
+TEST(MeshWriter, ReplayGlbAnimatesEveryVehicleBoxInTheFilesAxes) {
+  ReplayTrack car;
+  car.name = "car 1";
+  car.length_m = 4.0;
+  car.keys = {{1.0, Vec3(10.0, 20.0, 30.0), 0.0, 0.0, 0.0},
+              {1.5, Vec3(11.0, 20.0, 30.1), std::numbers::pi / 2, 0.1, 0.0},
+              {2.0, Vec3(11.0, 21.0, 30.2), 0.0, 0.0, 0.2}};
+  car.hide_after_s = 2.5;
+  ReplayTrack empty;
+  empty.name = "never placed";
+  const std::string glb = encode_replay_glb(test_scene(), {car, empty});
+  std::uint32_t json_bytes = 0;
+  std::memcpy(&json_bytes, glb.data() + 12, 4);
+  const nlohmann::json j = nlohmann::json::parse(glb.substr(20, json_bytes));
+  const std::string bin = glb.substr(20 + json_bytes + 8);
+  ASSERT_EQ(j["animations"].size(), 1u);
+  const auto& animation = j["animations"][0];
+  EXPECT_EQ(animation["name"], "replay");
+  ASSERT_EQ(animation["channels"].size(), 3u);  // the empty track is left out
+  const auto sampler_of = [&](const std::string& path) {
+    for (const auto& c : animation["channels"])
+      if (c["target"]["path"] == path) return animation["samplers"][c["sampler"].get<std::size_t>()];
+    return nlohmann::json();
+  };
+  const auto node = animation["channels"][0]["target"]["node"].get<std::size_t>();
+  EXPECT_EQ(j["nodes"][node]["name"], "car 1");
+  const auto& box = j["nodes"][j["nodes"][node]["children"][0].get<std::size_t>()];
+  EXPECT_EQ(box["scale"], nlohmann::json({4.0f, 1.5f, 1.8f}));  // length, height, width
+  EXPECT_EQ(j["materials"].back()["name"], "Vehicle");
+
+  const auto times = accessor_floats(j, bin, sampler_of("translation")["input"].get<std::size_t>());
+  EXPECT_EQ(times, (std::vector<float>{1.0f, 1.5f, 2.0f}));
+  const auto& input = j["accessors"][sampler_of("translation")["input"].get<std::size_t>()];
+  EXPECT_EQ(input["min"][0], 1.0);
+  EXPECT_EQ(input["max"][0], 2.0);
+  const auto t = accessor_floats(j, bin, sampler_of("translation")["output"].get<std::size_t>());
+  EXPECT_EQ(t, (std::vector<float>{10.0f, 30.0f, -20.0f, 11.0f, 30.1f, -20.0f, 11.0f, 30.2f, -21.0f}));
+  const auto r = accessor_floats(j, bin, sampler_of("rotation")["output"].get<std::size_t>());
+  ASSERT_EQ(r.size(), 12u);
+  // Key 0: no turn. Key 1: heading north (local +y = file -z), nose up 0.1 rad.
+  const auto f0 = rotate(&r[0], {1, 0, 0});
+  EXPECT_NEAR(f0[0], 1.0, 1e-6);
+  const auto f1 = rotate(&r[4], {1, 0, 0});
+  EXPECT_NEAR(f1[0], 0.0, 1e-6);
+  EXPECT_NEAR(f1[1], std::sin(0.1), 1e-6);
+  EXPECT_NEAR(f1[2], -std::cos(0.1), 1e-6);
+  // Key 2: rolled 0.2 rad, right side down: the up axis leans to the right (local -y = file +z).
+  const auto u2 = rotate(&r[8], {0, 1, 0});
+  EXPECT_NEAR(u2[1], std::cos(0.2), 1e-6);
+  EXPECT_NEAR(u2[2], std::sin(0.2), 1e-6);
+  const auto scale = sampler_of("scale");
+  EXPECT_EQ(scale["interpolation"], "STEP");
+  EXPECT_EQ(accessor_floats(j, bin, scale["input"].get<std::size_t>()),
+            (std::vector<float>{0.0f, 1.0f, 2.5f}));
+  EXPECT_EQ(accessor_floats(j, bin, scale["output"].get<std::size_t>()),
+            (std::vector<float>{0, 0, 0, 1, 1, 1, 0, 0, 0}));
+
+  car.keys[2].t_s = 1.5;
+  EXPECT_THROW((void)encode_replay_glb(test_scene(), {car}), InvalidInput);
+  car.keys[2].t_s = 2.0;
+  car.hide_after_s = 2.0;
+  EXPECT_THROW((void)encode_replay_glb(test_scene(), {car}), InvalidInput);
 }
 
 }  // namespace

@@ -46,7 +46,7 @@ void print_result(const CosimResult& r, const std::string& out) {
             << fixed(r.sumo_s, 2) << " s, relief " << fixed(r.relief_s, 2) << " s), "
             << fixed(r.real_time_factor(), 1) << "x real time\n"
             << "wrote      " << (std::filesystem::path(out) / kCosimReportFile).string()
-            << " and the trajectories\n";
+            << ", the trajectories and the replay\n";
 }
 
 }  // namespace
@@ -70,6 +70,10 @@ Runner add_cosim_command(CLI::App& app) {
       ->check(finite_positive());
   cmd->add_option("--trajectory-period", args->options.trajectory_period_s,
                   "Write trajectory rows this often in seconds (0: every step)")
+      ->check(finite_non_negative())
+      ->capture_default_str();
+  cmd->add_option("--replay-period", args->options.replay_period_s,
+                  std::string("Key the replay ") + kCosimReplayFile + " this often in seconds (0: no replay)")
       ->check(finite_non_negative())
       ->capture_default_str();
   cmd->add_option("--mesh-tolerance", args->options.mesh_tolerance_m,

@@ -24,6 +24,8 @@ namespace relief {
 
 /// The figures of a run, in the output directory.
 inline constexpr const char* kCosimReportFile = "cosim.json";
+/// The replay: the scene and every vehicle as an animated box (export/mesh_writer.h).
+inline constexpr const char* kCosimReplayFile = "cosim.glb";
 
 struct CosimInputs {
   std::filesystem::path sumocfg;
@@ -46,6 +48,7 @@ struct CosimOptions {
   /// A wheel's surface must lie this close to where SUMO has the vehicle (vehicle_pose.h).
   double max_contact_gap_m = 1.0;
   double trajectory_period_s = 0.0;    ///< trajectory rows this often (0: every step)
+  double replay_period_s = 0.5;        ///< replay keys this often (0: no cosim.glb)
   std::vector<std::string> sumo_args;  ///< extra SUMO command-line arguments
   /// Called about once per simulated 10 s: (simulated time, vehicles now).
   std::function<void(double, std::size_t)> progress;
@@ -83,7 +86,8 @@ struct CosimResult {
 };
 
 /// Runs the co-simulation and writes, in `out_dir` (created), cosim.json, NAME.fcd.xml (SUMO's
-/// FCD format, each vehicle with pitch and roll added) and NAME.trajectories.csv, all
+/// FCD format, each vehicle with pitch and roll added), NAME.trajectories.csv and the replay
+/// cosim.glb (the surface and every vehicle as a box of its SUMO size, animated), all
 /// atomically after the run. Throws IoError / InvalidInput for unreadable inputs (the file and
 /// the problem), Error when SUMO fails.
 CosimResult run_cosim(const CosimInputs& inputs, const CosimOptions& options,

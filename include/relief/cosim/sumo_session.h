@@ -17,7 +17,7 @@ struct SumoVehicleState {
   Vec3 front;              ///< middle of the front bumper (SUMO's position), z from the lane shape
   double angle_deg = 0.0;  ///< SUMO's angle: 0 north, clockwise
   double speed_mps = 0.0;
-  double length_m = 0.0, width_m = 0.0;
+  double length_m = 0.0, width_m = 0.0, height_m = 0.0;
   double slope_deg = 0.0;  ///< SUMO's slope of the vehicle (from its lane's z)
 
   /// Heading in relief's frame: radians counter-clockwise from +x (east).

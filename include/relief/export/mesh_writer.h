@@ -55,6 +55,29 @@ struct EncodedFile {
 [[nodiscard]] std::vector<EncodedFile> encode_mesh_scene(const MeshScene& scene, MeshFormat format,
                                                          const std::string& base_name);
 
+/// One vehicle of a replay: a box of its size, posed at its keys (local frame).
+struct ReplayKey {
+  double t_s = 0.0;          ///< time of the key, seconds (>= 0, strictly increasing)
+  Vec3 position;             ///< the point under the body's centre on the surface
+  double heading_rad = 0.0;  ///< counter-clockwise from +x
+  double pitch_rad = 0.0;    ///< nose up positive
+  double roll_rad = 0.0;     ///< right side down positive
+};
+struct ReplayTrack {
+  std::string name;  ///< the vehicle's id
+  double length_m = 4.5, width_m = 1.8, height_m = 1.5;
+  std::vector<ReplayKey> keys;
+  double hide_after_s = 0.0;  ///< the box disappears at this time (after the last key)
+};
+
+/// A replay as glTF binary: `scene` (as encode_mesh_scene writes it) plus every track as a box
+/// node (material "Vehicle") with glTF node animation "replay": translation and rotation
+/// LINEAR between the keys, a STEP scale that shows the box from its first key until
+/// hide_after_s, so that any glTF viewer plays the traffic over the surface. Tracks without
+/// keys are left out. Throws InvalidInput for keys out of order or a time < 0, a hide time not
+/// after the last key, or a size that is not > 0.
+[[nodiscard]] std::string encode_replay_glb(const MeshScene& scene, const std::vector<ReplayTrack>& tracks);
+
 /// Reads any mesh file assimp can import (.glb, .gltf, .obj, .fbx, .ply, .stl, ...) back into
 /// relief's axes, taking every file as Y-up (assimp's convention; relief's files are): one
 /// TriangleMesh per mesh reference of a node, in world coordinates (node transforms applied),
