@@ -13,6 +13,7 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   nlohmann-json3-dev libcli11-dev libpugixml-dev
   libxml2-utils sumo sumo-tools python3-xmlschema zip blender
+  pybind11-dev python3-dev python3-pytest
 )
 
 missing=()

@@ -10,3 +10,9 @@ cmake -S "$RELIEF_SOURCE_DIR/tests/install/consumer" -B "$RELIEF_TMP/consumer" -
 cmake --build "$RELIEF_TMP/consumer" >/dev/null
 "$RELIEF_TMP/consumer/consumer"
 "$RELIEF_TMP/prefix/bin/relief" --version
+# The Python module, where it was built: installed where Debian's python3 finds it under the
+# prefix, and it imports from there.
+if compgen -G "$RELIEF_BUILD_DIR/python/relief*.so" >/dev/null; then
+  site="$RELIEF_TMP/prefix/lib/python$(/usr/bin/python3 -c 'import sys; print("%d.%d" % sys.version_info[:2])')/dist-packages"
+  PYTHONPATH="$site" /usr/bin/python3 -c "import relief; assert relief.wheel_base(5.0, 1.8) == (3.0, 1.4); print('python module imports from', relief.__file__)"
+fi
