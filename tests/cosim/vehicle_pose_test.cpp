@@ -30,6 +30,15 @@ TriangleMesh surface(const std::function<double(double, double)>& f, double x0, 
   return mesh;
 }
 
+// Removes the triangles whose centroid lies within `radius` of `at` in plan.
+void punch_hole(TriangleMesh& mesh, const Vec2& at, double radius) {
+  std::erase_if(mesh.triangles, [&](const std::array<std::uint32_t, 3>& t) {
+    Vec2 c = Vec2::Zero();
+    for (const std::uint32_t v : t) c += mesh.vertices[v].head<2>() / 3.0;
+    return (c - at).norm() < radius;
+  });
+}
+
 MeshScene scene_of(std::vector<TriangleMesh> meshes) {
   MeshScene scene;
   scene.meshes = std::move(meshes);
@@ -144,11 +153,7 @@ TEST(PlaceOnSurface, AContactWithNoSurfaceNearItsHeightTakesThePlaneOfTheOtherTh
   // A hole in the road under the front left contact of a car at the origin heading east.
   const WheelBase wheels = wheel_base_of(5.0, 1.8);
   const Vec2 front_left(0.5 * wheels.wheelbase_m, 0.5 * wheels.track_m);
-  std::erase_if(road.triangles, [&](const std::array<std::uint32_t, 3>& t) {
-    Vec2 c = Vec2::Zero();
-    for (const std::uint32_t v : t) c += road.vertices[v].head<2>() / 3.0;
-    return (c - front_left).norm() < 0.6;
-  });
+  punch_hole(road, front_left, 0.6);
   const MeshScene scene =
       scene_of({road, surface([](double, double) { return 6.0; }, -10, -10, 20, 1.0, SurfaceKind::terrain)});
   const SurfaceQuery query(scene);
@@ -167,11 +172,7 @@ TEST(PlaceOnSurface, AContactWithNoSurfaceNearItsHeightTakesThePlaneOfTheOtherTh
   EXPECT_NEAR(hill->z_m, 6.0, 1e-9);
   // Two holes: unplaced.
   const Vec2 front_right(0.5 * wheels.wheelbase_m, -0.5 * wheels.track_m);
-  std::erase_if(road.triangles, [&](const std::array<std::uint32_t, 3>& t) {
-    Vec2 c = Vec2::Zero();
-    for (const std::uint32_t v : t) c += road.vertices[v].head<2>() / 3.0;
-    return (c - front_right).norm() < 0.6;
-  });
+  punch_hole(road, front_right, 0.6);
   const MeshScene holed =
       scene_of({road, surface([](double, double) { return 6.0; }, -10, -10, 20, 1.0, SurfaceKind::terrain)});
   const SurfaceQuery holed_query(holed);
