@@ -4,16 +4,16 @@
 #include <pugixml.hpp>
 
 #include <algorithm>
-#include <array>
 #include <chrono>
 #include <cmath>
 #include <numbers>
-#include <sstream>
+#include <string>
+#include <vector>
 #include <unordered_map>
 
+#include "cosim/placement_measures.h"
 #include "cosim/trajectory_writer.h"
 #include "relief/core/atomic_file.h"
-#include "relief/core/diagnostic_codes.h"
 #include "relief/core/errors.h"
 #include "relief/cosim/sumo_session.h"
 #include "relief/cosim/vehicle_pose.h"
@@ -34,22 +34,6 @@ constexpr double kProgressEvery_s = 10.0;
 
 double seconds_since(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
-}
-
-// The median, 99th percentile (the value at rank floor(0.99 (n - 1))) and largest value.
-Spread spread_of(std::vector<float>& values) {
-  Spread s;
-  s.count = values.size();
-  if (values.empty()) return s;
-  const auto at = [&](double q) {
-    const auto k = static_cast<std::size_t>(q * static_cast<double>(values.size() - 1));
-    std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(k), values.end());
-    return static_cast<double>(values[k]);
-  };
-  s.p50 = at(0.5);
-  s.p99 = at(0.99);
-  s.max = static_cast<double>(*std::max_element(values.begin(), values.end()));
-  return s;
 }
 
 Json spread_json(const Spread& s) {
@@ -104,6 +88,55 @@ void write_cosim_json(const std::filesystem::path& path, const CosimInputs& inpu
   write_file_atomically(path, j.dump(2) + "\n");
 }
 
+// The build's scene when there is one, else the .xodr's roads lofted within the tolerance.
+MeshScene load_surface(const CosimInputs& inputs, const RoadModel& model, const CosimOptions& options,
+                       Diagnostics& diagnostics) {
+  if (!inputs.scene.empty()) return read_mesh_file(inputs.scene);
+  RoadMeshOptions mesh_options;
+  mesh_options.tolerance_m = options.mesh_tolerance_m;
+  mesh_options.markings = false;
+  RoadMeshes meshes = build_road_meshes(model, mesh_options, diagnostics);
+  MeshScene scene;
+  scene.frame = model.frame;
+  scene.meshes.push_back(std::move(meshes.road));
+  return scene;
+}
+
+// The replay's keys: every vehicle every `period` seconds, tracks in order of first appearance.
+class ReplayRecorder {
+ public:
+  explicit ReplayRecorder(double period_s) : period_s_(period_s) {}
+
+  /// Whether time t takes keys (then the next key is a period later).
+  bool due(double t) {
+    if (!(period_s_ > 0.0) || t < next_ - 1e-9) return false;
+    next_ = t + period_s_;
+    return true;
+  }
+  void add(const SumoVehicleState& v, const SurfacePose& pose, double t) {
+    auto [it, added] = index_.try_emplace(v.id, tracks_.size());
+    if (added) {
+      ReplayTrack& track = tracks_.emplace_back();
+      track.name = v.id;
+      track.length_m = v.length_m;
+      track.width_m = v.width_m;
+      track.height_m = v.height_m > 0.0 ? v.height_m : 1.5;
+    }
+    ReplayTrack& track = tracks_[it->second];
+    const Vec2 centre = v.centre();
+    track.keys.push_back(
+        {t, Vec3(centre.x(), centre.y(), pose.z_m), v.heading(), pose.pitch_rad, pose.roll_rad});
+    track.hide_after_s = t + period_s_;
+  }
+  std::vector<ReplayTrack> take_tracks() { return std::move(tracks_); }
+
+ private:
+  double period_s_;
+  double next_ = 0.0;
+  std::unordered_map<std::string, std::size_t> index_;
+  std::vector<ReplayTrack> tracks_;
+};
+
 }  // namespace
 
 CosimInputs find_cosim_inputs(const std::filesystem::path& sumocfg) {
@@ -141,22 +174,13 @@ CosimResult run_cosim(const CosimInputs& inputs, const CosimOptions& options,
   const Clock::time_point start = Clock::now();
   CosimResult result;
 
-  // The surface (the build's scene, else the .xodr's roads lofted), and the net's lanes mapped
-  // onto the OpenDRIVE roads to measure against.
+  // The surface, and the net's lanes mapped onto the OpenDRIVE roads to measure against.
   const RoadModel model = read_opendrive(inputs.xodr);
-  MeshScene scene;
-  if (!inputs.scene.empty()) {
-    scene = read_mesh_file(inputs.scene);
-  } else {
-    RoadMeshOptions mesh_options;
-    mesh_options.tolerance_m = options.mesh_tolerance_m;
-    mesh_options.markings = false;
-    RoadMeshes meshes = build_road_meshes(model, mesh_options, diagnostics);
-    scene.frame = model.frame;
-    scene.meshes.push_back(std::move(meshes.road));
-  }
+  const MeshScene scene = load_surface(inputs, model, options, diagnostics);
   const SurfaceQuery query(scene);
   SumoSurface odr(inputs.net, model);
+  detail::PlacementMeasures measures(odr, options);
+  ReplayRecorder replay(options.replay_period_s);
 
   std::filesystem::create_directories(out_dir);
   const std::string name = net_stem(inputs.net);
@@ -170,18 +194,9 @@ CosimResult run_cosim(const CosimInputs& inputs, const CosimOptions& options,
                                                            : std::nullopt;
   result.setup_s = seconds_since(start);
 
-  std::vector<float> z_errors, z_errors_road, z_errors_junction, sumo_z_errors, pitch_errors, wheel_under;
-  // The last lanes of every vehicle, newest first: its centre, half a length behind the front
-  // bumper, may still be on a lane the bumper has left.
-  std::unordered_map<std::string, std::array<std::string, 3>> recent;
-  double worst_z = -1.0;
-  std::string first_unplaced, first_unmapped;
-  double next_progress = kProgressEvery_s, next_row = 0.0, next_key = 0.0;
-  std::unordered_map<std::string, ReplayTrack> replay;
-  std::vector<std::string> replay_order;  // first appearance: the replay's node order
+  double next_progress = kProgressEvery_s, next_row = 0.0;
   for (;;) {
-    const double now = sumo.time();
-    if (end && now >= *end - 1e-9) break;
+    if (end && sumo.time() >= *end - 1e-9) break;
     if (!end && sumo.expected() <= 0) break;
     if (options.stop_requested && options.stop_requested()) {
       result.stopped = true;
@@ -193,132 +208,44 @@ CosimResult run_cosim(const CosimInputs& inputs, const CosimOptions& options,
     result.sumo_s += seconds_since(t0);
     t0 = Clock::now();
     ++result.steps;
-    result.simulated_s = sumo.time();
+    const double t = result.simulated_s = sumo.time();
     result.max_vehicles = std::max(result.max_vehicles, vehicles.size());
-    const bool write_rows = result.simulated_s >= next_row - 1e-9;
-    const bool add_keys = options.replay_period_s > 0.0 && result.simulated_s >= next_key - 1e-9;
-    if (add_keys) next_key = result.simulated_s + options.replay_period_s;
+    const bool write_rows = t >= next_row - 1e-9;
     if (write_rows) {
-      next_row = result.simulated_s + options.trajectory_period_s;
-      trajectories.begin_step(result.simulated_s);
+      next_row = t + options.trajectory_period_s;
+      trajectories.begin_step(t);
     }
+    const bool add_keys = replay.due(t);
     for (const SumoVehicleState& v : vehicles) {
-      std::array<std::string, 3>& lanes = recent[v.id];
-      if (lanes[0] != v.lane) {
-        std::rotate(lanes.rbegin(), lanes.rbegin() + 1, lanes.rend());
-        lanes[0] = v.lane;
-      }
-      const Vec2 centre = v.centre();
-      const double heading = v.heading();
+      measures.track_lane(v);
       // Where SUMO has the vehicle: its front's height and its slope.
       const double slope = v.slope_deg * std::numbers::pi / 180.0;
       const std::optional<SurfacePose> pose = place_on_surface(
-          query, centre, heading, wheel_base_of(v.length_m, v.width_m),
+          query, v.centre(), v.heading(), wheel_base_of(v.length_m, v.width_m),
           v.front.z() - std::tan(slope) * 0.5 * v.length_m, slope, options.max_contact_gap_m);
       if (!pose) {
-        if (result.unplaced++ == 0) {
-          std::ostringstream where;
-          where << "vehicle '" << v.id << "' on lane '" << v.lane << "' at t = " << result.simulated_s
-                << " s (" << centre.x() << ", " << centre.y() << ")";
-          first_unplaced = where.str();
-        }
+        measures.unplaced(v, t, result);
         continue;
       }
-      ++result.vehicle_steps;
-      result.contacts_missing += static_cast<std::size_t>(pose->contacts_missing);
-      const double deepest =
-          std::max(0.0, *std::max_element(pose->wheel_under_m.begin(), pose->wheel_under_m.end()));
-      wheel_under.push_back(static_cast<float>(deepest));
-      for (const double under : pose->wheel_under_m)
-        if (under > options.wheel_under_limit_m) ++result.wheels_under_road;
-      for (const SurfaceKind kind : pose->wheel_kind)
-        if (kind != SurfaceKind::road && kind != SurfaceKind::junction) ++result.off_pavement;
-      std::optional<LaneSurfacePoint> at_centre;
-      const std::string* centre_lane = nullptr;
-      for (const std::string& lane : lanes) {
-        if (lane.empty()) break;
-        at_centre = odr.at(lane, centre);
-        if (at_centre && at_centre->on_road()) {
-          centre_lane = &lane;
-          break;
-        }
-        at_centre.reset();
-      }
-      const std::optional<LaneSurfacePoint> at_front = odr.at(v.lane, Vec2(v.front.x(), v.front.y()));
-      const std::optional<double> odr_slope =
-          centre_lane ? odr.slope(*centre_lane, centre, heading) : std::optional<double>();
-      if (at_front && at_front->on_road())
-        sumo_z_errors.push_back(static_cast<float>(std::abs(v.front.z() - at_front->z_m)));
-      if (!at_centre || !odr_slope) {
-        if (result.unmapped++ == 0)
-          first_unmapped = "lane '" + v.lane + "' at t = " + std::to_string(result.simulated_s) + " s";
-      } else {
-        const double z_error = std::abs(pose->z_m - at_centre->z_m);
-        z_errors.push_back(static_cast<float>(z_error));
-        (centre_lane->starts_with(':') ? z_errors_junction : z_errors_road)
-            .push_back(static_cast<float>(z_error));
-        pitch_errors.push_back(
-            static_cast<float>(std::abs(pose->pitch_rad - std::atan(*odr_slope)) * kDegree));
-        if (z_error > worst_z) {
-          worst_z = z_error;
-          std::ostringstream where;
-          where << "vehicle '" << v.id << "' at t = " << result.simulated_s << " s on lane '" << v.lane
-                << "' (OpenDRIVE road " << at_centre->odr_road << ", s = " << at_centre->s << ") at ("
-                << centre.x() << ", " << centre.y() << "): " << z_error << " m";
-          result.worst_z_place = where.str();
-        }
-      }
-      if (add_keys) {
-        auto [track, added] = replay.try_emplace(v.id);
-        if (added) {
-          replay_order.push_back(v.id);
-          track->second.name = v.id;
-          track->second.length_m = v.length_m;
-          track->second.width_m = v.width_m;
-          track->second.height_m = v.height_m > 0.0 ? v.height_m : 1.5;
-        }
-        track->second.keys.push_back({result.simulated_s, Vec3(centre.x(), centre.y(), pose->z_m), heading,
-                                      pose->pitch_rad, pose->roll_rad});
-        track->second.hide_after_s = result.simulated_s + options.replay_period_s;
-      }
+      measures.add(v, *pose, t, result);
+      if (add_keys) replay.add(v, *pose, t);
       if (write_rows) {
+        const Vec2 centre = v.centre();
         trajectories.add({&v.id, &v.type, &v.lane, centre.x(), centre.y(), pose->z_m, v.angle_deg,
                           v.speed_mps, pose->pitch_rad * kDegree, pose->roll_rad * kDegree});
       }
     }
     if (write_rows) trajectories.end_step();
     result.relief_s += seconds_since(t0);
-    if (options.progress && result.simulated_s >= next_progress - 1e-9) {
-      options.progress(result.simulated_s, vehicles.size());
+    if (options.progress && t >= next_progress - 1e-9) {
+      options.progress(t, vehicles.size());
       next_progress += kProgressEvery_s;
     }
   }
-  result.vehicles = recent.size();
-  result.z_error_m = spread_of(z_errors);
-  result.z_error_on_roads_m = spread_of(z_errors_road);
-  result.z_error_in_junctions_m = spread_of(z_errors_junction);
-  result.sumo_z_error_m = spread_of(sumo_z_errors);
-  result.pitch_error_deg = spread_of(pitch_errors);
-  result.wheel_under_m = spread_of(wheel_under);
-  if (result.unplaced > 0) {
-    diagnostics.report(
-        Severity::warning, codes::kCosimVehicleOffSurface,
-        std::to_string(result.unplaced) +
-            " vehicle step(s) with a wheel on no road surface, not placed; the first: " + first_unplaced);
-  }
-  if (result.unmapped > 0) {
-    diagnostics.report(Severity::warning, codes::kCosimLaneUnmapped,
-                       std::to_string(result.unmapped) +
-                           " vehicle step(s) whose centre lies on no OpenDRIVE road of its last lanes, not "
-                           "measured; the first on " +
-                           first_unmapped);
-  }
+  measures.finish(result, diagnostics);
   OutputSet outputs;
   if (options.replay_period_s > 0.0) {
-    std::vector<ReplayTrack> tracks;
-    tracks.reserve(replay_order.size());
-    for (const std::string& id : replay_order) tracks.push_back(std::move(replay.at(id)));
-    const std::string bytes = encode_replay_glb(scene, tracks);
+    const std::string bytes = encode_replay_glb(scene, replay.take_tracks());
     outputs.add(out_dir / kCosimReplayFile, [&](std::ostream& out) { out << bytes; });
   }
   trajectories.commit();

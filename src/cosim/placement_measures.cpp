@@ -1,0 +1,129 @@
+#include "cosim/placement_measures.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <optional>
+#include <sstream>
+
+#include "relief/core/diagnostic_codes.h"
+
+namespace relief::detail {
+namespace {
+
+constexpr double kDegree = 180.0 / std::numbers::pi;
+
+// The median, 99th percentile (the value at rank floor(0.99 (n - 1))) and largest value.
+Spread spread_of(std::vector<float>& values) {
+  Spread s;
+  s.count = values.size();
+  if (values.empty()) return s;
+  const auto at = [&](double q) {
+    const auto k = static_cast<std::size_t>(q * static_cast<double>(values.size() - 1));
+    std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(k), values.end());
+    return static_cast<double>(values[k]);
+  };
+  s.p50 = at(0.5);
+  s.p99 = at(0.99);
+  s.max = static_cast<double>(*std::max_element(values.begin(), values.end()));
+  return s;
+}
+
+}  // namespace
+
+void PlacementMeasures::track_lane(const SumoVehicleState& v) {
+  std::array<std::string, 3>& lanes = recent_[v.id];
+  if (lanes[0] != v.lane) {
+    std::rotate(lanes.rbegin(), lanes.rbegin() + 1, lanes.rend());
+    lanes[0] = v.lane;
+  }
+}
+
+void PlacementMeasures::unplaced(const SumoVehicleState& v, double t, CosimResult& result) {
+  if (result.unplaced++ > 0) return;
+  const Vec2 centre = v.centre();
+  std::ostringstream where;
+  where << "vehicle '" << v.id << "' on lane '" << v.lane << "' at t = " << t << " s (" << centre.x() << ", "
+        << centre.y() << ")";
+  first_unplaced_ = where.str();
+}
+
+void PlacementMeasures::add(const SumoVehicleState& v, const SurfacePose& pose, double t,
+                            CosimResult& result) {
+  ++result.vehicle_steps;
+  result.contacts_missing += static_cast<std::size_t>(pose.contacts_missing);
+  wheel_under_.push_back(static_cast<float>(
+      std::max(0.0, *std::max_element(pose.wheel_under_m.begin(), pose.wheel_under_m.end()))));
+  for (const double under : pose.wheel_under_m)
+    if (under > options_.wheel_under_limit_m) ++result.wheels_under_road;
+  for (const SurfaceKind kind : pose.wheel_kind)
+    if (kind != SurfaceKind::road && kind != SurfaceKind::junction) ++result.off_pavement;
+
+  // SUMO's own height at the bumper, on the lane it reports.
+  const std::optional<LaneSurfacePoint> at_front = odr_.at(v.lane, Vec2(v.front.x(), v.front.y()));
+  if (at_front && at_front->on_road())
+    sumo_z_errors_.push_back(static_cast<float>(std::abs(v.front.z() - at_front->z_m)));
+
+  // The placement at the centre, on the newest of its last lanes whose road the centre is on.
+  const Vec2 centre = v.centre();
+  const double heading = v.heading();
+  std::optional<LaneSurfacePoint> at_centre;
+  const std::string* centre_lane = nullptr;
+  for (const std::string& lane : recent_[v.id]) {
+    if (lane.empty()) break;
+    at_centre = odr_.at(lane, centre);
+    if (at_centre && at_centre->on_road()) {
+      centre_lane = &lane;
+      break;
+    }
+    at_centre.reset();
+  }
+  const std::optional<double> slope = centre_lane ? odr_.slope(*centre_lane, centre, heading) : std::nullopt;
+  if (!at_centre || !slope) {
+    if (result.unmapped++ == 0) {
+      std::ostringstream where;
+      where << "lane '" << v.lane << "' at t = " << t << " s";
+      first_unmapped_ = where.str();
+    }
+    return;
+  }
+  const double z_error = std::abs(pose.z_m - at_centre->z_m);
+  z_errors_.push_back(static_cast<float>(z_error));
+  (centre_lane->starts_with(':') ? z_errors_junction_ : z_errors_road_)
+      .push_back(static_cast<float>(z_error));
+  pitch_errors_.push_back(static_cast<float>(std::abs(pose.pitch_rad - std::atan(*slope)) * kDegree));
+  if (z_error > worst_z_) {
+    worst_z_ = z_error;
+    std::ostringstream where;
+    where << "vehicle '" << v.id << "' at t = " << t << " s on lane '" << v.lane << "' (OpenDRIVE road "
+          << at_centre->odr_road << ", s = " << at_centre->s << ") at (" << centre.x() << ", " << centre.y()
+          << "): " << z_error << " m";
+    result.worst_z_place = where.str();
+  }
+}
+
+void PlacementMeasures::finish(CosimResult& result, Diagnostics& diagnostics) {
+  result.vehicles = recent_.size();
+  result.z_error_m = spread_of(z_errors_);
+  result.z_error_on_roads_m = spread_of(z_errors_road_);
+  result.z_error_in_junctions_m = spread_of(z_errors_junction_);
+  result.sumo_z_error_m = spread_of(sumo_z_errors_);
+  result.pitch_error_deg = spread_of(pitch_errors_);
+  result.wheel_under_m = spread_of(wheel_under_);
+  if (result.unplaced > 0) {
+    diagnostics.report(Severity::warning, codes::kCosimVehicleOffSurface,
+                       std::to_string(result.unplaced) +
+                           " vehicle step(s) with two or more wheels on no surface near where SUMO has the "
+                           "vehicle, not placed; the first: " +
+                           first_unplaced_);
+  }
+  if (result.unmapped > 0) {
+    diagnostics.report(Severity::warning, codes::kCosimLaneUnmapped,
+                       std::to_string(result.unmapped) +
+                           " vehicle step(s) whose centre lies on no OpenDRIVE road of its last lanes, not "
+                           "measured; the first on " +
+                           first_unmapped_);
+  }
+}
+
+}  // namespace relief::detail

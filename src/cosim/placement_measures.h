@@ -1,0 +1,44 @@
+#pragma once
+// Private to the cosim module: every placement measured against the OpenDRIVE surface of the
+// lane the vehicle's centre is on (its height, its pitch against the surface's slope along the
+// heading, SUMO's own lane height at the front bumper), the wheel contacts tallied, and the
+// spreads and worst place summed up into a CosimResult.
+
+#include <array>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+#include "relief/cosim/cosim.h"
+#include "relief/cosim/sumo_session.h"
+#include "relief/cosim/vehicle_pose.h"
+#include "relief/export/sumo_surface.h"
+
+namespace relief::detail {
+
+class PlacementMeasures {
+ public:
+  PlacementMeasures(SumoSurface& odr, const CosimOptions& options) : odr_(odr), options_(options) {}
+
+  /// Notes the vehicle's lane (call once per vehicle and step, before add or unplaced).
+  void track_lane(const SumoVehicleState& v);
+  /// A vehicle set on the surface at time t.
+  void add(const SumoVehicleState& v, const SurfacePose& pose, double t, CosimResult& result);
+  /// A vehicle that could not be set on the surface.
+  void unplaced(const SumoVehicleState& v, double t, CosimResult& result);
+  /// Fills the spreads, the vehicle count and reports what was not placed or measured.
+  void finish(CosimResult& result, Diagnostics& diagnostics);
+
+ private:
+  SumoSurface& odr_;
+  const CosimOptions& options_;
+  // The last lanes of every vehicle, newest first: its centre, half a length behind the front
+  // bumper, may still be on a lane the bumper has left.
+  std::unordered_map<std::string, std::array<std::string, 3>> recent_;
+  std::vector<float> z_errors_, z_errors_road_, z_errors_junction_, sumo_z_errors_, pitch_errors_,
+      wheel_under_;
+  double worst_z_ = -1.0;
+  std::string first_unplaced_, first_unmapped_;
+};
+
+}  // namespace relief::detail
