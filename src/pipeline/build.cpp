@@ -320,6 +320,7 @@ BuildResult build(const BuildOptions& options, Diagnostics& diagnostics, const P
       const RoadModel back = parse_opendrive(xodr, report.name + ".xodr");
       const ModelDeviation dev = compare_models(model, back);
       const LinkContinuity links = check_link_continuity(model);
+      const ConnectingRoadCrossings crossings = check_connecting_road_crossings(model);
       OpenDriveSummary o;
       o.file = report.name + ".xodr";
       o.version = "1." + std::to_string(options.opendrive_rev_minor);
@@ -335,6 +336,10 @@ BuildResult build(const BuildOptions& options, Diagnostics& diagnostics, const P
       o.max_link_gap_m = links.max_horizontal_m;
       o.max_link_step_m = links.max_vertical_m;
       o.link_borders_checked = links.borders_checked;
+      o.crossing_max_step_m = crossings.max_step_m;
+      o.crossing_junctions_over = crossings.junctions_over;
+      o.crossing_worst_junction = crossings.worst_junction;
+      o.crossing_worst_xy = crossings.worst_xy;
       o.round_trip_max_xy_m = dev.max_xy_m;
       o.round_trip_max_z_m = dev.max_z_m;
       o.round_trip_points = dev.points;

@@ -2,8 +2,12 @@
 
 #include "relief/core/errors.h"
 
+#include <algorithm>
 #include <cmath>
+#include <map>
+#include <vector>
 
+#include "relief/geometry/plane.h"
 #include "relief/roads/road_surface.h"
 
 namespace relief {
@@ -25,6 +29,79 @@ bool has_lane(const ModelRoad& road, double s, int lane) {
 }
 
 }  // namespace
+
+ConnectingRoadCrossings check_connecting_road_crossings(const RoadModel& model, double tolerance_m,
+                                                        double step_m, double near_m) {
+  ConnectingRoadCrossings out;
+  // The lane centres of each junction's connecting roads as sampled 3-D polylines.
+  std::map<int, std::vector<Polyline3>> centres;
+  for (const ModelRoad& road : model.roads) {
+    if (road.junction < 0 || road.sections.empty()) continue;
+    const double length = road.length();
+    const int n = std::max(1, static_cast<int>(std::ceil(length / step_m)));
+    const LaneSection& first = road.sections.front();
+    for (const auto* side : {&first.left, &first.right}) {
+      for (const LaneModel& lane : *side) {
+        if (lane.type != "driving") continue;
+        Polyline3& line = centres[road.junction].emplace_back();
+        for (int i = 0; i <= n; ++i) {
+          const double s = length * i / n;
+          line.push_back(surface_point(road, s, lane_centre_t(road, s, lane.id)));
+        }
+      }
+    }
+  }
+  for (const auto& [junction, lines] : centres) {
+    // The segments of every line in a plan grid of 1 m cells (each segment in the cells its box
+    // touches, grown by near_m), so that a point meets only the segments beside it.
+    constexpr double kCell = 1.0;
+    const auto key = [](double x, double y) {
+      return std::pair<long, long>{static_cast<long>(std::floor(x / kCell)),
+                                   static_cast<long>(std::floor(y / kCell))};
+    };
+    std::map<std::pair<long, long>, std::vector<std::pair<std::size_t, std::size_t>>> grid;
+    for (std::size_t b = 0; b < lines.size(); ++b) {
+      for (std::size_t k = 0; k + 1 < lines[b].size(); ++k) {
+        const Vec2 u = lines[b][k].head<2>(), v = lines[b][k + 1].head<2>();
+        const auto lo = key(std::min(u.x(), v.x()) - near_m, std::min(u.y(), v.y()) - near_m);
+        const auto hi = key(std::max(u.x(), v.x()) + near_m, std::max(u.y(), v.y()) + near_m);
+        for (long i = lo.first; i <= hi.first; ++i)
+          for (long j = lo.second; j <= hi.second; ++j) grid[{i, j}].emplace_back(b, k);
+      }
+    }
+    double worst = 0.0;
+    Vec2 worst_xy = Vec2::Zero();
+    for (std::size_t a = 0; a < lines.size(); ++a) {
+      for (const Vec3& p : lines[a]) {
+        const Vec2 q = p.head<2>();
+        const auto cell = grid.find(key(q.x(), q.y()));
+        if (cell == grid.end()) continue;
+        std::size_t last_line = lines.size();
+        for (const auto& [b, k] : cell->second) {
+          if (b == a || b == last_line) continue;
+          const Vec2 u = lines[b][k].head<2>(), v = lines[b][k + 1].head<2>();
+          const double f = segment_parameter(q, u, v);
+          if ((u + f * (v - u) - q).norm() > near_m) continue;
+          last_line = b;  // one measurement per other line
+          ++out.crossings;
+          const double step =
+              std::abs(p.z() - (lines[b][k].z() + f * (lines[b][k + 1].z() - lines[b][k].z())));
+          if (step > worst) {
+            worst = step;
+            worst_xy = q;
+          }
+        }
+      }
+    }
+    if (worst > tolerance_m) ++out.junctions_over;
+    if (worst > out.max_step_m) {
+      out.max_step_m = worst;
+      out.worst_junction = junction;
+      out.worst_xy = worst_xy;
+    }
+  }
+  return out;
+}
 
 LinkContinuity check_link_continuity(const RoadModel& model, double tolerance_m) {
   LinkContinuity c;

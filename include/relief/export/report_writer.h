@@ -73,6 +73,13 @@ struct OpenDriveSummary {
   double max_link_gap_m = 0.0;   ///< horizontal, between linked lane borders
   double max_link_step_m = 0.0;  ///< vertical, the same
   std::size_t link_borders_checked = 0;
+  /// Where two connecting roads' lane centres cross in a junction, their height difference
+  /// (check_connecting_road_crossings): largest, junctions over 0.02 m, the worst junction's id
+  /// and place. Measured, not gated: each connecting road still carries its own profile.
+  double crossing_max_step_m = 0.0;
+  std::size_t crossing_junctions_over = 0;
+  int crossing_worst_junction = -1;
+  Vec2 crossing_worst_xy = Vec2::Zero();
   double round_trip_max_xy_m = 0.0;  ///< file read back vs the model written
   double round_trip_max_z_m = 0.0;
   std::size_t round_trip_points = 0;

@@ -21,6 +21,25 @@ struct LinkContinuity {
 /// borders of each linked lane pair (lane.predecessor / lane.successor) must meet.
 [[nodiscard]] LinkContinuity check_link_continuity(const RoadModel& model, double tolerance_m = 0.01);
 
+/// Where the lane centres of two connecting roads of one junction cross or run together (within
+/// `near_m` in plan), the vehicles on them are at one place: their heights should agree. The
+/// largest difference found, and where.
+struct ConnectingRoadCrossings {
+  double max_step_m = 0.0;         ///< largest height difference at a crossing
+  std::size_t junctions_over = 0;  ///< junctions with a difference above the tolerance
+  std::size_t crossings = 0;       ///< sample points of one lane centre on another
+  int worst_junction = -1;
+  Vec2 worst_xy = Vec2::Zero();
+};
+
+/// Samples every connecting road's lane centres every `step_m`, and measures each sample against
+/// the lane centres of the junction's other connecting roads it lies on (within `near_m` in plan;
+/// the other's height interpolated along its sampled centre line).
+[[nodiscard]] ConnectingRoadCrossings check_connecting_road_crossings(const RoadModel& model,
+                                                                      double tolerance_m = 0.02,
+                                                                      double step_m = 0.25,
+                                                                      double near_m = 0.05);
+
 /// Grades of the elevation records against the caps (fraction, 0.35 for 35 %), roads and
 /// connecting roads apart (a connecting road runs along its lane's centre, so its record's grade
 /// is the grade a vehicle drives there).
