@@ -1,8 +1,8 @@
 #pragma once
 // The co-simulation loop (issue 16): SUMO runs the traffic in lockstep steps (0.05 s, 20 Hz), and
 // every SUMO vehicle, every step, is set down on relief's 3D surface (the build's scene) on its
-// four wheel contacts (vehicle_pose.h): z, pitch and roll from the
-// surface, plan position and heading from SUMO. Each placement is measured against the
+// four wheel contacts (vehicle_pose.h): z, pitch and roll from the surface, plan position and
+// heading from SUMO. Each placement is measured against the
 // OpenDRIVE surface S(road, s, t) of the vehicle's lane (sumo_surface.h): the vehicle's height,
 // its pitch against the road's slope along its heading, and SUMO's own lane height.
 //
