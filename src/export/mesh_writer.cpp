@@ -328,7 +328,13 @@ std::string encode_replay_glb(const MeshScene& scene, const std::vector<ReplayTr
                                  Eigen::AngleAxisd(-key.pitch_rad, Eigen::Vector3d::UnitY()) *
                                  Eigen::AngleAxisd(key.roll_rad, Eigen::Vector3d::UnitX()))
                                     .toRotationMatrix();
-      const Eigen::Quaterniond q(c * r * c.transpose());
+      Eigen::Quaterniond q(c * r * c.transpose());
+      // q and -q are the same turn; keep each key on the side of the last, so that a viewer's
+      // slerp between them takes the short way.
+      if (!g.rotations.empty()) {
+        const auto& p = g.rotations.back();
+        if (q.x() * p[0] + q.y() * p[1] + q.z() * p[2] + q.w() * p[3] < 0.0) q.coeffs() = -q.coeffs();
+      }
       g.times.push_back(static_cast<float>(key.t_s));
       g.translations.push_back(to_file_axes(key.position));
       g.rotations.push_back({static_cast<float>(q.x()), static_cast<float>(q.y()), static_cast<float>(q.z()),

@@ -452,6 +452,30 @@ TEST(MeshWriter, ReplayGlbAnimatesEveryVehicleBoxInTheFilesAxes) {
   EXPECT_EQ(accessor_floats(j, bin, scale["output"].get<std::size_t>()),
             (std::vector<float>{0, 0, 0, 1, 1, 1, 0, 0, 0}));
 
+  // Consecutive rotations on one side of the quaternion sphere: a viewer's slerp turns the short way.
+  for (std::size_t k = 1; k < 3; ++k) {
+    const double dot = r[4 * k] * r[4 * k - 4] + r[4 * k + 1] * r[4 * k - 3] + r[4 * k + 2] * r[4 * k - 2] +
+                       r[4 * k + 3] * r[4 * k - 1];
+    EXPECT_GT(dot, 0.0) << k;
+  }
+  ReplayTrack spin;  // heading 170 then -170 degrees: 20 degrees apart, not 340
+  spin.name = "spin";
+  spin.keys = {{0.0, Vec3::Zero(), 170.0 * std::numbers::pi / 180.0, 0.0, 0.0},
+               {1.0, Vec3::Zero(), -170.0 * std::numbers::pi / 180.0, 0.0, 0.0}};
+  spin.hide_after_s = 2.0;
+  const std::string spun = encode_replay_glb(test_scene(), {spin});
+  std::memcpy(&json_bytes, spun.data() + 12, 4);
+  const nlohmann::json js = nlohmann::json::parse(spun.substr(20, json_bytes));
+  const std::string bs = spun.substr(20 + json_bytes + 8);
+  std::size_t rotation_output = 0;
+  for (const auto& c : js["animations"][0]["channels"])
+    if (c["target"]["path"] == "rotation")
+      rotation_output =
+          js["animations"][0]["samplers"][c["sampler"].get<std::size_t>()]["output"].get<std::size_t>();
+  const auto q = accessor_floats(js, bs, rotation_output);
+  EXPECT_GT(q[0] * q[4] + q[1] * q[5] + q[2] * q[6] + q[3] * q[7],
+            std::cos(10.0 * std::numbers::pi / 180.0) - 1e-6);
+
   car.keys[2].t_s = 1.5;
   EXPECT_THROW((void)encode_replay_glb(test_scene(), {car}), InvalidInput);
   car.keys[2].t_s = 2.0;
