@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <limits>
+#include <string>
 #include <vector>
 
 #include "relief/core/errors.h"
@@ -27,13 +28,14 @@ constexpr double kStartForceCap = 1e3;     // complementarity at the start (forc
 constexpr double kStartSlackShare = 0.05;  // smallest starting slack, share of the row's scale
 constexpr double kMaxCentring = 1.0;       // largest sigma
 constexpr std::size_t kStallWindow = 20;
-constexpr double kConflictViolation =
-    1e-3;                            // row units: a row the penalty leaves violated this far conflicts
-constexpr int kStallIterations = 4;  // without progress once the gap is closed
+constexpr int kStallIterations = 4;             // without progress once the gap is closed
 constexpr double kRoundingStationarity = 1e-4;  // accepted then (relative force imbalance)
 constexpr double kFarBound = 1e6;               // a missing bound, this many row scales away
 constexpr int kPenaltyRounds = 4;               // of the start's quadratic penalties
 constexpr double kPenaltyShare = 1e-3;          // their weight, a share of the row's price
+constexpr double kSplitResidual = 1e-7;         // row units: the method of multipliers stops there
+constexpr int kMultiplierRounds = 100;
+constexpr double kMaxStiffening = 1e6;  // the stiffest envelope, relative to P's diagonal
 
 // The normal matrix M = P + A'DA in the elimination order, upper triangle (the form the LDL'
 // factorisation reads without a copy), with a fixed pattern: every P entry and every entry pair
@@ -527,14 +529,7 @@ class InteriorPoint {
 };
 
 // The L1 form by the interior point, in screening rounds.
-// `start`: a point and the force on every row there, from which to start instead (the rows the
-// force drives at half their price or more start violated).
-struct Start {
-  Vec x;
-  std::vector<double> force;
-};
-SoftQpResult interior_point(const SoftQp& problem, NormalMatrix& normal, const SoftQpOptions& options,
-                            const Start* start = nullptr) {
+SoftQpResult interior_point(const SoftQp& problem, NormalMatrix& normal, const SoftQpOptions& options) {
   const SpMat& P = problem.P;
   const RowMat& A = problem.A;
   const Eigen::Index n = P.rows();
@@ -548,12 +543,8 @@ SoftQpResult interior_point(const SoftQp& problem, NormalMatrix& normal, const S
   // a quarter of their width of a bound there (a one-sided row: within its bound's size) and the
   // rows the caller marked, each later one adding the rows the last solution violates.
   Vec x;
-  if (start) {
-    x = start->x;
-  } else {
-    normal.factorise({}, {});
-    normal.solve(-problem.q, x);
-  }
+  normal.factorise({}, {});
+  normal.solve(-problem.q, x);
   Vec t = A * x;
   // From there, a few rounds of quadratic penalties on the rows found violated, each pulled a
   // little inside its bound (the penalty a thousandth of its price, so priorities hold): a start
@@ -561,36 +552,32 @@ SoftQpResult interior_point(const SoftQp& problem, NormalMatrix& normal, const S
   // determines (a deck whose only data are its anchors) would otherwise start anywhere, and an
   // interior point needs many short steps to cross a large infeasibility among tight rows.
   std::vector<double> force(static_cast<std::size_t>(m), 0.0);  // the rows' forces at x
-  if (start) {
-    force = start->force;
-  } else {
-    std::vector<int> penalised;
-    std::vector<double> rho, aim;
-    std::vector<std::uint8_t> taken(static_cast<std::size_t>(m), 0);
-    Vec rhs(n);
-    for (int round = 0; round < kPenaltyRounds; ++round) {
-      std::size_t added = 0;
-      for (Eigen::Index r = 0; r < m; ++r) {
-        if (taken[static_cast<std::size_t>(r)]) continue;
-        const bool low = std::isfinite(l[r]) && t[r] < l[r], high = std::isfinite(u[r]) && t[r] > u[r];
-        if (!low && !high) continue;
-        const double width =
-            std::isfinite(l[r]) && std::isfinite(u[r]) ? u[r] - l[r] : 1.0 + std::abs(low ? l[r] : u[r]);
-        const double inside = std::min(0.1 * width, 0.5 * (std::isfinite(u[r] - l[r]) ? u[r] - l[r] : width));
-        taken[static_cast<std::size_t>(r)] = 1;
-        penalised.push_back(static_cast<int>(r));
-        rho.push_back(kPenaltyShare * problem.price[r]);
-        aim.push_back(low ? l[r] + inside : u[r] - inside);
-        ++added;
-      }
-      if (added == 0) break;
-      normal.factorise(penalised, rho);
-      rhs = -problem.q;
-      for (std::size_t k = 0; k < penalised.size(); ++k)
-        row_scatter(A, penalised[k], rho[k] * aim[k], rhs.data());
-      normal.solve(rhs, x);
-      t = A * x;
+  std::vector<int> penalised;
+  std::vector<double> rho, aim;
+  std::vector<std::uint8_t> taken(static_cast<std::size_t>(m), 0);
+  Vec rhs(n);
+  for (int round = 0; round < kPenaltyRounds; ++round) {
+    std::size_t added = 0;
+    for (Eigen::Index r = 0; r < m; ++r) {
+      if (taken[static_cast<std::size_t>(r)]) continue;
+      const bool low = std::isfinite(l[r]) && t[r] < l[r], high = std::isfinite(u[r]) && t[r] > u[r];
+      if (!low && !high) continue;
+      const double width =
+          std::isfinite(l[r]) && std::isfinite(u[r]) ? u[r] - l[r] : 1.0 + std::abs(low ? l[r] : u[r]);
+      const double inside = std::min(0.1 * width, 0.5 * (std::isfinite(u[r] - l[r]) ? u[r] - l[r] : width));
+      taken[static_cast<std::size_t>(r)] = 1;
+      penalised.push_back(static_cast<int>(r));
+      rho.push_back(kPenaltyShare * problem.price[r]);
+      aim.push_back(low ? l[r] + inside : u[r] - inside);
+      ++added;
     }
+    if (added == 0) break;
+    normal.factorise(penalised, rho);
+    rhs = -problem.q;
+    for (std::size_t k = 0; k < penalised.size(); ++k)
+      row_scatter(A, penalised[k], rho[k] * aim[k], rhs.data());
+    normal.solve(rhs, x);
+    t = A * x;
   }
   std::vector<std::uint8_t> in(static_cast<std::size_t>(m), 0);
   // Rows of each group, for taking a group whole.
@@ -663,13 +650,25 @@ SoftQpResult interior_point(const SoftQp& problem, NormalMatrix& normal, const S
   return out;
 }
 
-// The quadratic-penalty form, min 1/2 x'Px + q'x + sum 1/2 c_r dist(a_r x, [l_r, u_r])^2, by a
-// semismooth Newton method from `start`: the generalised Hessian P + sum over the rows outside
-// their bounds of c_r a_r a_r', and an exact line search on the convex piecewise quadratic along
-// each step. The objective is strongly convex with a Lipschitz gradient, so the iterates converge
-// from any start; the step is exact once the set of rows outside their bounds settles.
-SoftQpResult penalty_newton(const SoftQp& problem, NormalMatrix& normal, const SoftQpOptions& options,
-                            Vec x) {
+// The L1 form by the method of multipliers (Rockafellar, "Augmented Lagrangians and applications
+// of the proximal point algorithm in convex programming", Math. Oper. Res. 1, 1976). Each round
+// minimises the augmented Lagrangian
+//   1/2 x'Px + q'x + sum_r H_r(a_r x + y_r / rho_r),
+// H_r the Moreau envelope (parameter 1/rho_r) of price_r dist(., [l_r, u_r]): rho_r/2 e^2 for an
+// excess e over the bounds of up to price_r / rho_r, linear at the price beyond. Then every y_r
+// becomes H_r's slope there, which stays in [-price_r, price_r]. A round's objective is convex
+// and piecewise quadratic with a Lipschitz gradient; the semismooth Newton method minimises it
+// from any start (the generalised Hessian P + sum over the rows in their quadratic zone of
+// rho_r a_r a_r', an exact line search along each step) and is exact once those rows settle. The
+// rounds are the proximal point method on the dual, so the multipliers converge to the L1
+// optimum's for any rho > 0 that never falls: rho_r starts at price_r and grows 10x for a row
+// whose residual does not fall to a quarter in a round. The method stops when a round moves no
+// row's split residual |y_new - y_old| / rho_r (the violation of a row not at its price) by more
+// than kSplitResidual.
+// With y = 0 the first round is the quadratic-penalty form, in which a conflict is shared by
+// price; the later rounds give each row back its priority.
+SoftQpResult multiplier_method(const SoftQp& problem, NormalMatrix& normal, const SoftQpOptions& options,
+                               Vec x) {
   const SpMat& P = problem.P;
   const RowMat& A = problem.A;
   const Eigen::Index n = P.rows();
@@ -682,57 +681,101 @@ SoftQpResult penalty_newton(const SoftQp& problem, NormalMatrix& normal, const S
     if (value > u[r]) return value - u[r];
     return 0.0;
   };
+  // H_r's slope at w, and whether w lies in its quadratic zone (0 < |excess| < c_r / rho_r).
+  Vec rho = c;
+  const double stiffest = kMaxStiffening * std::max(1.0, P.diagonal().cwiseAbs().maxCoeff());
+  // Round 0 takes the pure quadratic penalty instead (no linear zone), whose Newton steps do not
+  // overshoot from a start far outside the bounds; its solution is only the rounds' start.
+  int round = 0;
+  const auto slope = [&](Eigen::Index r, double w, bool& quadratic) {
+    const double f = rho[r] * excess(r, w);
+    quadratic = f != 0.0 && (round == 0 || std::abs(f) < c[r]);
+    return round == 0 ? f : std::clamp(f, -c[r], c[r]);
+  };
   SoftQpResult out;
   Vec t = A * x;
+  Vec y = Vec::Zero(m);
+  Vec moved = Vec::Constant(m, std::numeric_limits<double>::infinity());  // split residuals, last round
+  // The last round's minimiser, returned if the iterations run out before the rounds converge.
+  Vec x_round = x, t_round = t, y_round = y;
   std::vector<int> active, previous;
   std::vector<double> weight;
   std::vector<int> changing;
   Vec g(n), d(n), td(m), Px(n);
+  bool quadratic = false;
   for (int iter = 0;; ++iter) {
-    // The gradient and the rows outside their bounds (the generalised Hessian's).
+    // The gradient and the rows in their quadratic zone (the generalised Hessian's).
     active.clear();
     weight.clear();
     Px = P * x;
     g = Px + problem.q;
     for (Eigen::Index r = 0; r < m; ++r) {
-      const double e = excess(r, t[r]);
-      if (e == 0.0) continue;
-      row_scatter(A, static_cast<int>(r), c[r] * e, g.data());
+      const double f = slope(r, t[r] + y[r] / rho[r], quadratic);
+      if (f != 0.0) row_scatter(A, static_cast<int>(r), f, g.data());
+      if (!quadratic) continue;
       active.push_back(static_cast<int>(r));
-      weight.push_back(c[r]);
+      weight.push_back(rho[r]);
     }
     const double scale = std::max({1.0, problem.q.lpNorm<Eigen::Infinity>(), Px.lpNorm<Eigen::Infinity>()});
     out.stationarity = g.lpNorm<Eigen::Infinity>() / scale;
     if (options.trace) {
       char line[160];
-      std::snprintf(line, sizeof line, "newton %d: outside %zu, gradient %.3e", iter, active.size(),
-                    out.stationarity);
+      std::snprintf(line, sizeof line, "multipliers %d, newton %d: quadratic %zu, gradient %.3e", round, iter,
+                    active.size(), out.stationarity);
       options.trace(line);
     }
     const bool settled = iter > 0 && active == previous;
+    previous.swap(active);
     if (out.stationarity <= options.tolerance || (settled && out.stationarity <= kRoundingStationarity)) {
-      out.converged = true;
-      out.status = "converged";
-      break;
+      // The round's minimiser: the multiplier step. A row whose residual did not fall to a
+      // quarter gets a 10x stiffer envelope (the usual safeguard; rho never falls, so the
+      // rounds still converge).
+      double residual = 0.0;
+      for (Eigen::Index r = 0; r < m; ++r) {
+        const double next = std::clamp(slope(r, t[r] + y[r] / rho[r], quadratic), -c[r], c[r]);
+        const double split = std::abs(next - y[r]) / rho[r];
+        residual = std::max(residual, split);
+        y[r] = next;
+        if (split > kSplitResidual && split > 0.25 * moved[r])
+          rho[r] = std::min(10.0 * rho[r], std::max(c[r], stiffest));
+        moved[r] = split;
+      }
+      x_round = x;
+      t_round = t;
+      y_round = y;
+      ++round;
+      if (options.trace) {
+        char line[120];
+        std::snprintf(line, sizeof line, "multipliers %d: split residual %.3e", round, residual);
+        options.trace(line);
+      }
+      if (residual <= kSplitResidual) {
+        out.converged = true;
+        out.status = "converged";
+        break;
+      }
+      if (round >= kMultiplierRounds) break;
+      iter = -1;  // a new round: its first iteration is not "settled"
+      continue;
     }
-    if (iter >= options.newton_iterations) {
-      out.status = "iteration limit";
-      break;
-    }
+    if (out.iterations >= options.newton_iterations) break;
     ++out.iterations;
-    normal.factorise(active, weight);
+    normal.factorise(previous, weight);
     normal.solve(-g, d);
     td = A * d;
-    // Exact line search on the convex piecewise quadratic phi(alpha) = f(x + alpha d): the root
-    // of its increasing derivative in [0, 1], by bisection over the rows outside their bounds at
-    // either end (a row inside at both ends is inside all along).
+    // Exact line search on the convex piecewise quadratic phi(alpha): the root of its increasing
+    // derivative in [0, 1], by bisection over the rows with a slope at either end (a row without
+    // one at both ends is inside its bounds all along).
     const double d_pd = d.dot(P * d), g_d = (Px + problem.q).dot(d);
     changing.clear();
-    for (Eigen::Index r = 0; r < m; ++r)
-      if (excess(r, t[r]) != 0.0 || excess(r, t[r] + td[r]) != 0.0) changing.push_back(static_cast<int>(r));
+    for (Eigen::Index r = 0; r < m; ++r) {
+      const double w = t[r] + y[r] / rho[r];
+      if (excess(r, w) != 0.0 || excess(r, w + td[r]) != 0.0) changing.push_back(static_cast<int>(r));
+    }
     const auto dphi = [&](double a) {
       double v = g_d + a * d_pd;
-      for (const int r : changing) v += c[r] * excess(r, t[r] + a * td[r]) * td[r];
+      bool unused = false;
+      for (const int r : changing) v += slope(r, t[r] + y[r] / rho[r] + a * td[r], unused) * td[r];
       return v;
     };
     double alpha = 1.0;
@@ -746,18 +789,32 @@ SoftQpResult penalty_newton(const SoftQp& problem, NormalMatrix& normal, const S
     }
     x += alpha * d;
     t += alpha * td;
-    previous.swap(active);
   }
-  out.rounds = 1;
-  out.rows_used = active.size();
+  if (!out.converged && round > 0) {
+    // Out of iterations: the last round's minimiser, that of the quadratic-penalty form with
+    // bounds shifted by the multipliers, in which a conflict is shared by price. Its violations
+    // are what the caller reports.
+    x = x_round;
+    t = t_round;
+    y = y_round;
+    out.converged = true;
+    out.status = "converged";
+    out.method = "; stopped after " + std::to_string(round) +
+                 " rounds at the iteration limit, at the last round's quadratic-penalty form";
+  } else if (!out.converged) {
+    out.status = "iteration limit";
+  }
+  out.rounds = round;
+  out.rows_used = 0;
   out.x = x;
   out.row_values = t;
   out.violation = Vec::Zero(m);
-  out.multiplier = Vec::Zero(m);
+  out.multiplier = -y;
+  out.objective = 0.5 * x.dot(P * x) + problem.q.dot(x);
   for (Eigen::Index r = 0; r < m; ++r) {
-    const double e = excess(r, t[r]);
-    out.violation[r] = std::abs(e);
-    out.multiplier[r] = -c[r] * e;
+    out.violation[r] = std::abs(excess(r, t[r]));
+    out.rows_used += out.violation[r] > 0.0 ? 1 : 0;
+    out.objective += c[r] * out.violation[r];
   }
   return out;
 }
@@ -774,30 +831,10 @@ SoftQpResult solve_soft_qp(const SoftQp& problem, const SoftQpOptions& options) 
     ipm.method = "interior point";
     return ipm;
   }
-  SoftQpResult newton = penalty_newton(problem, normal, options, ipm.x);
-  newton.iterations += ipm.iterations;
-  if (!newton.converged) {
-    newton.method = "semismooth Newton after the interior point " + ipm.status;
-    return newton;
-  }
-  // The quadratic-penalty optimum shows which rows conflict: the interior point again from there,
-  // those rows started violated, for the L1 optimum.
-  Start from{newton.x, std::vector<double>(static_cast<std::size_t>(newton.multiplier.size()))};
-  for (Eigen::Index r = 0; r < newton.multiplier.size(); ++r) {
-    // Rows the penalty leaves clearly violated bear their whole price in the L1 form.
-    const double f = newton.multiplier[r];
-    from.force[static_cast<std::size_t>(r)] =
-        newton.violation[r] > kConflictViolation ? std::copysign(problem.price[r], f) : f;
-  }
-  SoftQpResult again = interior_point(problem, normal, options, &from);
-  again.iterations += newton.iterations;
-  if (again.converged) {
-    again.method =
-        "interior point, restarted from a semismooth Newton solution of the quadratic-penalty form";
-    return again;
-  }
-  newton.method = "semismooth Newton on the quadratic-penalty form (the interior point " + ipm.status + ")";
-  return newton;
+  SoftQpResult multipliers = multiplier_method(problem, normal, options, ipm.x);
+  multipliers.iterations += ipm.iterations;
+  multipliers.method = "method of multipliers after the interior point " + ipm.status + multipliers.method;
+  return multipliers;
 }
 
 }  // namespace relief

@@ -22,14 +22,14 @@
 // is checked at its solution, and the rows found violated join another round (a point that meets
 // every row left out solves the whole problem: those rows carry no multiplier).
 // Where rows conflict the interior point can stall (the multipliers of the rows that end violated
-// must climb to their prices); then, from its last point, a semismooth Newton method solves the
-// quadratic-penalty form, min 1/2 x'Px + q'x + sum 1/2 price_r dist(a_r x, [lower_r, upper_r])^2,
-// whose objective is strongly convex with a Lipschitz gradient: with an exact line search it
-// converges from any start (and the interior point is tried once more from its solution, the
-// rows it leaves violated started at their prices). In that form a conflict is shared by price
-// rather than falling on the cheapest row alone: the dearer rows give way by a share of what the
-// cheaper ones do, and a large conflict can push a dearer row past its bound. Either way every
-// row left violated is reported by the caller, so a conflict is never silent.
+// must climb to their prices); then, from its last point, the method of multipliers solves the
+// same L1 form (Rockafellar 1976): each round minimises an augmented Lagrangian, convex and
+// piecewise quadratic with a Lipschitz gradient, by a semismooth Newton method with an exact line
+// search (convergent from any start), then moves the multipliers, which stay within their prices.
+// The rounds are the proximal point method on the dual and converge to the L1 optimum; they stop
+// when no row's split residual exceeds 1e-7 row units. Either way the priorities hold exactly
+// (a conflict falls on the cheapest row alone) and every row left violated is reported by the
+// caller, so a conflict is never silent.
 // The pattern of P + A'A is analysed once, in the caller's fill-reducing order; each iteration
 // of either method factorises it numerically once (sparse LDL').
 
@@ -65,7 +65,7 @@ struct SoftQpOptions {
   double tolerance = 1e-9;
   int max_iterations = 200;      ///< interior-point iterations per screening round
   int max_rounds = 10;           ///< screening rounds
-  int newton_iterations = 1000;  ///< semismooth Newton iterations, when the interior point stalls
+  int newton_iterations = 2000;  ///< Newton iterations of the method of multipliers (all rounds)
   /// Fill-reducing order of the variables: indices()[old] = new. Without one, AMD on the
   /// pattern of P + A'A.
   std::optional<Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int>> ordering;
@@ -79,7 +79,7 @@ struct SoftQpResult {
   Eigen::VectorXd violation;   ///< per row: how far A x lies outside [lower, upper] (>= 0)
   Eigen::VectorXd multiplier;  ///< per row: the force it bears (> 0 at its lower bound; 0 if out)
   int iterations = 0;          ///< iterations of both methods
-  int rounds = 0;              ///< screening rounds of the interior point
+  int rounds = 0;              ///< screening rounds of the interior point, or multiplier rounds
   std::size_t rows_used = 0;   ///< rows in the last round / outside their bounds at the end
   bool converged = false;
   double stationarity = 0.0;  ///< ||Px + q - A'y||_inf relative to the largest of its terms
