@@ -102,7 +102,9 @@ Json method_json(const MethodReport& m) {
            {{"separations", m.separations},
             {"alongside", m.separations_alongside},
             {"min_m", round_to(m.min_clearance_m, 1e-3)},
-            {"below_required", m.below_clearance}}},
+            {"below_required", m.below_clearance},
+            {"overlaps_ordered", m.overlaps_ordered},
+            {"overlaps_out_of_order", m.overlaps_out_of_order}}},
           {"seconds", round_to(m.seconds, 1e-4)}};
 }
 

@@ -61,11 +61,16 @@ MethodReport evaluate(std::string method, const RoadNetwork& network,
   m.junctions = junction_gaps(network, profiles);
   m.cut_fill = cut_fill(profiles, raw, ground);
   update_clearances(separations, profiles);
-  m.separations = separations.size();
-  for (const GradeSeparation& s : separations) m.separations_alongside += s.alongside ? 1 : 0;
-  for (std::size_t k = 0; k < separations.size(); ++k) {
-    const double c = separations[k].clearance_m;
-    m.min_clearance_m = k == 0 ? c : std::min(m.min_clearance_m, c);
+  for (const GradeSeparation& s : separations) {
+    const double c = s.clearance_m;
+    if (s.ordering_only) {
+      ++m.overlaps_ordered;
+      if (c < kOrderingGap_m - 1e-3) ++m.overlaps_out_of_order;
+      continue;
+    }
+    m.min_clearance_m = m.separations == 0 ? c : std::min(m.min_clearance_m, c);
+    ++m.separations;
+    m.separations_alongside += s.alongside ? 1 : 0;
     if (c < options.fit.clearance_m - 1e-3) ++m.below_clearance;
   }
   return m;

@@ -16,6 +16,8 @@ constexpr double kCell = 25.0;  // m, grid cell for the segment index
 const double kAlongsideCos = std::cos(25.0 * std::numbers::pi / 180.0);
 constexpr double kAlongsideSpacing = 5.0;
 constexpr double kAlongsideEndClearance = 20.0;
+// Two roads leaving one junction overlap near it as they fan out; no order is asked there.
+const double kFanSine = std::sin(10.0 * std::numbers::pi / 180.0);
 
 struct Segment {
   int road;
@@ -56,14 +58,16 @@ int effective_layer(const WayAttributes& a) {
 
 std::vector<GradeSeparation> find_grade_separations(const RoadNetwork& network,
                                                     const std::vector<RoadProfile>& profiles) {
-  // Index every segment in the grid cells its bounding box touches.
+  // Index every segment in the grid cells its bounding box, grown by the road's half width,
+  // touches: two segments whose pavements overlap then share a cell.
   std::unordered_map<std::int64_t, std::vector<Segment>> grid;
   std::vector<std::vector<double>> cumulative(network.roads.size());
   for (const Road& road : network.roads) {
     cumulative[road.id] = cumulative_length(road.points);
+    const Vec2 grow = Vec2::Constant(half_width(road));
     for (std::size_t i = 0; i + 1 < road.points.size(); ++i) {
-      const Vec2 lo = road.points[i].cwiseMin(road.points[i + 1]);
-      const Vec2 hi = road.points[i].cwiseMax(road.points[i + 1]);
+      const Vec2 lo = road.points[i].cwiseMin(road.points[i + 1]) - grow;
+      const Vec2 hi = road.points[i].cwiseMax(road.points[i + 1]) + grow;
       for (long cx = std::lround(std::floor(lo.x() / kCell)); cx <= std::lround(std::floor(hi.x() / kCell));
            ++cx)
         for (long cy = std::lround(std::floor(lo.y() / kCell)); cy <= std::lround(std::floor(hi.y() / kCell));
@@ -93,7 +97,8 @@ std::vector<GradeSeparation> find_grade_separations(const RoadNetwork& network,
         // The same place is seen from every cell both segments touch: keep it once.
         const std::int64_t pair =
             (static_cast<std::int64_t>(up.id) << 32) | static_cast<std::uint32_t>(down.id);
-        const auto add = [&](double t_up, double t_down, const Vec2& xy, double spacing, bool alongside) {
+        const auto add = [&](double t_up, double t_down, const Vec2& xy, double spacing, bool alongside,
+                             bool ordering_only) {
           for (std::size_t k : by_pair[pair]) {
             if ((found[k].xy - xy).norm() < spacing) return;
           }
@@ -104,6 +109,7 @@ std::vector<GradeSeparation> find_grade_separations(const RoadNetwork& network,
           sep.s_lower = s_on(down, id, t_down);
           sep.xy = xy;
           sep.alongside = alongside;
+          sep.ordering_only = ordering_only;
           by_pair[pair].push_back(found.size());
           found.push_back(sep);
         };
@@ -118,30 +124,35 @@ std::vector<GradeSeparation> find_grade_separations(const RoadNetwork& network,
             return (xy - network.junctions[r.start_junction].position).norm() < 0.5 ||
                    (xy - network.junctions[r.end_junction].position).norm() < 0.5;
           };
-          if (!(near_junction(ra) && near_junction(rb))) add(hit->first, hit->second, xy, 1.0, false);
+          if (!(near_junction(ra) && near_junction(rb))) add(hit->first, hit->second, xy, 1.0, false, false);
         }
         // Alongside: the upper road runs over the lower one, their paved widths overlapping (a
-        // viaduct over the street below it, a street over a tunnel), away from the roads' ends
-        // (where a road leaving a structure runs beside it) and from roads joined at a junction.
+        // viaduct over the street below it, a street over a tunnel), with the full clearance away
+        // from the roads' ends (where a road leaving a structure runs beside it) and from a
+        // junction they share; elsewhere the upper one only stays above.
         const Vec2 du = u1 - u0, dd = d1 - d0;
         const double lu = du.norm(), ld = dd.norm();
         if (!(lu > 0.0 && ld > 0.0) || std::abs(du.dot(dd)) < kAlongsideCos * lu * ld) continue;
-        if (up.start_junction == down.start_junction || up.start_junction == down.end_junction ||
-            up.end_junction == down.start_junction || up.end_junction == down.end_junction)
-          continue;
         const double reach = half_width(up) + half_width(down);
+        std::vector<Vec2> shared;  // junctions both roads meet
+        for (const int j : {up.start_junction, up.end_junction})
+          if (j == down.start_junction || j == down.end_junction)
+            shared.push_back(network.junctions[j].position);
+        const double fan = reach / kFanSine;
         const auto steps = static_cast<int>(std::ceil(lu / kAlongsideSpacing));
         for (int k = 0; k < steps; ++k) {
           const double t_up = (k + 0.5) / steps;
           const Vec2 xy = u0 + t_up * du;
           const double t_down = (xy - d0).dot(dd) / (ld * ld);
           if (!(t_down > 0.0 && t_down < 1.0) || (d0 + t_down * dd - xy).norm() >= reach) continue;
+          if (std::any_of(shared.begin(), shared.end(), [&](const Vec2& j) { return (xy - j).norm() < fan; }))
+            continue;
           bool near_end = false;
           for (const Road* r : {&up, &down}) {
             for (const int j : {r->start_junction, r->end_junction})
               near_end = near_end || (xy - network.junctions[j].position).norm() < kAlongsideEndClearance;
           }
-          if (!near_end) add(t_up, t_down, xy, 0.5 * kAlongsideSpacing, true);
+          add(t_up, t_down, xy, 0.5 * kAlongsideSpacing, true, near_end || !shared.empty());
         }
       }
     }

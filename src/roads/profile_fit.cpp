@@ -519,6 +519,7 @@ ProfileFitResult fit_profiles(const RoadNetwork& network, const std::vector<Road
   // to it holds; at equal distance the lower road.
   std::vector<std::vector<double>> pinned(raw.size());
   for (const GradeSeparation& sep : result.separations) {
+    if (sep.ordering_only) continue;  // a tenth of a metre: no road need hold for it
     const int upper = std::abs(effective_layer(network.roads[sep.upper_road].attributes));
     const int lower = std::abs(effective_layer(network.roads[sep.lower_road].attributes));
     if (upper < lower) {
@@ -774,7 +775,7 @@ ProfileFitResult fit_profiles(const RoadNetwork& network, const std::vector<Road
                   {u[1].first, u[1].second},
                   {d[0].first, -d[0].second},
                   {d[1].first, -d[1].second}},
-                 options.clearance_m, kInf,
+                 sep.ordering_only ? kOrderingGap_m : options.clearance_m, kInf,
                  {FitLimit::clearance, sep.upper_road, static_cast<std::uint32_t>(iu)});
       }
     }
@@ -850,7 +851,7 @@ ProfileFitResult fit_profiles(const RoadNetwork& network, const std::vector<Road
         }
         case FitLimit::clearance:
           v.value = value;
-          v.bound = options.clearance_m;
+          v.bound = qp.lower[static_cast<Eigen::Index>(r)];
           break;
         case FitLimit::vertical_curve: {
           const double h1 = driven(p, tag.station) - driven(p, tag.station - 1);

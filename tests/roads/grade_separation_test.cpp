@@ -2,6 +2,10 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <map>
+#include <numbers>
+
 #include "support/synthetic.h"
 
 namespace relief {
@@ -32,13 +36,15 @@ TEST(GradeSeparation, EffectiveLayer) {
 TEST(GradeSeparation, FindsTheCrossingOfDifferentLayersOnly) {
   WayAttributes bridge;
   bridge.bridge = true;
-  // Road 0 (bridge) crosses road 1 at (30, 0); road 2 (same layer as 1) crosses road 1 too.
+  // Road 0 (bridge) crosses road 1 at (30, 0); road 2 (same layer as 1) crosses road 1 too, at
+  // 24 degrees with no junction, their pavements overlapping: roads on one layer are never
+  // separated.
   const RoadNetwork net =
       test::make_network({{{0, 0}, {100, 0}}, {{30, -50}, {30, 50}}, {{60, -50}, {20, 40}}}, {bridge});
   auto profiles = flat(net, 10.0);
   for (double& z : profiles[0].z) z = 16.5;
-  const auto seps = find_grade_separations(net, profiles);
-  ASSERT_EQ(seps.size(), 2u);  // 0 over 1 and 0 over 2; 1 and 2 are on the same layer
+  const std::vector<GradeSeparation> seps = find_grade_separations(net, profiles);
+  ASSERT_EQ(seps.size(), 2u);  // 0 over 1 and 0 over 2
   EXPECT_EQ(seps[0].upper_road, 0);
   EXPECT_EQ(seps[0].lower_road, 1);
   EXPECT_NEAR(seps[0].s_upper, 30.0, 1e-9);
@@ -57,8 +63,12 @@ TEST(GradeSeparation, ConnectedRoadsAreNotSeparations) {
 }
 
 // A viaduct (road 0, 6 m wide) running 4 m beside a street (road 1, 6 m wide) for 200 m: their
-// paved widths overlap, so a clearance is due every 5 m away from the ends (x in 22.5 .. 177.5);
-// a street 10 m off (road 2) and one leaving the viaduct's end junction (road 3) are not under it.
+// paved widths overlap, so a clearance is due every 5 m away from the ends (x in 22.5 .. 177.5),
+// and nearer the ends the viaduct only has to stay above. A street 10 m off (road 2) is not
+// under it. A street leaving the viaduct's end junction 3 m beside it (road 3, in the next grid
+// cell) only has to stay under it, once the two have fanned out of that junction (beyond their
+// half widths over sin 10 degrees, 34.6 m). Its first, slanted segment just reaches road 1's
+// pavement: roads of one layer, not separated.
 TEST(GradeSeparation, AViaductAlongAStreetIsSeparatedEveryFiveMetres) {
   WayAttributes bridge;
   bridge.bridge = true;
@@ -67,7 +77,23 @@ TEST(GradeSeparation, AViaductAlongAStreetIsSeparatedEveryFiveMetres) {
       {bridge});
   auto profiles = flat(net, 10.0);
   for (double& z : profiles[0].z) z = 15.0;
-  const auto seps = find_grade_separations(net, profiles);
+  std::vector<GradeSeparation> seps = find_grade_separations(net, profiles);
+  std::map<std::pair<int, int>, int> ordered;
+  for (const GradeSeparation& s : seps) {
+    if (!s.ordering_only) continue;
+    ++ordered[{s.upper_road, s.lower_road}];
+    EXPECT_TRUE(s.alongside);
+    const double x = s.xy.x();
+    if (s.lower_road == 1) {
+      EXPECT_TRUE(x < 20.0 || x > 180.0) << x;  // near the ends
+    } else {
+      EXPECT_GE(200.0 - x, 6.0 / std::sin(10.0 * std::numbers::pi / 180.0));  // fanned out
+    }
+    EXPECT_NEAR(s.clearance_m, 5.0, 1e-9);
+  }
+  const std::map<std::pair<int, int>, int> expected{{{0, 1}, 8}, {{0, 3}, 33}};
+  EXPECT_EQ(ordered, expected);
+  std::erase_if(seps, [](const GradeSeparation& s) { return s.ordering_only; });
   ASSERT_EQ(seps.size(), 32u);
   for (std::size_t k = 0; k < seps.size(); ++k) {
     EXPECT_TRUE(seps[k].alongside);

@@ -31,7 +31,11 @@ struct MethodReport {
   std::size_t separations_alongside = 0;  ///< ... of which places where one runs over the other
   double min_clearance_m = 0.0;           ///< smallest upper-minus-lower height at those places
   std::size_t below_clearance = 0;
-  double seconds = 0.0;  ///< time to make the profiles
+  /// Places where two pavements overlap in plan with no room for a clearance (same layer, or
+  /// near a road's end), where the upper one only has to stay 0.1 m above: every 5 m of them ...
+  std::size_t overlaps_ordered = 0;
+  std::size_t overlaps_out_of_order = 0;  ///< ... and those where it does not
+  double seconds = 0.0;                   ///< time to make the profiles
 };
 
 /// relief's fit, as run.

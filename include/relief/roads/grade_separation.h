@@ -22,7 +22,15 @@ struct GradeSeparation {
   /// Not a crossing: the upper road runs along over the lower one, their paved widths
   /// overlapping in plan (a viaduct over the street beneath it); one every 5 m of the overlap.
   bool alongside = false;
+  /// Alongside where no clearance fits: near a road's end (a tunnel's approach beside a street
+  /// at its portal) or beyond the fan of a junction the two share. The upper one only has to
+  /// stay kOrderingGap_m above the other, so that the two surfaces never cross.
+  bool ordering_only = false;
 };
+
+/// What an ordering-only separation asks of the upper road (m): more than twice the scene's
+/// 0.02 m meshing tolerance plus a crossfall's difference over the overlap.
+inline constexpr double kOrderingGap_m = 0.1;
 
 /// The layer used to order crossings: the `layer` tag, else +1 for a bridge and -1 for a
 /// tunnel (OSM's implied values), else 0.
@@ -30,8 +38,11 @@ struct GradeSeparation {
 
 /// Crossings of roads whose effective layers differ; one per crossing point (crossings of the
 /// same two roads closer than 1 m are merged). Also, every 5 m, the places where such roads run
-/// within 25 degrees of parallel with their paved widths (lanes x lane width) overlapping, at
-/// least 20 m from the two roads' ends and not between roads that share a junction (`alongside`).
+/// within 25 degrees of parallel with their paved widths (lanes x lane width) overlapping
+/// (`alongside`): at least 20 m from the two roads' ends and away from a junction they share
+/// with the full clearance, otherwise `ordering_only`; none where the two fan out of a junction
+/// they share (within their half widths over sin 10 degrees of it). Roads on one layer are never
+/// separated: where their pavements overlap (ways closer than their widths) neither is above.
 /// Heights (raw_clearance_m, clearance_m) from `profiles`.
 [[nodiscard]] std::vector<GradeSeparation> find_grade_separations(const RoadNetwork& network,
                                                                   const std::vector<RoadProfile>& profiles);
