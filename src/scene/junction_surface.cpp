@@ -47,6 +47,7 @@ using Cdt = CGAL::Constrained_Delaunay_triangulation_2<Kernel, Tds, CGAL::Exact_
 
 constexpr double kKerbCornerGap = 0.01;  // kerb points this close to a corner are dropped (m)
 constexpr double kKerbMinAngle = 1e-6;   // kerb points must advance this much around the centre (rad)
+constexpr double kEdgeTurnedAway = 1.0;  // a road edge this far outside a straight side has left it (m)
 
 /// Nesting level of every face: a flood fill from the infinite face that counts the
 /// constrained edges crossed (the usual domain marking of a CDT).
@@ -226,12 +227,23 @@ std::string build_junction_surface(const RoadModel& model, const JunctionModel& 
     // A kerb point behind the edge of either end (a tight turn's border bulging back over the
     // road it leaves) lies over that road's mesh: the two surfaces would cross there.
     std::erase_if(gaps[k].points, [&](const Vec3& p) { return over_end(a, p) || over_end(b, p); });
+    if (gaps[k].points.empty()) gaps[k] = along_road_edges(a, b, vertices);
   }
   std::string failed = triangulate_junction(sorted, gaps, junction.id, mesh);
   if (failed.empty()) return failed;
+  // Straight sides (along the roads' edges where a road runs along one; if even that is not a
+  // simple outline, plain) for the ends in `order`.
+  const auto straight = [&](const std::vector<JunctionEnd>& order, bool follow_edges) {
+    std::vector<OutlineGap> sides(order.size());
+    if (follow_edges)
+      for (std::size_t k = 0; k < order.size(); ++k)
+        sides[k] = along_road_edges(order[k], order[(k + 1) % order.size()], vertices);
+    return triangulate_junction(order, sides, junction.id, mesh).empty() ||
+           (follow_edges &&
+            triangulate_junction(order, std::vector<OutlineGap>(order.size()), junction.id, mesh).empty());
+  };
   // A kerb line that cuts across a neighbouring road end (a sharp fork): straight gaps instead.
-  for (OutlineGap& gap : gaps) gap.points.clear();
-  if (triangulate_junction(sorted, gaps, junction.id, mesh).empty()) return {};
+  if (straight(sorted, true)) return {};
   // Ends reaching past one another (a joined junction, a road end across a neighbour's): the
   // ends in another order around the junction, one whose outline is simple.
   std::vector<Polyline2> chains;
@@ -243,7 +255,34 @@ std::string build_junction_surface(const RoadModel& model, const JunctionModel& 
   if (!simple) return failed;
   std::vector<JunctionEnd> reordered;
   for (const std::size_t k : *simple) reordered.push_back(sorted[k]);
-  return triangulate_junction(reordered, gaps, junction.id, mesh).empty() ? std::string() : failed;
+  return straight(reordered, true) ? std::string() : failed;
+}
+
+OutlineGap along_road_edges(const JunctionEnd& a, const JunctionEnd& b, const std::vector<Vec3>& vertices) {
+  OutlineGap gap;
+  if (a.vertices.empty() || b.vertices.empty()) return gap;
+  const Vec2 p = vertices[a.vertices.back()].head<2>();
+  const Vec2 side = vertices[b.vertices.front()].head<2>() - p;
+  const double length = side.norm();
+  if (!(length > 0.0)) return gap;
+  const Vec2 dir = side / length;
+  std::vector<std::pair<double, std::uint32_t>> inside;  // (distance along the side, vertex)
+  for (const std::vector<std::uint32_t>* edge : {&a.left_edge, &b.right_edge}) {
+    for (std::size_t i = 1; i < edge->size(); ++i) {
+      const Vec2 x = vertices[(*edge)[i]].head<2>() - p;
+      const double along = dir.dot(x);
+      const double across = dir.x() * x.y() - dir.y() * x.x();  // > 0: inside the junction
+      if (along <= 0.0 || along >= length || across < -kEdgeTurnedAway) break;
+      if (across > kKerbCornerGap) inside.emplace_back(along, (*edge)[i]);
+    }
+  }
+  std::sort(inside.begin(), inside.end());
+  for (const auto& [along, v] : inside) {
+    if (!gap.vertices.empty() && (v == gap.vertices.back() || along <= 0.0)) continue;
+    gap.points.push_back(vertices[v]);
+    gap.vertices.push_back(v);
+  }
+  return gap;
 }
 
 std::string triangulate_junction(const std::vector<JunctionEnd>& ends, const std::vector<OutlineGap>& gaps,
@@ -255,7 +294,9 @@ std::string triangulate_junction(const std::vector<JunctionEnd>& ends, const std
       if (outline.empty() || outline.back().mesh_index != v) outline.push_back({mesh.mesh.vertices[v], v});
     }
     if (k < gaps.size()) {
-      for (const Vec3& p : gaps[k].points) outline.push_back({p, kNoVertex});
+      const OutlineGap& gap = gaps[k];
+      for (std::size_t i = 0; i < gap.points.size(); ++i)
+        outline.push_back({gap.points[i], i < gap.vertices.size() ? gap.vertices[i] : kNoVertex});
     }
   }
   while (outline.size() > 1 && outline.front().mesh_index != kNoVertex &&

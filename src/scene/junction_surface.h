@@ -15,14 +15,19 @@ namespace relief::detail {
 /// right corner to the left corner looking out of the junction along the road.
 struct JunctionEnd {
   int road_index = -1;
-  bool at_start = false;  ///< the road's start (s = 0) touches the junction
-  std::vector<std::uint32_t> vertices;
+  bool at_start = false;                ///< the road's start (s = 0) touches the junction
+  std::vector<std::uint32_t> vertices;  ///< the end's edge, right to left looking out of the junction
+  /// The road mesh's outer edges looking out of the junction, each from its corner outward.
+  std::vector<std::uint32_t> left_edge, right_edge;
 };
 
 /// A polyline closing the outline between two consecutive road ends (a kerb line), from
 /// the left corner of `from` to the right corner of `to` (indices into the ends).
 struct OutlineGap {
   std::vector<Vec3> points;  ///< interior points only; empty for a straight segment
+  /// Per point, the mesh vertex it is (a road's edge vertex), or kNoVertex for a new one; empty:
+  /// every point is new.
+  std::vector<std::uint32_t> vertices;
 };
 
 /// Orders the ends counter-clockwise (junction_end_order: by a point ahead along each road, the
@@ -36,6 +41,16 @@ struct OutlineGap {
                                                  std::vector<JunctionEnd> ends,
                                                  const std::vector<int>& connecting_roads,
                                                  const RoadMeshOptions& options, MeshBuilder& mesh);
+
+/// The straight side of an outline from a's left corner P to b's right corner Q, where a road
+/// leaving at a or b runs along it at a few degrees (a joined junction's long side, or one with
+/// no connecting road between those ends): that road's edge can bow across the side, and a patch
+/// up to the side would lie over its pavement at another height. The road mesh's own edge
+/// vertices (a.left_edge, b.right_edge) that lie inside the junction across PQ, in order along
+/// it; each edge is followed from its corner until it leaves PQ's extent or turns away from it
+/// by more than 1 m. Empty where no edge comes inside (the usual case).
+[[nodiscard]] OutlineGap along_road_edges(const JunctionEnd& a, const JunctionEnd& b,
+                                          const std::vector<Vec3>& vertices);
 
 /// Triangulates the polygon made of the ends (in counter-clockwise order around the junction)
 /// and the gaps (gaps[k] between ends[k] and ends[k + 1], cyclically) with the ends' edges as

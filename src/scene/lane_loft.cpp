@@ -353,6 +353,14 @@ LoftedRoad loft_road(const ModelRoad& road, const RoadMeshOptions& options, Mesh
                   Loft::mesh_of(sampler.gap_lane(j)));
       }
     }
+    for (const std::vector<std::size_t>& station : ids) {
+      const std::vector<std::uint32_t> across = loft.end_vertices(sampler, station, 0);
+      if (across.size() < 2) continue;
+      if (result.left_edge.empty() || result.left_edge.back() != across.front())
+        result.left_edge.push_back(across.front());
+      if (result.right_edge.empty() || result.right_edge.back() != across.back())
+        result.right_edge.push_back(across.back());
+    }
     if (first) {
       result.start.road_vertices = loft.end_vertices(sampler, ids.front(), 0);
       result.start.sidewalk_vertices = loft.end_vertices(sampler, ids.front(), 1);

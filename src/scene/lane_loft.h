@@ -20,6 +20,10 @@ struct RoadEnd {
 
 struct LoftedRoad {
   RoadEnd start, end;
+  /// The road mesh's two outer edges, one vertex per station in +s order: the +t edge (left
+  /// looking along +s) and the -t edge. A junction patch whose straight side runs along a road
+  /// follows them (build_junction_surface).
+  std::vector<std::uint32_t> left_edge, right_edge;
   std::size_t stations = 0;
   /// Largest distance between the mesh and S(road, s, t) at the middle of the steps: the
   /// midpoints of the border edges against S at the mid-station, and the twist of each quad

@@ -261,9 +261,16 @@ RoadMeshes build_road_meshes(const RoadModel& model, const RoadMeshOptions& opti
     for (const auto& [index, at_start] : keys) {
       const std::optional<LoftedRoad>& l = lofted[static_cast<std::size_t>(index)];
       if (!l) continue;
-      JunctionEnd e{index, at_start, at_start ? l->start.road_vertices : l->end.road_vertices};
+      JunctionEnd e{index, at_start, at_start ? l->start.road_vertices : l->end.road_vertices, {}, {}};
       // Stored left to right looking along +s; out of the junction that is +s at the start.
-      if (at_start) std::reverse(e.vertices.begin(), e.vertices.end());
+      if (at_start) {
+        std::reverse(e.vertices.begin(), e.vertices.end());
+        e.left_edge = l->left_edge;
+        e.right_edge = l->right_edge;
+      } else {
+        e.left_edge.assign(l->right_edge.rbegin(), l->right_edge.rend());
+        e.right_edge.assign(l->left_edge.rbegin(), l->left_edge.rend());
+      }
       ends.push_back(std::move(e));
     }
     const JunctionModel& junction = model.junctions[j];

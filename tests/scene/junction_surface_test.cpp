@@ -71,7 +71,7 @@ TEST(JunctionSurface, ConcaveOutlineWithKerbPointsLeavesItsNotchOpen) {
   MeshBuilder mesh;
   const std::vector<JunctionEnd> ends{add_end(mesh, 0, {Vec3(0.0, 0.0, 1.0), Vec3(10.0, 0.0, 1.0)}),
                                       add_end(mesh, 1, {Vec3(4.0, 10.0, 1.0), Vec3(0.0, 10.0, 1.0)})};
-  const std::vector<OutlineGap> gaps{{{Vec3(10.0, 4.0, 1.5), Vec3(4.0, 4.0, 1.5)}}, {}};
+  const std::vector<OutlineGap> gaps{{{Vec3(10.0, 4.0, 1.5), Vec3(4.0, 4.0, 1.5)}, {}}, {}};
   EXPECT_EQ(triangulate_junction(ends, gaps, 3, mesh), "");
   ASSERT_EQ(mesh.mesh.vertices.size(), 6u);  // the kerb points were added, uv = (x, y)
   EXPECT_EQ(mesh.mesh.vertices[4], Vec3(10.0, 4.0, 1.5));
@@ -91,6 +91,56 @@ TEST(JunctionSurface, ConcaveOutlineWithKerbPointsLeavesItsNotchOpen) {
     const Vec3 c = (mesh.mesh.vertices[t[0]] + mesh.mesh.vertices[t[1]] + mesh.mesh.vertices[t[2]]) / 3.0;
     EXPECT_FALSE(c.x() > 4.0 && c.y() > 4.0) << c.transpose();
   }
+}
+
+// A junction 50 m long whose south side runs from road a's left corner (0, 0) to road b's right
+// corner (50, 0), with road a leaving along that side at a few degrees (Portland's J3789 beside
+// US 26): a's left edge bows 0.4 m into the junction over 30 m, then turns away. The side
+// follows that edge through the road mesh's own vertices, so the patch ends at the pavement's
+// edge instead of lying over it; b's edge leaves at once and adds nothing.
+TEST(JunctionSurface, AStraightSideFollowsTheEdgeOfARoadRunningAlongIt) {
+  MeshBuilder mesh;
+  JunctionEnd a = add_end(mesh, 0, {Vec3(0.0, -3.0, 1.0), Vec3(0.0, 0.0, 1.0)});
+  JunctionEnd b = add_end(mesh, 1, {Vec3(50.0, 0.0, 1.0), Vec3(50.0, 8.0, 1.0)});
+  const JunctionEnd c = add_end(mesh, 2, {Vec3(40.0, 12.0, 1.0), Vec3(-5.0, 12.0, 1.0)});
+  a.left_edge = {a.vertices.back()};
+  for (const Vec2& xy :
+       {Vec2(10.0, 0.3), Vec2(20.0, 0.4), Vec2(30.0, 0.2), Vec2(40.0, -0.5), Vec2(45.0, -2.0),
+        Vec2(35.0, 0.5)})  // the last one after the edge has turned away: not taken
+    a.left_edge.push_back(mesh.add_vertex(Vec3(xy.x(), xy.y(), 1.1), xy));
+  b.right_edge = {b.vertices.front(), mesh.add_vertex(Vec3(60.0, -1.0, 1.0), Vec2(60.0, -1.0))};
+  const OutlineGap side = along_road_edges(a, b, mesh.mesh.vertices);
+  ASSERT_EQ(side.vertices.size(), 3u);
+  EXPECT_EQ(side.vertices, std::vector<std::uint32_t>(a.left_edge.begin() + 1, a.left_edge.begin() + 4));
+  EXPECT_EQ(side.points.size(), 3u);
+  EXPECT_EQ(side.points[1], Vec3(20.0, 0.4, 1.1));
+  // The other way round (c's left corner to a's right corner) no edge comes inside.
+  EXPECT_TRUE(along_road_edges(c, a, mesh.mesh.vertices).points.empty());
+
+  const std::size_t before = mesh.mesh.vertices.size();
+  EXPECT_EQ(triangulate_junction({a, b, c}, {side, {}, {}}, 0, mesh), "");
+  EXPECT_EQ(mesh.mesh.vertices.size(), before);  // the edge's vertices are shared, none added
+  // Shoelace area of (0,-3) (0,0) (10,.3) (20,.4) (30,.2) (50,0) (50,8) (40,12) (-5,12).
+  const std::vector<Vec2> ring{{0, -3}, {0, 0},  {10, 0.3}, {20, 0.4}, {30, 0.2},
+                               {50, 0}, {50, 8}, {40, 12},  {-5, 12}};
+  double twice = 0.0;
+  for (std::size_t i = 0; i < ring.size(); ++i) {
+    const Vec2& p = ring[i];
+    const Vec2& q = ring[(i + 1) % ring.size()];
+    twice += p.x() * q.y() - q.x() * p.y();
+  }
+  double plan_area = 0.0;
+  for (const auto& t : mesh.mesh.triangles) {
+    const auto& v = mesh.mesh.vertices;
+    const Vec2 u = (v[t[1]] - v[t[0]]).head<2>(), w = (v[t[2]] - v[t[0]]).head<2>();
+    plan_area += 0.5 * (u.x() * w.y() - u.y() * w.x());
+    // No patch triangle reaches below the road's edge between x = 0 and 30.
+    const Vec3 centre = (v[t[0]] + v[t[1]] + v[t[2]]) / 3.0;
+    if (centre.x() > 0.0 && centre.x() < 30.0) {
+      EXPECT_GT(centre.y(), 0.2) << centre.transpose();
+    }
+  }
+  EXPECT_NEAR(plan_area, 0.5 * twice, 1e-9);
 }
 
 // Outlines that cannot be a surface are reported, and nothing is added to the mesh.
@@ -116,7 +166,7 @@ TEST(JunctionSurface, BadOutlinesAreReportedAndAddNothing) {
   std::reverse(reversed_top.vertices.begin(), reversed_top.vertices.end());
   expect_failure({reversed_top, reversed_bottom}, {}, "not counter-clockwise");
   // A bow tie with a kerb point that keeps its signed area positive: its edges cross.
-  expect_failure({bottom, crossed}, {{{Vec3(20.0, 5.0, 0.0)}}, {}}, "not simple");
+  expect_failure({bottom, crossed}, {{{Vec3(20.0, 5.0, 0.0)}, {}}, {}}, "not simple");
   // The square itself is fine: 2 triangles of 100 m2 together.
   EXPECT_EQ(triangulate_junction({bottom, top}, {}, 0, mesh), "");
   EXPECT_NEAR(mesh_area(mesh.mesh), 100.0, 1e-9);
