@@ -11,9 +11,8 @@ namespace relief {
 namespace {
 
 constexpr double kCell = 25.0;  // m, grid cell for the segment index
-// Alongside separations: segments within 25 degrees of parallel, checked every 5 m, at least
+// Alongside separations: checked every 5 m along the upper road, the full clearance at least
 // 20 m from every end of the two roads.
-const double kAlongsideCos = std::cos(25.0 * std::numbers::pi / 180.0);
 constexpr double kAlongsideSpacing = 5.0;
 constexpr double kAlongsideEndClearance = 20.0;
 // Two roads leaving one junction overlap near it as they fan out; no order is asked there.
@@ -127,12 +126,14 @@ std::vector<GradeSeparation> find_grade_separations(const RoadNetwork& network,
           if (!(near_junction(ra) && near_junction(rb))) add(hit->first, hit->second, xy, 1.0, false, false);
         }
         // Alongside: the upper road runs over the lower one, their paved widths overlapping (a
-        // viaduct over the street below it, a street over a tunnel), with the full clearance away
-        // from the roads' ends (where a road leaving a structure runs beside it) and from a
-        // junction they share; elsewhere the upper one only stays above.
+        // viaduct over the street below it, a street over a tunnel, a tunnel's bend under a street
+        // beside its portal), with the full clearance away from the roads' ends (where a road
+        // leaving a structure runs beside it) and from a junction they share; elsewhere the upper
+        // one only stays above. Measured from points along the upper road to the nearest point
+        // of the lower segment, so that a bend's corner counts too.
         const Vec2 du = u1 - u0, dd = d1 - d0;
         const double lu = du.norm(), ld = dd.norm();
-        if (!(lu > 0.0 && ld > 0.0) || std::abs(du.dot(dd)) < kAlongsideCos * lu * ld) continue;
+        if (!(lu > 0.0 && ld > 0.0)) continue;
         const double reach = half_width(up) + half_width(down);
         std::vector<Vec2> shared;  // junctions both roads meet
         for (const int j : {up.start_junction, up.end_junction})
@@ -143,8 +144,8 @@ std::vector<GradeSeparation> find_grade_separations(const RoadNetwork& network,
         for (int k = 0; k < steps; ++k) {
           const double t_up = (k + 0.5) / steps;
           const Vec2 xy = u0 + t_up * du;
-          const double t_down = (xy - d0).dot(dd) / (ld * ld);
-          if (!(t_down > 0.0 && t_down < 1.0) || (d0 + t_down * dd - xy).norm() >= reach) continue;
+          const double t_down = std::clamp((xy - d0).dot(dd) / (ld * ld), 0.0, 1.0);
+          if ((d0 + t_down * dd - xy).norm() >= reach) continue;
           if (std::any_of(shared.begin(), shared.end(), [&](const Vec2& j) { return (xy - j).norm() < fan; }))
             continue;
           bool near_end = false;

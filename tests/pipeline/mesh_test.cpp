@@ -494,6 +494,50 @@ TEST(MeshPipeline, SelfIntersectionsAreNamedInTheirWarningAndFailTheGate) {
   EXPECT_FALSE(gate->passed);
 }
 
+// A driveway drawn 3 m beside a parking tunnel (Portland's OSM 345752232 over 345752235 at the
+// tunnel's mouth): their 5.5 m pavements overlap 2.5 m wide for 31.5 m, all of it within 20 m of
+// the tunnel's portals (F, E), where no clearance fits. On a twisted ground (the driveway's side
+// higher at one end, lower at the other) their profiles cross; the tunnel only has to stay
+// 0.1 m under the driveway there, so the surfaces never meet.
+TEST(MeshPipeline, ATunnelBesideAStreetNearItsPortalsStaysUnderIt) {
+  const test::OsmSketch sketch = test::OsmSketch(R"(
+  A----------------------------------B
+        C--------------------D
+        |                    |
+        F                    E
+        |                    |
+        K                    L
+  )",
+                                                 1.5, synthetic_origin_lonlat())
+                                     .way("AB", {{"highway", "service"}, {"service", "driveway"}}, 81)
+                                     .way("FCDE", {{"highway", "service"}, {"tunnel", "yes"}}, 82)
+                                     .way("KF", {{"highway", "service"}}, 83)
+                                     .way("EL", {{"highway", "service"}}, 84);
+  const Vec2 west = synthetic_local(sketch, 'C');  // the tunnel's straight, under the driveway
+  const Vec2 east = synthetic_local(sketch, 'D');
+  const Vec2 along = (east - west).normalized();
+  const Vec2 across(-along.y(), along.x());  // towards the driveway
+  const Vec2 mid = 0.5 * (west + east);
+  // 4 % across the roads at the tunnel's west end, -4 % at its east end, 2 % along.
+  constexpr double kTwist = 0.04;
+  const auto twisted = [&](double x, double y) {
+    const Vec2 d = Vec2(x, y) - mid;
+    return 20.0 + 0.02 * d.dot(along) + kTwist * d.dot(across) * (-d.dot(along) / 15.75);
+  };
+  ASSERT_NEAR((synthetic_local(sketch, 'A') - west).dot(across), 3.0, 0.01);
+  const SceneBuild built = build_scene(synthetic_options("portal_overlap", sketch, twisted));
+  const MeshSummary& m = summary(built);
+  print("portal_overlap", m);
+  ASSERT_TRUE(m.road);
+  const MethodReport& fit = built.result.report.methods.back();
+  std::cout << "  ordered overlaps " << fit.overlaps_ordered << ", out of order " << fit.overlaps_out_of_order
+            << "\n";
+  EXPECT_GE(fit.overlaps_ordered, 4u);
+  EXPECT_EQ(fit.overlaps_out_of_order, 0u);
+  EXPECT_EQ(m.road->self_intersecting_pairs, 0u);
+  EXPECT_EQ(m.junctions_failed, 0u);
+}
+
 TEST(MeshPipeline, TJunctionOnAPlaneIsOneCleanSurface) {
   const test::OsmSketch sketch = test::OsmSketch(R"(
       A-----B-----C

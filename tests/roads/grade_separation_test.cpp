@@ -43,7 +43,19 @@ TEST(GradeSeparation, FindsTheCrossingOfDifferentLayersOnly) {
       test::make_network({{{0, 0}, {100, 0}}, {{30, -50}, {30, 50}}, {{60, -50}, {20, 40}}}, {bridge});
   auto profiles = flat(net, 10.0);
   for (double& z : profiles[0].z) z = 16.5;
-  const std::vector<GradeSeparation> seps = find_grade_separations(net, profiles);
+  std::vector<GradeSeparation> seps = find_grade_separations(net, profiles);
+  // Beside each crossing, the deck's points over the street's pavement (within the two half
+  // widths, 6 m, of its centreline) are separated too.
+  for (const GradeSeparation& s : seps) {
+    if (!s.alongside) continue;
+    EXPECT_EQ(s.upper_road, 0);
+    EXPECT_FALSE(s.ordering_only);
+    // Road 2 crosses y = 0 at x = 60 - 40 * 50 / 90, at sin = 90 / hypot(40, 90) to the deck.
+    const double at = s.lower_road == 1 ? 30.0 : 60.0 - 40.0 * 50.0 / 90.0;
+    const double sine = s.lower_road == 1 ? 1.0 : 90.0 / std::hypot(40.0, 90.0);
+    EXPECT_LT(std::abs(s.xy.x() - at) * sine, 6.0) << s.lower_road << " " << s.xy.x();
+  }
+  EXPECT_EQ(std::erase_if(seps, [](const GradeSeparation& s) { return s.alongside; }), 3u);
   ASSERT_EQ(seps.size(), 2u);  // 0 over 1 and 0 over 2
   EXPECT_EQ(seps[0].upper_road, 0);
   EXPECT_EQ(seps[0].lower_road, 1);

@@ -227,10 +227,23 @@ TEST(ProfileFit, CrossingLayersKeepTheClearanceAndTheLowerRoadStaysOnTheGround) 
   ProfileFitOptions o;
   o.design_curves = false;
   const ProfileFitResult fit = fit_profiles(net, raw, o, d);
-  ASSERT_EQ(fit.separations.size(), 1u);
+  // One crossing, and beside it the deck's points over the street's pavement (within the two
+  // roads' half widths of the street's centreline).
+  const auto half = [](const WayAttributes& w) {
+    return 0.5 * w.lane_width_m * static_cast<double>(w.lanes_forward + w.lanes_backward);
+  };
+  const double reach = half(upper) + half(with_class(HighwayClass::residential));
+  const auto crossing = std::find_if(fit.separations.begin(), fit.separations.end(),
+                                     [](const GradeSeparation& s) { return !s.alongside; });
+  ASSERT_NE(crossing, fit.separations.end());
+  for (const GradeSeparation& s : fit.separations) {
+    EXPECT_TRUE(&s == &*crossing || s.alongside);
+    EXPECT_LT(std::abs(s.xy.x()), reach);
+    EXPECT_GE(s.clearance_m, 5.0 - 1e-3);
+  }
   std::cout << "crossing: the street under the bridge moves "
-            << height_at_station(fit.profiles[3], fit.separations[0].s_lower) - 20.0 << " m\n";
-  const GradeSeparation& sep = fit.separations[0];
+            << height_at_station(fit.profiles[3], crossing->s_lower) - 20.0 << " m\n";
+  const GradeSeparation& sep = *crossing;
   EXPECT_EQ(sep.upper_road, 1);
   EXPECT_EQ(sep.lower_road, 3);
   EXPECT_NEAR(sep.raw_clearance_m, 0.0, 1e-9);
