@@ -99,7 +99,7 @@ std::vector<GradeSeparation> find_grade_separations(const RoadNetwork& network,
         const auto add = [&](double t_up, double t_down, const Vec2& xy, double spacing, bool alongside,
                              bool ordering_only) {
           for (std::size_t k : by_pair[pair]) {
-            if ((found[k].xy - xy).norm() < spacing) return;
+            if (found[k].alongside == alongside && (found[k].xy - xy).norm() < spacing) return;
           }
           GradeSeparation sep;
           sep.upper_road = up.id;

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <numbers>
@@ -55,7 +56,8 @@ TEST(GradeSeparation, FindsTheCrossingOfDifferentLayersOnly) {
     const double sine = s.lower_road == 1 ? 1.0 : 90.0 / std::hypot(40.0, 90.0);
     EXPECT_LT(std::abs(s.xy.x() - at) * sine, 6.0) << s.lower_road << " " << s.xy.x();
   }
-  EXPECT_EQ(std::erase_if(seps, [](const GradeSeparation& s) { return s.alongside; }), 3u);
+  // Deck points every 5 m at x = 2.5, 7.5, ...: 27.5 and 32.5 over road 1, 32.5, 37.5, 42.5 over road 2.
+  EXPECT_EQ(std::erase_if(seps, [](const GradeSeparation& s) { return s.alongside; }), 5u);
   ASSERT_EQ(seps.size(), 2u);  // 0 over 1 and 0 over 2
   EXPECT_EQ(seps[0].upper_road, 0);
   EXPECT_EQ(seps[0].lower_road, 1);
@@ -64,6 +66,18 @@ TEST(GradeSeparation, FindsTheCrossingOfDifferentLayersOnly) {
   EXPECT_NEAR(seps[0].clearance_m, 6.5, 1e-9);
   EXPECT_NEAR(seps[0].raw_clearance_m, 6.5, 1e-9);
   EXPECT_EQ(seps[1].lower_road, 2);
+}
+
+TEST(GradeSeparation, ACrossingIsKeptWhereADeckPointOverThePavementLiesOnIt) {
+  WayAttributes bridge;
+  bridge.bridge = true;
+  // The deck's 5 m points fall at x = 2.5, 7.5, ...: one lies on the street at x = 32.5.
+  const RoadNetwork net = test::make_network({{{0, 0}, {100, 0}}, {{32.5, -50}, {32.5, 50}}}, {bridge});
+  const std::vector<GradeSeparation> seps = find_grade_separations(net, flat(net, 0.0));
+  const auto crossings =
+      std::count_if(seps.begin(), seps.end(), [](const GradeSeparation& s) { return !s.alongside; });
+  EXPECT_EQ(crossings, 1);
+  EXPECT_EQ(seps.size(), 4u);  // and the deck's points at x = 27.5, 32.5, 37.5 (within 3 + 3 m)
 }
 
 TEST(GradeSeparation, ConnectedRoadsAreNotSeparations) {
