@@ -791,16 +791,17 @@ SoftQpResult multiplier_method(const SoftQp& problem, NormalMatrix& normal, cons
     t += alpha * td;
   }
   if (!out.converged && round > 0) {
-    // Out of iterations: the last round's minimiser, that of the quadratic-penalty form with
-    // bounds shifted by the multipliers, in which a conflict is shared by price. Its violations
-    // are what the caller reports.
+    // Out of iterations or rounds: the last round's minimiser, that of the quadratic-penalty
+    // form with bounds shifted by the multipliers, in which a conflict is shared by price. Its
+    // violations are what the caller reports.
     x = x_round;
     t = t_round;
     y = y_round;
     out.converged = true;
     out.status = "converged";
-    out.method = "; stopped after " + std::to_string(round) +
-                 " rounds at the iteration limit, at the last round's quadratic-penalty form";
+    out.method = "; stopped after " + std::to_string(round) + " rounds at the " +
+                 (round >= kMultiplierRounds ? "round" : "iteration") +
+                 " limit, at the last round's quadratic-penalty form";
   } else if (!out.converged) {
     out.status = "iteration limit";
   }
