@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <iostream>
 #include <limits>
@@ -181,6 +182,41 @@ TEST(SoftQp, RandomChainsMeetTheKktConditions) {
   }
   std::cout << "random chains: " << rounds_over_one << " of 40 needed more than one screening round, "
             << fallbacks << " the method of multipliers\n";
+}
+
+TEST(SoftQp, AMethodOfMultipliersOutOfIterationsSaysSoAndKeepsItsLastRound) {
+  // The first random chain whose interior point stalls, with too few Newton steps for the
+  // method of multipliers to converge: it returns the minimiser of its last whole round, whose
+  // forces stay within the prices, and says where it stopped.
+  for (int seed = 1; seed <= 40; ++seed) {
+    std::mt19937 rng(static_cast<unsigned>(seed));
+    const SoftQp qp = random_chain(rng, 60 + seed * 7);
+    if (solve_soft_qp(qp).method == "interior point") continue;
+    bool stopped = false;
+    for (int budget = 1; budget <= 400 && !stopped; budget *= 2) {
+      SoftQpOptions few;
+      few.newton_iterations = budget;
+      const SoftQpResult r = solve_soft_qp(qp, few);
+      if (!r.converged) {
+        EXPECT_EQ(r.status, "iteration limit");  // not even the first round finished
+        continue;
+      }
+      if (r.method.find("stopped after") == std::string::npos) break;  // converged within the budget
+      stopped = true;
+      EXPECT_NE(r.method.find("iteration limit"), std::string::npos) << r.method;
+      for (Eigen::Index k = 0; k < r.multiplier.size(); ++k)
+        EXPECT_LE(std::abs(r.multiplier[k]), qp.price[k] * (1.0 + 1e-12));
+      // The reported violations are those of the point returned.
+      const Vec t = qp.A * r.x;
+      for (Eigen::Index k = 0; k < t.size(); ++k) {
+        const double e = std::max({qp.lower[k] - t[k], t[k] - qp.upper[k], 0.0});
+        EXPECT_NEAR(r.violation[k], e, 1e-9);
+      }
+    }
+    EXPECT_TRUE(stopped) << "seed " << seed;
+    return;
+  }
+  FAIL() << "no random chain stalls the interior point";
 }
 
 TEST(SoftQp, RowsLeftOutAreCheckedAtTheEnd) {
