@@ -278,7 +278,7 @@ OutlineGap along_road_edges(const JunctionEnd& a, const JunctionEnd& b, const st
   }
   std::sort(inside.begin(), inside.end());
   for (const auto& [along, v] : inside) {
-    if (!gap.vertices.empty() && (v == gap.vertices.back() || along <= 0.0)) continue;
+    if (!gap.vertices.empty() && v == gap.vertices.back()) continue;
     gap.points.push_back(vertices[v]);
     gap.vertices.push_back(v);
   }
