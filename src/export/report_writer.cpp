@@ -273,6 +273,7 @@ std::string report_json(const RunReport& r) {
                  {"draped_points_moved", o.draped_points_moved},
                  {"drape_max_move_m", round_to(o.drape_max_move_m, 1e-4)},
                  {"drape_max_move_lane", o.drape_max_move_lane},
+                 {"draped_points_added", o.draped_points_added},
                  {"handover_ends_extended", o.handover_ends_extended},
                  {"handover_max_extension_m", round_to(o.handover_max_extension_m, 1e-2)},
                  {"handover_max_extension_lane", o.handover_max_extension_lane},

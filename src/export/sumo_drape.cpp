@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <optional>
 #include <sstream>
 #include <string_view>
 
@@ -11,6 +12,12 @@
 
 namespace relief {
 namespace {
+
+// SUMO interpolates a vehicle's height linearly between lane shape points: between two points
+// whose chord leaves the surface by more than this, a point goes in (m) ...
+constexpr double kChordTolerance = 0.01;
+// ... down to points this close (m, plan).
+constexpr double kMinPointSpacing = 0.5;
 
 // pugixml writes into a string.
 struct StringWriter : pugi::xml_writer {
@@ -33,6 +40,7 @@ SumoDrape drape_sumo_net(std::string& net_xml, const RoadModel& model, const std
   out.max_snap_m = seams.max_snap_m;
   out.max_snap_lane = seams.max_snap_lane;
   char z_text[64];
+  char point_text[96];
   for (pugi::xml_node edge : net.children("edge")) {
     for (pugi::xml_node lane : edge.children("lane")) {
       const std::string id = lane.attribute("id").as_string();
@@ -40,6 +48,23 @@ SumoDrape drape_sumo_net(std::string& net_xml, const RoadModel& model, const std
       std::istringstream in(shape.as_string());
       std::string rewritten;
       bool changed = false;
+      // The last point written with its surface height, for the chord to the next one.
+      std::optional<Vec3> last;
+      // Points between a and b (both on the surface) where their chord leaves it, by bisection.
+      const auto fill_chord = [&](const auto& self, const Vec3& a, const Vec3& b) -> void {
+        if ((b - a).head<2>().norm() < 2.0 * kMinPointSpacing) return;
+        // Rounded as SUMO writes positions, before its height is taken.
+        const Vec2 mid = (50.0 * (a + b).head<2>()).array().round() / 100.0;
+        const auto at = locator.locate(id, mid);
+        if (!at) return;
+        const Vec3 m(mid.x(), mid.y(), surface_z(*at->road, at->s, at->t));
+        if (std::abs(m.z() - 0.5 * (a.z() + b.z())) <= kChordTolerance) return;
+        self(self, a, m);
+        std::snprintf(point_text, sizeof point_text, "%.2f,%.2f,%.3f", m.x(), m.y(), m.z());
+        rewritten += std::string(" ") + point_text;
+        ++out.points_added;
+        self(self, m, b);
+      };
       for (std::string token; in >> token;) {
         const std::size_t first = token.find(',');
         const std::size_t second = first == std::string::npos ? first : token.find(',', first + 1);
@@ -54,9 +79,12 @@ SumoDrape drape_sumo_net(std::string& net_xml, const RoadModel& model, const std
         if (!at) {
           ++out.points_unmapped;
           rewritten += (rewritten.empty() ? "" : " ") + token;
+          last.reset();
           continue;
         }
         const double z = surface_z(*at->road, at->s, at->t);
+        if (last) fill_chord(fill_chord, *last, Vec3(p.x(), p.y(), z));
+        last = Vec3(p.x(), p.y(), z);
         const double old_z = second == std::string::npos ? 0.0 : std::stod(token.substr(second + 1));
         std::snprintf(z_text, sizeof z_text, "%.3f", z);
         ++out.points;

@@ -163,6 +163,7 @@ SumoSummary finish_sumo(const SumoStageInput& in, SumoJob& job, OutputSet& files
     summary.draped_points_moved = result.drape.points_moved;
     summary.drape_max_move_m = result.drape.max_move_m;
     summary.drape_max_move_lane = result.drape.max_move_lane;
+    summary.draped_points_added = result.drape.points_added;
     summary.handover_ends_extended = result.drape.ends_extended;
     summary.handover_max_extension_m = result.drape.max_extension_m;
     summary.handover_max_extension_lane = result.drape.max_extension_lane;

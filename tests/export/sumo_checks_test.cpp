@@ -4,8 +4,11 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <numbers>
+#include <sstream>
 #include <string>
+#include <vector>
 
 #include "relief/core/errors.h"
 #include "support/sumo_ramp.h"
@@ -104,6 +107,38 @@ TEST(SumoDrape, LanePointsNetconvertLeftOffTheSurfaceTakeItsHeight) {
   EXPECT_LT(check.xy_max_m, 1e-9);
   std::string not_a_net = "<osm/>";
   EXPECT_THROW((void)drape_sumo_net(not_a_net, model, "x.net.xml"), InvalidInput);
+}
+
+TEST(SumoDrape, AChordOverACrestGetsPointsUntilItLiesOnTheSurface) {
+  // Road 1 climbs over a crest, z = 0.3 s - 0.002 s^2 (0 and 10 m at its ends as on the ramp, 5 m
+  // above the ramp at s = 50). Its lanes have a point at each end only: SUMO would carry a
+  // vehicle along the chord, 5 m under the crest. The chord error of the parabola over h metres
+  // is 0.002 h^2 / 4: bisection stops at 100 / 32 = 3.1 m (0.005 m), 31 points in each lane.
+  RoadModel model = ramp_model();
+  for (ModelRoad& road : model.roads)
+    if (road.id == 1) road.elevation = CubicProfile({CubicPiece{0.0, Poly3{0.0, 0.3, -0.002, 0.0}}});
+  std::string net = kNet;
+  const SumoDrape drape = drape_sumo_net(net, model, "ramp.net.xml");
+  EXPECT_EQ(drape.points_added, 62u);
+  const SumoNetCheck check = check_sumo_net(net, model, "ramp.net.xml");
+  EXPECT_EQ(check.points, 8u + 62u);
+  EXPECT_LE(check.z_max_m, 5e-4 + 1e-9);  // z written to 3 decimals
+  // Between every two points of the lanes of road 1, the chord within 0.01 m of the surface.
+  const std::size_t at = net.find("id=\"1_0\"");
+  ASSERT_NE(at, std::string::npos);
+  const std::size_t from = net.find("shape=\"", at) + 7;
+  std::istringstream in(net.substr(from, net.find('"', from) - from));
+  std::vector<Vec3> points;
+  for (std::string token; in >> token;) {
+    double x = 0, y = 0, z = 0;
+    ASSERT_EQ(std::sscanf(token.c_str(), "%lf,%lf,%lf", &x, &y, &z), 3) << token;
+    points.emplace_back(x, y, z);
+  }
+  ASSERT_EQ(points.size(), 33u);
+  for (std::size_t i = 0; i + 1 < points.size(); ++i) {
+    const double s = 0.5 * (points[i].x() + points[i + 1].x());
+    EXPECT_NEAR(0.5 * (points[i].z() + points[i + 1].z()), 0.3 * s - 0.002 * s * s, 0.01) << s;
+  }
 }
 
 TEST(SumoChecks, InternalLanesNetconvertDrewAreMeasuredApart) {

@@ -112,6 +112,7 @@ struct SumoSummary {
   std::size_t draped_points_moved = 0;
   double drape_max_move_m = 0.0;
   std::string drape_max_move_lane;
+  std::size_t draped_points_added = 0;  ///< points put in where a chord left the surface
   /// Internal lanes made to meet their lanes (sumo_seams.h): ends extended along a lane
   /// netconvert cut short and the longest extension; ends moved onto a lane end beside or
   /// behind them and the farthest move.
@@ -223,7 +224,7 @@ struct RunReport {
 /// checked}, sumo{file, nodes, edges, connections, junctions, traffic_lights, lanes,
 /// internal_lanes, internal_lanes_by_netconvert, signals_mid_road, restricted_edges{class: n},
 /// max_grade_percent{class: %}, points_checked, z_max_m, z_p99_m, z_max_lane, netconvert_lanes_z_max_m,
-/// draped_points_moved, drape_max_move_m, drape_max_move_lane, handover_ends_extended,
+/// draped_points_moved, drape_max_move_m, drape_max_move_lane, draped_points_added, handover_ends_extended,
 /// handover_max_extension_m, handover_max_extension_lane, handover_ends_snapped, handover_max_snap_m,
 /// handover_max_snap_lane, xy_max_m, xy_max_lane, max_handover_step_m, max_lane_grade_percent,
 /// max_internal_lane_grade_percent, max_profile_grade_percent, netconvert_warnings, routes, step_length_s} |
