@@ -53,9 +53,19 @@ SumoDrape drape_sumo_net(std::string& net_xml, const RoadModel& model, const std
       // Points between a and b (both on the surface) where their chord leaves it, by bisection.
       const auto fill_chord = [&](const auto& self, const Vec3& a, const Vec3& b) -> void {
         if ((b - a).head<2>().norm() < 2.0 * kMinPointSpacing) return;
-        // Rounded as SUMO writes positions, before its height is taken.
-        const Vec2 mid = (50.0 * (a + b).head<2>()).array().round() / 100.0;
-        const auto at = locator.locate(id, mid);
+        const auto round = [](const Vec2& p) -> Vec2 { return (100.0 * p).array().round() / 100.0; };
+        Vec2 mid = 0.5 * (a + b).head<2>();
+        auto at = locator.locate(id, mid);
+        if (!at) return;
+        if (at->lane.odr_shape && at->lane.lane) {
+          // On an OpenDRIVE lane centre the new point goes onto it (a chord across a bend lies
+          // beside it), rounded as SUMO writes positions, and takes the height there.
+          mid = round(
+              surface_point(*at->road, at->s, lane_centre_t(*at->road, at->s, *at->lane.lane)).head<2>());
+        } else {
+          mid = round(mid);  // netconvert's own curve: on its chord
+        }
+        at = locator.locate(id, mid);
         if (!at) return;
         const Vec3 m(mid.x(), mid.y(), surface_z(*at->road, at->s, at->t));
         if (std::abs(m.z() - 0.5 * (a.z() + b.z())) <= kChordTolerance) return;

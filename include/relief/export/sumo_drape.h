@@ -9,8 +9,9 @@
 // end lies away from its lane's (netconvert cut the lane where its outline reaches over the
 // road) is extended along the OpenDRIVE lane to meet it, and one whose end lies beside or behind
 // its lane's end is cut there (sumo_seams.h). Where the chord between two points leaves the
-// surface by more than 0.01 m (a crest or a sag between them), points go in between (plan
-// positions on the chord), so that a vehicle between them is on the surface too.
+// surface by more than 0.01 m (a crest or a sag between them), points go in between (on the
+// OpenDRIVE lane centre; on netconvert's own curves, on the chord), so that a vehicle between
+// them is on the surface too.
 
 #include <cstddef>
 #include <string>
