@@ -18,6 +18,7 @@ namespace {
 constexpr double kChordTolerance = 0.01;
 // ... down to points this close (m, plan).
 constexpr double kMinPointSpacing = 0.5;
+constexpr int kMaxBisections = 12;  // and at most this deep (4095 points between two)
 
 // pugixml writes into a string.
 struct StringWriter : pugi::xml_writer {
@@ -51,8 +52,8 @@ SumoDrape drape_sumo_net(std::string& net_xml, const RoadModel& model, const std
       // The last point written with its surface height, for the chord to the next one.
       std::optional<Vec3> last;
       // Points between a and b (both on the surface) where their chord leaves it, by bisection.
-      const auto fill_chord = [&](const auto& self, const Vec3& a, const Vec3& b) -> void {
-        if ((b - a).head<2>().norm() < 2.0 * kMinPointSpacing) return;
+      const auto fill_chord = [&](const auto& self, const Vec3& a, const Vec3& b, int depth) -> void {
+        if (depth > kMaxBisections || (b - a).head<2>().norm() < 2.0 * kMinPointSpacing) return;
         const auto round = [](const Vec2& p) -> Vec2 { return (100.0 * p).array().round() / 100.0; };
         Vec2 mid = 0.5 * (a + b).head<2>();
         auto at = locator.locate(id, mid);
@@ -60,8 +61,10 @@ SumoDrape drape_sumo_net(std::string& net_xml, const RoadModel& model, const std
         if (at->lane.odr_shape && at->lane.lane) {
           // On an OpenDRIVE lane centre the new point goes onto it (a chord across a bend lies
           // beside it), rounded as SUMO writes positions, and takes the height there.
-          mid = round(
-              surface_point(*at->road, at->s, lane_centre_t(*at->road, at->s, *at->lane.lane)).head<2>());
+          // A centre far from the chord (a lane mapped across a fold) would not shrink the halves.
+          const Vec2 centre =
+              surface_point(*at->road, at->s, lane_centre_t(*at->road, at->s, *at->lane.lane)).head<2>();
+          mid = round((centre - mid).norm() <= 0.25 * (b - a).head<2>().norm() ? centre : mid);
         } else {
           mid = round(mid);  // netconvert's own curve: on its chord
         }
@@ -69,11 +72,11 @@ SumoDrape drape_sumo_net(std::string& net_xml, const RoadModel& model, const std
         if (!at) return;
         const Vec3 m(mid.x(), mid.y(), surface_z(*at->road, at->s, at->t));
         if (std::abs(m.z() - 0.5 * (a.z() + b.z())) <= kChordTolerance) return;
-        self(self, a, m);
+        self(self, a, m, depth + 1);
         std::snprintf(point_text, sizeof point_text, "%.2f,%.2f,%.3f", m.x(), m.y(), m.z());
         rewritten += std::string(" ") + point_text;
         ++out.points_added;
-        self(self, m, b);
+        self(self, m, b, depth + 1);
       };
       for (std::string token; in >> token;) {
         const std::size_t first = token.find(',');
@@ -93,7 +96,7 @@ SumoDrape drape_sumo_net(std::string& net_xml, const RoadModel& model, const std
           continue;
         }
         const double z = surface_z(*at->road, at->s, at->t);
-        if (last) fill_chord(fill_chord, *last, Vec3(p.x(), p.y(), z));
+        if (last) fill_chord(fill_chord, *last, Vec3(p.x(), p.y(), z), 0);
         last = Vec3(p.x(), p.y(), z);
         const double old_z = second == std::string::npos ? 0.0 : std::stod(token.substr(second + 1));
         std::snprintf(z_text, sizeof z_text, "%.3f", z);
