@@ -3,7 +3,7 @@
 //   import relief
 //   surface = relief.Surface("out/NAME.glb")
 //   pose = surface.place(x, y, heading, length=4.5, width=1.8, z_hint=z)
-//   figures = relief.run_cosim("out/NAME.sumocfg", "out/cosim", end=60.0)
+//   figures = relief.run_cosim("out/NAME.sumocfg", "out/cosim", end=60.0, ego_count=2)
 // Coordinates are the build's local frame (SUMO's net coordinates), angles in radians.
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
@@ -112,11 +112,15 @@ PYBIND11_MODULE(relief, m) {
   m.def(
       "run_cosim",
       [](const std::filesystem::path& sumocfg, const std::filesystem::path& out, std::optional<double> end,
-         double step, double replay_period) {
+         double step, double replay_period, const std::vector<std::string>& egos, std::size_t ego_count,
+         double resync) {
         CosimOptions options;
         options.end_s = end;
         options.step_s = step;
         options.replay_period_s = replay_period;
+        options.egos = egos;
+        options.ego_count = ego_count;
+        options.resync_m = resync;
         Diagnostics diagnostics;
         {
           py::gil_scoped_release release;
@@ -128,8 +132,10 @@ PYBIND11_MODULE(relief, m) {
         return py::module_::import("json").attr("loads")(text);
       },
       py::arg("sumocfg"), py::arg("out"), py::arg("end") = py::none(), py::arg("step") = 0.05,
-      py::arg("replay_period") = 0.5,
-      "runs SUMO on a relief build's configuration with every vehicle set on the surface (relief cosim); "
+      py::arg("replay_period") = 0.5, py::arg("egos") = std::vector<std::string>{}, py::arg("ego_count") = 0,
+      py::arg("resync") = 0.5,
+      "runs SUMO on a relief build's configuration with every vehicle set on the surface (relief cosim), "
+      "the vehicles named in `egos` and the first `ego_count` to depart driven by the physics; "
       "writes cosim.json, the trajectories and cosim.glb in `out` and returns cosim.json's figures as a "
       "dict");
 }

@@ -8,9 +8,10 @@
 #include <cmath>
 #include <numbers>
 #include <string>
-#include <vector>
 #include <unordered_map>
+#include <vector>
 
+#include "cosim/ego_drivers.h"
 #include "cosim/placement_measures.h"
 #include "cosim/trajectory_writer.h"
 #include "relief/core/atomic_file.h"
@@ -71,9 +72,15 @@ void write_cosim_json(const std::filesystem::path& path, const CosimInputs& inpu
   j["real_time_factor"] = r.real_time_factor();
   j["sumo_share"] = run_s > 0.0 ? r.sumo_s / run_s : 0.0;
   j["relief_share"] = run_s > 0.0 ? r.relief_s / run_s : 0.0;
-  j["egos"] = 0;
-  j["sync_error_m"] = nullptr;  // no ego vehicles: every vehicle stands where SUMO puts it
-  j["resyncs"] = 0;
+  j["physics_share"] = run_s > 0.0 ? r.physics_s / run_s : 0.0;
+  j["egos"] = r.egos;
+  j["ego_steps"] = r.ego_steps;
+  // Without egos every vehicle stands where SUMO puts it: no sync error to measure.
+  j["sync_error_m"] = r.egos > 0 ? spread_json(r.sync_error_m) : Json(nullptr);
+  j["resync_m"] = options.resync_m;
+  j["resyncs"] = r.resyncs;
+  j["resync_log"] = r.resync_log;
+  j["ego_speed_gap_mps"] = r.egos > 0 ? spread_json(r.ego_speed_gap_mps) : Json(nullptr);
   j["z_error_m"] = spread_json(r.z_error_m);
   j["z_error_on_roads_m"] = spread_json(r.z_error_on_roads_m);
   j["z_error_in_junctions_m"] = spread_json(r.z_error_in_junctions_m);
@@ -171,6 +178,8 @@ CosimResult run_cosim(const CosimInputs& inputs, const CosimOptions& options,
     throw InvalidInput("the co-simulation step must be a finite number > 0");
   if (options.end_s && !(std::isfinite(*options.end_s) && *options.end_s > 0.0))
     throw InvalidInput("the co-simulation end must be a finite time > 0");
+  if (!(std::isfinite(options.resync_m) && options.resync_m > 0.0))
+    throw InvalidInput("the resync distance must be a finite number > 0");
   const Clock::time_point start = Clock::now();
   CosimResult result;
 
@@ -188,6 +197,7 @@ CosimResult run_cosim(const CosimInputs& inputs, const CosimOptions& options,
                                         out_dir / (name + ".trajectories.csv"));
 
   SumoSession sumo(inputs.sumocfg, options.step_s, options.sumo_args);
+  detail::EgoDrivers egos(scene, query, sumo, options);
   const double configured_end = sumo.end_time();
   const std::optional<double> end = options.end_s          ? options.end_s
                                     : configured_end > 0.0 ? std::optional<double>(configured_end)
@@ -204,11 +214,12 @@ CosimResult run_cosim(const CosimInputs& inputs, const CosimOptions& options,
     }
     Clock::time_point t0 = Clock::now();
     sumo.step();
-    const std::vector<SumoVehicleState> vehicles = sumo.vehicles();
+    std::vector<SumoVehicleState> vehicles = sumo.vehicles();
     result.sumo_s += seconds_since(t0);
     t0 = Clock::now();
     ++result.steps;
     const double t = result.simulated_s = sumo.time();
+    egos.after_sumo_step(vehicles, t, result);
     result.max_vehicles = std::max(result.max_vehicles, vehicles.size());
     const bool write_rows = t >= next_row - 1e-9;
     if (write_rows) {
@@ -220,14 +231,17 @@ CosimResult run_cosim(const CosimInputs& inputs, const CosimOptions& options,
       measures.track_lane(v);
       // Where SUMO has the vehicle: its front's height and its slope.
       const double slope = v.slope_deg * std::numbers::pi / 180.0;
-      const std::optional<SurfacePose> pose = place_on_surface(
-          query, v.centre(), v.heading(), wheel_base_of(v.length_m, v.width_m),
-          v.front.z() - std::tan(slope) * 0.5 * v.length_m, slope, options.max_contact_gap_m);
+      const std::optional<SurfacePose> pose =
+          egos.is_ego(v.id)
+              ? egos.pose(v.id)
+              : place_on_surface(query, v.centre(), v.heading(), wheel_base_of(v.length_m, v.width_m),
+                                 v.front.z() - std::tan(slope) * 0.5 * v.length_m, slope,
+                                 options.max_contact_gap_m);
       if (!pose) {
         measures.unplaced(v, t, result);
         continue;
       }
-      measures.add(v, *pose, t, result);
+      measures.add(v, *pose, t, result, !egos.is_ego(v.id));
       if (add_keys) replay.add(v, *pose, t);
       if (write_rows) {
         const Vec2 centre = v.centre();
@@ -236,6 +250,9 @@ CosimResult run_cosim(const CosimInputs& inputs, const CosimOptions& options,
       }
     }
     if (write_rows) trajectories.end_step();
+    const Clock::time_point physics = Clock::now();
+    egos.drive(options.step_s);  // the egos' poses reach SUMO with its next step
+    result.physics_s += seconds_since(physics);
     result.relief_s += seconds_since(t0);
     if (options.progress && t >= next_progress - 1e-9) {
       options.progress(t, vehicles.size());
@@ -243,6 +260,7 @@ CosimResult run_cosim(const CosimInputs& inputs, const CosimOptions& options,
     }
   }
   measures.finish(result, diagnostics);
+  egos.finish(result, diagnostics);
   OutputSet outputs;
   if (options.replay_period_s > 0.0) {
     const std::string bytes = encode_replay_glb(scene, replay.take_tracks());

@@ -13,7 +13,8 @@ namespace {
 
 constexpr double kDegree = 180.0 / std::numbers::pi;
 
-// The median, 99th percentile (the value at rank floor(0.99 (n - 1))) and largest value.
+}  // namespace
+
 Spread spread_of(std::vector<float>& values) {
   Spread s;
   s.count = values.size();
@@ -28,8 +29,6 @@ Spread spread_of(std::vector<float>& values) {
   s.max = static_cast<double>(*std::max_element(values.begin(), values.end()));
   return s;
 }
-
-}  // namespace
 
 void PlacementMeasures::track_lane(const SumoVehicleState& v) {
   std::array<std::string, 3>& lanes = recent_[v.id];
@@ -48,8 +47,8 @@ void PlacementMeasures::unplaced(const SumoVehicleState& v, double t, CosimResul
   first_unplaced_ = where.str();
 }
 
-void PlacementMeasures::add(const SumoVehicleState& v, const SurfacePose& pose, double t,
-                            CosimResult& result) {
+void PlacementMeasures::add(const SumoVehicleState& v, const SurfacePose& pose, double t, CosimResult& result,
+                            bool sumo_placed) {
   ++result.vehicle_steps;
   result.contacts_missing += static_cast<std::size_t>(pose.contacts_missing);
   wheel_under_.push_back(static_cast<float>(
@@ -60,7 +59,8 @@ void PlacementMeasures::add(const SumoVehicleState& v, const SurfacePose& pose, 
     if (kind != SurfaceKind::road && kind != SurfaceKind::junction) ++result.off_pavement;
 
   // SUMO's own height at the bumper, on the lane it reports.
-  const std::optional<LaneSurfacePoint> at_front = odr_.at(v.lane, Vec2(v.front.x(), v.front.y()));
+  const std::optional<LaneSurfacePoint> at_front =
+      sumo_placed ? odr_.at(v.lane, Vec2(v.front.x(), v.front.y())) : std::nullopt;
   if (at_front && at_front->on_road())
     sumo_z_errors_.push_back(static_cast<float>(std::abs(v.front.z() - at_front->z_m)));
 

@@ -16,14 +16,20 @@
 
 namespace relief::detail {
 
+/// The median, 99th percentile (the value at rank floor(0.99 (n - 1))) and largest value;
+/// reorders `values`.
+Spread spread_of(std::vector<float>& values);
+
 class PlacementMeasures {
  public:
   PlacementMeasures(SumoSurface& odr, const CosimOptions& options) : odr_(odr), options_(options) {}
 
   /// Notes the vehicle's lane (call once per vehicle and step, before add or unplaced).
   void track_lane(const SumoVehicleState& v);
-  /// A vehicle set on the surface at time t.
-  void add(const SumoVehicleState& v, const SurfacePose& pose, double t, CosimResult& result);
+  /// A vehicle set on the surface at time t; SUMO's own lane height at its bumper measured
+  /// when `sumo_placed` (an ego's plan position is the physics', not SUMO's).
+  void add(const SumoVehicleState& v, const SurfacePose& pose, double t, CosimResult& result,
+           bool sumo_placed = true);
   /// A vehicle that could not be set on the surface.
   void unplaced(const SumoVehicleState& v, double t, CosimResult& result);
   /// Fills the spreads, the vehicle count and reports what was not placed or measured.

@@ -2,8 +2,11 @@
 
 #include <libsumo/libsumo.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <cstdlib>
+#include <limits>
 #include <numbers>
 
 #include "relief/core/errors.h"
@@ -12,6 +15,48 @@ namespace relief {
 namespace {
 
 std::atomic<bool> running{false};
+
+bool is_internal(const std::string& lane) {
+  return lane.starts_with(':');
+}
+
+// SUMO's lane ids are EDGE_INDEX.
+std::string edge_of(const std::string& lane) {
+  const std::size_t cut = lane.rfind('_');
+  return cut == std::string::npos ? lane : lane.substr(0, cut);
+}
+
+int lane_index(const std::string& lane) {
+  const std::size_t cut = lane.rfind('_');
+  return cut == std::string::npos ? 0 : std::atoi(lane.c_str() + cut + 1);
+}
+
+// The lane after `lane` on the way along `route`: an internal lane's one successor; from a
+// normal lane on route edge `index`, the connection to the route's next edge (into the
+// continuation lane when one is listed), through its internal lane when it has one.
+std::string next_lane(const std::string& lane, const std::vector<std::string>& route, std::size_t& index,
+                      const std::vector<std::string>& continuation) {
+  const std::vector<libsumo::TraCIConnection> links = libsumo::Lane::getLinks(lane);
+  if (is_internal(lane)) {
+    if (links.empty()) return {};
+    return links.front().approachedInternal.empty() ? links.front().approachedLane
+                                                    : links.front().approachedInternal;
+  }
+  const std::string edge = edge_of(lane);
+  while (index < route.size() && route[index] != edge) ++index;
+  if (index + 1 >= route.size()) return {};
+  const std::string& next_edge = route[index + 1];
+  const libsumo::TraCIConnection* chosen = nullptr;
+  for (const libsumo::TraCIConnection& link : links) {
+    if (edge_of(link.approachedLane) != next_edge) continue;
+    const bool listed =
+        std::find(continuation.begin(), continuation.end(), link.approachedLane) != continuation.end();
+    if (chosen == nullptr || listed) chosen = &link;
+    if (listed) break;
+  }
+  if (chosen == nullptr) return {};
+  return chosen->approachedInternal.empty() ? chosen->approachedLane : chosen->approachedInternal;
+}
 
 }  // namespace
 
@@ -43,6 +88,13 @@ SumoSession::SumoSession(const std::filesystem::path& sumocfg, double step_s,
 
 SumoSession::~SumoSession() {
   try {
+    // libsumo 1.15 keeps the vehicles moved for the next step in a static list that close()
+    // does not clear: the next session in this process would step them after they were freed.
+    // One more step consumes the list.
+    if (moves_pending_) libsumo::Simulation::step();
+  } catch (...) {  // NOLINT(bugprone-empty-catch): best effort in a destructor
+  }
+  try {
     libsumo::Simulation::close();
   } catch (...) {  // NOLINT(bugprone-empty-catch): closing is best effort in a destructor
   }
@@ -54,6 +106,7 @@ SumoSession::~SumoSession() {
 // NOLINTBEGIN(readability-convert-member-functions-to-static)
 void SumoSession::step() {
   try {
+    moves_pending_ = false;
     libsumo::Simulation::step();
   } catch (const std::exception& e) {
     throw Error(std::string("SUMO failed a step: ") + e.what());
@@ -92,6 +145,81 @@ std::vector<SumoVehicleState> SumoSession::vehicles() const {
     out.push_back(std::move(v));
   }
   return out;
+}
+
+std::string SumoSession::vehicle_class(const std::string& type) const {
+  return libsumo::VehicleType::getVehicleClass(type);
+}
+
+double SumoSession::desired_speed(const std::string& id) const {
+  return libsumo::Vehicle::getSpeedWithoutTraCI(id);
+}
+
+std::vector<Vec2> SumoSession::lane_path_ahead(const std::string& id, const Vec2& from, double length_m,
+                                               const std::string& given_lane) const {
+  std::string lane = given_lane.empty() ? libsumo::Vehicle::getLaneID(id) : given_lane;
+  if (lane.empty()) return {};
+  const std::vector<std::string> route = libsumo::Vehicle::getRoute(id);
+  auto route_index = static_cast<std::size_t>(std::max(0, libsumo::Vehicle::getRouteIndex(id)));
+  std::vector<std::string> continuation;
+  if (given_lane.empty() &&
+      !is_internal(lane)) {  // the lane from which the route goes on, nearest the current one
+    int best = std::numeric_limits<int>::max();
+    for (const libsumo::TraCIBestLanesData& b : libsumo::Vehicle::getBestLanes(id)) {
+      if (edge_of(b.laneID) != edge_of(lane)) continue;
+      const int offset = std::abs(lane_index(b.laneID) - lane_index(lane));
+      if (b.bestLaneOffset == 0 && offset < best) {
+        best = offset;
+        lane = b.laneID;
+        continuation = b.continuationLanes;
+      }
+    }
+  }
+  std::vector<Vec2> path;
+  double length = 0.0;
+  bool first = true;
+  for (int hops = 0; hops < 16 && !lane.empty(); ++hops) {
+    const libsumo::TraCIPositionVector shape = libsumo::Lane::getShape(lane);
+    std::size_t start = 0;
+    if (first) {  // from the segment nearest the vehicle on
+      double best = std::numeric_limits<double>::infinity();
+      for (std::size_t i = 0; i < shape.value.size(); ++i) {
+        const double d = (Vec2(shape.value[i].x, shape.value[i].y) - from).squaredNorm();
+        if (d < best) {
+          best = d;
+          start = i;
+        }
+      }
+      start = start > 0 ? start - 1 : 0;
+      first = false;
+    }
+    for (std::size_t i = start; i < shape.value.size(); ++i) {
+      const Vec2 p(shape.value[i].x, shape.value[i].y);
+      if (!path.empty()) length += (p - path.back()).norm();
+      if (path.empty() || (p - path.back()).squaredNorm() > 1e-6) path.push_back(p);
+    }
+    if (length >= length_m) break;
+    lane = next_lane(lane, route, route_index, continuation);
+  }
+  return path;
+}
+
+double SumoSession::distance_to_route_end(const std::string& id) const {
+  const std::string lane = libsumo::Vehicle::getLaneID(id);
+  const std::vector<std::string> route = libsumo::Vehicle::getRoute(id);
+  if (lane.empty() || is_internal(lane) || route.empty() || edge_of(lane) != route.back())
+    return std::numeric_limits<double>::infinity();
+  return libsumo::Lane::getLength(lane) - libsumo::Vehicle::getLanePosition(id);
+}
+
+void SumoSession::move_to(const std::string& id, const std::string& lane, const Vec2& front,
+                          double angle_deg) {
+  try {
+    libsumo::Vehicle::moveToXY(id, edge_of(lane), lane_index(lane), front.x(), front.y(), angle_deg, 1);
+    moves_pending_ = true;
+  } catch (const std::exception& e) {
+    throw Error("SUMO cannot move vehicle '" + id + "': " + e.what());
+  }
 }
 
 // NOLINTEND(readability-convert-member-functions-to-static)

@@ -215,6 +215,8 @@ check "cosim missing config names it" stderr_has "nowhere.sumocfg"
 check "cosim missing config no outputs" no_outputs "$RELIEF_TMP/cosim_missing"
 check "cosim bad step" run 2 "$RELIEF_TMP/cosim_step" cosim --sumocfg "$out/hill.sumocfg" --out "$RELIEF_TMP/cosim_step" \
   --step 0
+check "cosim bad resync" run 2 "$RELIEF_TMP/cosim_resync" cosim --sumocfg "$out/hill.sumocfg" \
+  --out "$RELIEF_TMP/cosim_resync" --egos 1 --resync nan
 # --mesh-tile-size: the scene also cut into tiles; a size that is not positive is exit 2.
 out="$RELIEF_TMP/tiles"
 check "mesh tiles" run 0 "$out" build --osm "$fix/hill.osm" --dem "$fix/hill_dem.asc" --out "$out" --quiet \
@@ -374,7 +376,8 @@ if [ -d "$potrero" ]; then
   check "potrero build with routes" run 0 "$out" build --osm "$potrero/sf-potrero.osm.gz" \
     --dem "$potrero/USGS_13_n38w123-subsection-small-potrero.tif" --out "$out" --quiet --outputs xodr,sumo,mesh \
     --mesh-formats glb --routes 200
-  check "potrero cosim" run 0 "$out/cosim" cosim --sumocfg "$out/sf-potrero.sumocfg" --out "$out/cosim" --end 120
+  check "potrero cosim" run 0 "$out/cosim" cosim --sumocfg "$out/sf-potrero.sumocfg" --out "$out/cosim" --end 120 \
+    --egos 5
   check "potrero cosim figures" python3 - "$out/cosim/cosim.json" <<'PY'
 import json, sys
 r = json.load(open(sys.argv[1]))
@@ -388,6 +391,13 @@ assert r["vehicles"] >= 40 and r["unplaced_vehicle_steps"] == 0, r
 assert r["sumo_z_error_m"]["max"] <= 0.05, r["sumo_z_error_m"]
 assert r["z_error_on_roads_m"]["p99"] <= 0.03, r["z_error_on_roads_m"]
 assert r["unmapped_vehicle_steps"] <= 0.05 * r["vehicle_steps"], r["unmapped_vehicle_steps"]
+# The first 5 vehicles driven by the physics (Bullet) on the hills, their poses back to SUMO.
+print("cosim potrero egos: %d, %d ego steps; sync error p50 %.3f p99 %.3f max %.3f m; %d resyncs" %
+      (r["egos"], r["ego_steps"], r["sync_error_m"]["p50"], r["sync_error_m"]["p99"], r["sync_error_m"]["max"],
+       r["resyncs"]))
+assert r["egos"] == 5 and r["ego_steps"] >= 500, r["ego_steps"]
+assert r["sync_error_m"]["p99"] <= 0.5, r["sync_error_m"]
+assert r["resyncs"] == len(r["resync_log"]) or len(r["resync_log"]) == 100, r["resync_log"]
 PY
   # The replay and the scene it carries: 0 errors in the Khronos glTF validator (npm; skipped,
   # and said so, where node/npm or the registry is missing).

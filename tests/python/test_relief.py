@@ -63,3 +63,14 @@ def test_ten_steps_from_python_match_the_surface_query(hill):
     # Far from every surface: nothing.
     assert surface.height(1e6, 1e6) is None
     assert surface.place(1e6, 1e6, 0.0) is None
+
+
+def test_egos_from_python_are_driven_and_measured(hill):
+    figures = relief.run_cosim(hill / "hill.sumocfg", hill / "cosim_egos", end=20.0, replay_period=0.0,
+                               ego_count=2)
+    assert figures["egos"] == 2
+    assert figures["ego_steps"] > 100
+    assert figures["sync_error_m"]["p50"] < 0.1
+    assert figures["resync_m"] == 0.5
+    with pytest.raises(ValueError):
+        relief.run_cosim(hill / "hill.sumocfg", hill / "cosim_bad", end=1.0, resync=0.0)

@@ -42,6 +42,11 @@ void print_result(const CosimResult& r, const std::string& out) {
   print_spread("pitch vs slope", r.pitch_error_deg, " deg", 3);
   std::cout << "  wheels under   " << r.wheels_under_road << " (deepest " << fixed(r.wheel_under_m.max, 4)
             << " m)\n"
+            << (r.egos > 0 ? "egos       " + std::to_string(r.egos) + ", sync error p50 " +
+                                 fixed(r.sync_error_m.p50, 3) + " m, p99 " + fixed(r.sync_error_m.p99, 3) +
+                                 " m, max " + fixed(r.sync_error_m.max, 3) + " m, " +
+                                 std::to_string(r.resyncs) + " resyncs\n"
+                           : std::string())
             << "time       " << fixed(r.wall_s, 2) << " s wall (setup " << fixed(r.setup_s, 2) << " s, SUMO "
             << fixed(r.sumo_s, 2) << " s, relief " << fixed(r.relief_s, 2) << " s), "
             << fixed(r.real_time_factor(), 1) << "x real time\n"
@@ -75,6 +80,16 @@ Runner add_cosim_command(CLI::App& app) {
   cmd->add_option("--replay-period", args->options.replay_period_s,
                   std::string("Key the replay ") + kCosimReplayFile + " this often in seconds (0: no replay)")
       ->check(finite_non_negative())
+      ->capture_default_str();
+  cmd->add_option("--ego", args->options.egos,
+                  "A vehicle the physics drives (Bullet; repeatable): its pose goes back to SUMO every step");
+  cmd->add_option("--egos", args->options.ego_count,
+                  "Also drive the first N vehicles to depart (of --ego-type when given) as egos")
+      ->capture_default_str();
+  cmd->add_option("--ego-type", args->options.ego_type, "SUMO vehicle type the --egos are taken from");
+  cmd->add_option("--resync", args->options.resync_m,
+                  "Set an ego back onto SUMO's lane when the two lie this many metres apart after a step")
+      ->check(finite_positive())
       ->capture_default_str();
   cmd->add_option("--mesh-tolerance", args->options.mesh_tolerance_m,
                   "Chord tolerance in metres of the road surface the vehicles are set on")

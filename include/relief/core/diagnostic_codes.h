@@ -114,6 +114,11 @@ inline constexpr DiagnosticCode kCosimVehicleOffSurface{
 inline constexpr DiagnosticCode kCosimLaneUnmapped{
     "cosim.lane_unmapped",
     "a SUMO vehicle drives a lane with no OpenDRIVE road; its placement is not measured"};
+inline constexpr DiagnosticCode kCosimEgoResync{
+    "cosim.ego_resync",
+    "an ego vehicle drifted past the resync distance from SUMO and was set back onto SUMO's lane"};
+inline constexpr DiagnosticCode kCosimEgoMissing{"cosim.ego_missing",
+                                                 "a vehicle named as an ego never ran in SUMO"};
 
 // Quality gates (export/quality_gates.h).
 inline constexpr DiagnosticCode kGateFailed{"gate.failed", "a quality gate failed (the build exits with 4)"};
@@ -155,6 +160,8 @@ inline constexpr std::array kAll{kDemDatumGridMissing,
                                  kSumoUnmappedLanePoints,
                                  kCosimVehicleOffSurface,
                                  kCosimLaneUnmapped,
+                                 kCosimEgoResync,
+                                 kCosimEgoMissing,
                                  kGateFailed};
 
 }  // namespace codes

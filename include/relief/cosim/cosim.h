@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "relief/core/diagnostics.h"
+#include "relief/cosim/ego_controller.h"
 
 namespace relief {
 
@@ -50,6 +51,16 @@ struct CosimOptions {
   double trajectory_period_s = 0.0;    ///< trajectory rows this often (0: every step)
   double replay_period_s = 0.5;        ///< replay keys this often (0: no cosim.glb)
   std::vector<std::string> sumo_args;  ///< extra SUMO command-line arguments
+  /// Ego vehicles, driven by the physics (ego_world.h) instead of SUMO: these ids, and the
+  /// first `ego_count` vehicles to depart (of type `ego_type` when it is set).
+  std::vector<std::string> egos;
+  std::size_t ego_count = 0;
+  std::string ego_type;
+  /// An ego whose plan position in SUMO and in the physics lie farther apart than this after
+  /// a step is resynchronised: the physics yields (the body is set onto SUMO's lane at SUMO's
+  /// position and heading, keeping its speed), SUMO keeps its route and its traffic.
+  double resync_m = 0.5;
+  EgoDriverOptions driver;
   /// Called about once per simulated 10 s: (simulated time, vehicles now).
   std::function<void(double, std::size_t)> progress;
   /// Polled every step; true ends the run cleanly (what was simulated is written).
@@ -82,6 +93,14 @@ struct CosimResult {
   Spread wheel_under_m;               ///< the deepest contact per vehicle-step (0 when none is under)
   std::size_t wheels_under_road = 0;  ///< contacts deeper than wheel_under_limit_m
   std::string worst_z_place;          ///< vehicle, time, lane and (x, y) of the largest z error
+  // The egos.
+  std::size_t egos = 0;       ///< distinct ego vehicles driven
+  std::size_t ego_steps = 0;  ///< egos x steps
+  Spread sync_error_m;        ///< plan distance of SUMO's front bumper from the physics' after a step
+  std::size_t resyncs = 0;
+  std::vector<std::string> resync_log;  ///< the first 100: vehicle, time, error, place
+  Spread ego_speed_gap_mps;             ///< |SUMO's speed - the physics' speed| of an ego after a step
+  double physics_s = 0.0;               ///< of relief_s: the egos' physics and driving
   [[nodiscard]] double real_time_factor() const { return wall_s > 0.0 ? simulated_s / wall_s : 0.0; }
 };
 

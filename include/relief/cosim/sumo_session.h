@@ -47,6 +47,29 @@ class SumoSession {
   [[nodiscard]] std::vector<SumoVehicleState> vehicles() const;
   /// SUMO's end time of the configuration (nothing set: a negative value).
   [[nodiscard]] double end_time() const;
+
+  // For vehicles another simulator drives (the egos).
+  /// The vClass of a vehicle type ("passenger", "truck", ...).
+  [[nodiscard]] std::string vehicle_class(const std::string& type) const;
+  /// The speed SUMO would give the vehicle now if nothing outside drove it (its car following,
+  /// the speed limit, the junction ahead).
+  [[nodiscard]] double desired_speed(const std::string& id) const;
+  /// The centre line of `lane`, by default the lane the vehicle should be on (its own, or the
+  /// nearest lane of its edge from which its route goes on), from the point nearest `from` on,
+  /// then through the junctions along its route (internal lanes included) for at least
+  /// `length_m` where the route goes that far.
+  [[nodiscard]] std::vector<Vec2> lane_path_ahead(const std::string& id, const Vec2& from, double length_m,
+                                                  const std::string& lane = {}) const;
+  /// How far the vehicle's front lies from the end of its route's last edge when it is on that
+  /// edge (infinity elsewhere).
+  [[nodiscard]] double distance_to_route_end(const std::string& id) const;
+  /// Moves the vehicle for the next step to a front bumper at `front` facing `angle_deg`
+  /// (SUMO's angle), mapped onto its route (moveToXY with keepRoute 1: the nearest lane of
+  /// the route's edges; its current lane a hint).
+  void move_to(const std::string& id, const std::string& lane, const Vec2& front, double angle_deg);
+
+ private:
+  bool moves_pending_ = false;  // move_to since the last step (see the destructor)
 };
 
 }  // namespace relief
