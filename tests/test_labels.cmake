@@ -14,6 +14,8 @@ set(relief_tools_tests
   "^(Corpus|Fuzz|Regions|Sumo)\\."
   # a relief build with the SUMO output, then SUMO in this process (libsumo)
   "^(Cosim|SumoSession)\\."
+  # a relief build, then randomTrips.py, duarouter, routeSampler.py and SUMO
+  "^Demand\\."
   # xmllint, python3 (xmlschema, the HTML parse), blender
   "^OpenDriveWriter\\.(ValidatesAgainstTheOpenDrive1[78]Schema|WritesOpenDrive14WithWholeSpeedsAndNoOffset)$"
   "^ReportHtml\\.(OpenDriveFiguresAppearWhenAFileWasWritten|ParsesAsXmlWithOnePlotPerProfileHistogramAndMaps)$"

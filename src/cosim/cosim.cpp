@@ -20,6 +20,7 @@
 #include "relief/cosim/vehicle_pose.h"
 #include "relief/export/mesh_writer.h"
 #include "relief/export/sumo_surface.h"
+#include "relief/export/sumo_tools.h"
 #include "relief/roads/opendrive_reader.h"
 #include "relief/scene/road_mesh.h"
 #include "relief/scene/surface_query.h"
@@ -39,15 +40,6 @@ double seconds_since(Clock::time_point start) {
 
 Json spread_json(const Spread& s) {
   return Json{{"p50", s.p50}, {"p99", s.p99}, {"max", s.max}, {"count", s.count}};
-}
-
-std::string net_stem(const std::filesystem::path& net) {
-  std::string name = net.filename().string();
-  for (const std::string suffix : {".net.xml.gz", ".net.xml"}) {
-    if (name.size() > suffix.size() && name.ends_with(suffix))
-      return name.substr(0, name.size() - suffix.size());
-  }
-  return net.stem().string();
 }
 
 void write_cosim_json(const std::filesystem::path& path, const CosimInputs& inputs,
@@ -163,11 +155,11 @@ CosimInputs find_cosim_inputs(const std::filesystem::path& sumocfg) {
                                                           : sumocfg.parent_path() / value;
   if (!std::filesystem::is_regular_file(inputs.net))
     throw IoError("cannot read the net '" + inputs.net.string() + "' named by '" + sumocfg.string() + "'");
-  inputs.xodr = inputs.net.parent_path() / (net_stem(inputs.net) + ".xodr");
+  inputs.xodr = inputs.net.parent_path() / (sumo_net_name(inputs.net) + ".xodr");
   if (!std::filesystem::is_regular_file(inputs.xodr))
     throw IoError("cannot read '" + inputs.xodr.string() +
                   "': relief cosim needs the OpenDRIVE file of the net's build beside it");
-  const std::filesystem::path glb = inputs.net.parent_path() / (net_stem(inputs.net) + ".glb");
+  const std::filesystem::path glb = inputs.net.parent_path() / (sumo_net_name(inputs.net) + ".glb");
   if (std::filesystem::is_regular_file(glb)) inputs.scene = glb;
   return inputs;
 }
@@ -192,7 +184,7 @@ CosimResult run_cosim(const CosimInputs& inputs, const CosimOptions& options,
   ReplayRecorder replay(options.replay_period_s);
 
   std::filesystem::create_directories(out_dir);
-  const std::string name = net_stem(inputs.net);
+  const std::string name = sumo_net_name(inputs.net);
   detail::TrajectoryWriter trajectories(out_dir / (name + ".fcd.xml"),
                                         out_dir / (name + ".trajectories.csv"));
 

@@ -31,7 +31,10 @@ void write_sumo_mapping(std::ostream& out, const SumoPlainNetwork& net) {
       first = false;
       s += "    {\"sumo_lane\": " + quoted(e.id + "_" + std::to_string(l.index)) +
            ", \"odr_road\": " + std::to_string(e.odr_road) + ", \"odr_lane\": " + std::to_string(l.odr_lane) +
-           ", \"along_s\": " + (e.along_s ? "true" : "false") + "}";
+           ", \"along_s\": " + (e.along_s ? "true" : "false") + ", \"osm_ways\": [";
+      for (std::size_t i = 0; i < e.osm_way_ids.size(); ++i)
+        s += (i > 0 ? ", " : "") + std::to_string(e.osm_way_ids[i]);
+      s += "]}";
     }
   }
   s += "\n  ],\n  \"connections\": [";

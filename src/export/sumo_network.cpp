@@ -301,6 +301,7 @@ SumoPlainNetwork build_sumo_network(const RoadModel& model, const std::vector<Su
         SumoEdge e;
         e.id = k == 0 ? edge_id(road.id, along_s) : second_half(edge_id(road.id, along_s));
         e.odr_road = road.id;
+        e.osm_way_ids = road.osm_way_ids;
         e.along_s = along_s;
         std::string middle = "M";  // not "M" + to_string(): GCC 12's false -Wrestrict (bug 105329)
         middle += std::to_string(road.id);

@@ -11,9 +11,16 @@
 #include "relief/export/sumo_plain_xml.h"
 
 namespace relief {
-namespace {
 
-std::filesystem::path tool(const std::string& name) {
+std::string sumo_net_name(const std::filesystem::path& net) {
+  std::string name = net.filename().string();
+  for (const std::string suffix : {".net.xml.gz", ".net.xml"})
+    if (name.size() > suffix.size() && name.ends_with(suffix))
+      return name.substr(0, name.size() - suffix.size());
+  return net.stem().string();
+}
+
+std::filesystem::path sumo_tool(const std::string& name) {
   std::vector<std::filesystem::path> dirs;
   if (const auto home = sumo_home()) dirs = {*home / "bin", *home / "tools"};
   const auto path = find_executable(name, dirs);
@@ -25,10 +32,23 @@ std::filesystem::path tool(const std::string& name) {
   return *path;
 }
 
-// SUMO's tools need SUMO_HOME for their schemas and type maps.
-Environment sumo_environment() {
+Environment sumo_tool_environment() {
   if (const auto home = sumo_home()) return {{"SUMO_HOME", home->string()}};
   return {};
+}
+
+std::string sumo_python() {
+  return std::filesystem::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3";
+}
+
+namespace {
+
+std::filesystem::path tool(const std::string& name) {
+  return sumo_tool(name);
+}
+
+Environment sumo_environment() {
+  return sumo_tool_environment();
 }
 
 std::string read_text(const std::filesystem::path& path) {
@@ -115,7 +135,7 @@ DemandRun make_demand(const std::filesystem::path& work_dir, const std::string& 
   append_fixed(end_text, end, 2);
 
   DemandRun run;
-  const ProcessResult trips_run = run_process({"python3",
+  const ProcessResult trips_run = run_process({sumo_python(),
                                                tool("randomTrips.py").string(),
                                                "--net-file",
                                                net.string(),
@@ -180,6 +200,9 @@ DemandRun make_demand(const std::filesystem::path& work_dir, const std::string& 
   xml.end("time");
   xml.start("processing");
   value("time-to-teleport", "300");
+  // duarouter's routes are not validated against SUMO's schemas, which SUMO finds only through
+  // SUMO_HOME (without it, it rejects them as an "invalid document structure").
+  value("xml-validation.routes", "never");
   xml.end("processing");
   xml.end("configuration");
   xml.finish();

@@ -217,6 +217,25 @@ check "cosim bad step" run 2 "$RELIEF_TMP/cosim_step" cosim --sumocfg "$out/hill
   --step 0
 check "cosim bad resync" run 2 "$RELIEF_TMP/cosim_resync" cosim --sumocfg "$out/hill.sumocfg" \
   --out "$RELIEF_TMP/cosim_resync" --egos 1 --resync nan
+# demand: the example counts on the hill's net, reproduced by routeSampler (GEH < 5 everywhere),
+# and SUMO runs the configuration without SUMO_HOME; bad counts are bad input.
+dm="$RELIEF_TMP/demand"
+check "demand runs" run 0 "$dm" demand --net "$out/hill.net.xml" --counts "$fix/counts.csv" --out "$dm" --trucks 10
+check "demand figures" python3 - "$dm/demand.json" <<'PY'
+import json, sys
+r = json.load(open(sys.argv[1]))
+print("demand hill: %d rows on %d edges, %d vehicles (%d trucks), GEH < 5 on %.0f %%" %
+      (r["count_rows"], r["counted_edges"], r["vehicles"], r["trucks"], 100 * r["geh_ok_share"]))
+assert r["count_rows"] == 5 and not r["unmatched_rows"] and r["geh_ok_share"] == 1.0, r
+PY
+check "sumo runs the demand" bash -c "cd '$dm' && env -u SUMO_HOME sumo -c hill.demand.sumocfg --end 60 \
+  --no-step-log true >'$RELIEF_TMP/sumo_demand.log' 2>&1 || { cat '$RELIEF_TMP/sumo_demand.log'; exit 1; }"
+printf 'osm_way,direction,count\n101,up,5\n' >"$RELIEF_TMP/bad_counts.csv"
+check "demand bad direction" run 3 "$RELIEF_TMP/demand_bad" demand --net "$out/hill.net.xml" \
+  --counts "$RELIEF_TMP/bad_counts.csv" --out "$RELIEF_TMP/demand_bad"
+check "demand bad direction says where" stderr_has "line 2: unknown direction 'up'"
+check "demand missing counts" run 3 "$RELIEF_TMP/demand_none" demand --net "$out/hill.net.xml" \
+  --counts "$RELIEF_TMP/nowhere.csv" --out "$RELIEF_TMP/demand_none"
 # --mesh-tile-size: the scene also cut into tiles; a size that is not positive is exit 2.
 out="$RELIEF_TMP/tiles"
 check "mesh tiles" run 0 "$out" build --osm "$fix/hill.osm" --dem "$fix/hill_dem.asc" --out "$out" --quiet \

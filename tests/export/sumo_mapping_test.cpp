@@ -11,9 +11,12 @@
 namespace relief {
 namespace {
 
+// The ramp; road 1 built from OSM ways 11 and 12.
 SumoPlainNetwork ramp_network() {
   RoadModel model = test::ramp_model();
   model.frame = test::synthetic_frame();
+  for (ModelRoad& road : model.roads)
+    if (road.id == 1) road.osm_way_ids = {11, 12};
   Diagnostics diagnostics;
   return build_sumo_network(model, {}, SumoOptions{}, diagnostics);
 }
@@ -26,16 +29,17 @@ std::string mapping_text(const SumoPlainNetwork& net) {
 
 // Every SUMO lane of the ramp names its OpenDRIVE road and lane: lanes "1_0" (lane -1, along s)
 // and "-1_0" (lane 1, against s) of road 1, "3_0" of road 3; the one connection its connecting
-// road 2. The frame's origin is printed with millimetres.
+// road 2; each lane the OSM ways its road came from (for traffic counts given per way). The
+// frame's origin is printed with millimetres.
 TEST(SumoMapping, NamesTheOpenDriveLaneOfEverySumoLaneAndConnection) {
   const std::string text = mapping_text(ramp_network());
   EXPECT_NE(text.find("\"origin\": [550000.000, 4180000.000]"), std::string::npos) << text;
   const nlohmann::json j = nlohmann::json::parse(text);
   EXPECT_EQ(j["frame"]["crs"], "EPSG:32610");
   const nlohmann::json lanes = nlohmann::json::parse(R"([
-    {"sumo_lane": "1_0", "odr_road": 1, "odr_lane": -1, "along_s": true},
-    {"sumo_lane": "-1_0", "odr_road": 1, "odr_lane": 1, "along_s": false},
-    {"sumo_lane": "3_0", "odr_road": 3, "odr_lane": -1, "along_s": true}])");
+    {"sumo_lane": "1_0", "odr_road": 1, "odr_lane": -1, "along_s": true, "osm_ways": [11, 12]},
+    {"sumo_lane": "-1_0", "odr_road": 1, "odr_lane": 1, "along_s": false, "osm_ways": [11, 12]},
+    {"sumo_lane": "3_0", "odr_road": 3, "odr_lane": -1, "along_s": true, "osm_ways": []}])");
   EXPECT_EQ(j["lanes"], lanes);
   const nlohmann::json connections = nlohmann::json::parse(R"([
     {"from_lane": "1_0", "to_lane": "3_0", "odr_road": 2, "odr_lane": -1}])");

@@ -117,6 +117,9 @@ inline constexpr DiagnosticCode kCosimLaneUnmapped{
 inline constexpr DiagnosticCode kCosimEgoResync{
     "cosim.ego_resync",
     "an ego vehicle drifted past the resync distance from SUMO and was set back onto SUMO's lane"};
+inline constexpr DiagnosticCode kDemandCountUnmatched{
+    "demand.count_unmatched",
+    "a traffic count's OSM way or direction has no edge in the net; the count is left out"};
 inline constexpr DiagnosticCode kCosimEgoMissing{"cosim.ego_missing",
                                                  "a vehicle named as an ego never ran in SUMO"};
 
@@ -162,6 +165,7 @@ inline constexpr std::array kAll{kDemDatumGridMissing,
                                  kCosimLaneUnmapped,
                                  kCosimEgoResync,
                                  kCosimEgoMissing,
+                                 kDemandCountUnmatched,
                                  kGateFailed};
 
 }  // namespace codes

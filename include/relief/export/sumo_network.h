@@ -11,6 +11,7 @@
 // OpenDRIVE lane of the edge's side. Every edge carries params odr.road / odr.lanes, every
 // connection the connecting road, and sumo_mapping.json lists every lane (export/sumo_mapping.h).
 
+#include <cstdint>
 #include <map>
 #include <set>
 #include <string>
@@ -64,6 +65,7 @@ struct SumoEdge {
   std::string id;
   std::string from, to;  ///< node ids
   int odr_road = -1;
+  std::vector<std::int64_t> osm_way_ids;  ///< the OSM ways the road was built from
   bool along_s = true;  ///< drives along the OpenDRIVE road's s (right lanes)
   Polyline3 shape;      ///< left border of the leftmost lane (spreadType "right"), in travel direction
   std::string name;

@@ -7,12 +7,26 @@
 #include <optional>
 #include <string>
 
+#include "relief/core/subprocess.h"
 #include "relief/export/sumo_network.h"
 
 namespace relief {
 
 /// $SUMO_HOME, else /usr/share/sumo when it exists.
 [[nodiscard]] std::optional<std::filesystem::path> sumo_home();
+
+/// NAME of a net file NAME.net.xml or NAME.net.xml.gz (else the file's stem): the name its
+/// build's other files share (NAME.xodr, NAME.glb, NAME.sumo_mapping.json).
+[[nodiscard]] std::string sumo_net_name(const std::filesystem::path& net);
+
+/// A SUMO program or Python tool (netconvert, duarouter, randomTrips.py, routeSampler.py):
+/// $SUMO_HOME/bin, $SUMO_HOME/tools, then PATH. Throws IoError naming it when it is missing.
+[[nodiscard]] std::filesystem::path sumo_tool(const std::string& name);
+/// The environment SUMO's tools need (SUMO_HOME, for their schemas and type maps).
+[[nodiscard]] Environment sumo_tool_environment();
+/// The interpreter for SUMO's Python tools: Debian's /usr/bin/python3 (whose packages, numpy
+/// among them, the tools import) when it exists, else python3 on PATH.
+[[nodiscard]] std::string sumo_python();
 
 struct NetconvertRun {
   std::string net_xml;  ///< the .net.xml text
