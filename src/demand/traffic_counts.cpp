@@ -1,5 +1,7 @@
 #include "relief/demand/traffic_counts.h"
 
+#include "demand/csv_table.h"
+
 #include <algorithm>
 #include <cmath>
 #include <fstream>
@@ -15,11 +17,6 @@ namespace {
 
 constexpr double kMatchWithin_deg = 60.0;
 
-std::string trim(const std::string& s) {
-  const std::size_t a = s.find_first_not_of(" \t\r"), b = s.find_last_not_of(" \t\r");
-  return a == std::string::npos ? std::string() : s.substr(a, b - a + 1);
-}
-
 std::string upper(std::string s) {
   for (char& c : s) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
   return s;
@@ -30,7 +27,7 @@ std::optional<double> parse_direction(const std::string& text, const std::string
   static const std::map<std::string, double> kCompass = {{"N", 0.0},    {"NE", 45.0}, {"E", 90.0},
                                                          {"SE", 135.0}, {"S", 180.0}, {"SW", 225.0},
                                                          {"W", 270.0},  {"NW", 315.0}};
-  std::string t = upper(trim(text));
+  std::string t = upper(detail::trim(text));
   if (t == "BOTH" || t.empty()) return std::nullopt;
   if (t.size() >= 2 && t.back() == 'B') t.pop_back();  // NB, SB, EB, WB
   if (const auto it = kCompass.find(t); it != kCompass.end()) return it->second;
@@ -52,36 +49,16 @@ double angle_between(double a_deg, double b_deg) {
 }  // namespace
 
 std::vector<CountRow> read_counts_csv(const std::filesystem::path& path) {
-  std::ifstream in(path);
-  if (!in) throw IoError("cannot read the counts '" + path.string() + "'");
-  std::string line;
-  std::getline(in, line);
-  std::vector<std::string> header;
-  std::stringstream h(line);
-  for (std::string f; std::getline(h, f, ',');) header.push_back(trim(f));
-  const auto column = [&](const std::string& name) {
-    const auto it = std::find(header.begin(), header.end(), name);
-    if (it == header.end())
-      throw InvalidInput("'" + path.string() + "' line 1: no column '" + name +
-                         "' (osm_way,direction,count)");
-    return static_cast<std::size_t>(it - header.begin());
-  };
-  const std::size_t way_col = column("osm_way"), dir_col = column("direction"), count_col = column("count");
+  const detail::CsvTable table = detail::read_csv_table(path, "counts");
+  const std::string expected = "osm_way,direction,count";
+  const std::size_t way_col = table.column("osm_way", expected),
+                    dir_col = table.column("direction", expected),
+                    count_col = table.column("count", expected);
   std::vector<CountRow> rows;
-  for (int number = 2; std::getline(in, line); ++number) {
-    if (trim(line).empty() || trim(line).starts_with('#')) continue;
-    std::vector<std::string> f;
-    std::stringstream fields(line);
-    for (std::string x; std::getline(fields, x, ',');) f.push_back(trim(x));
-    std::string where = "'";  // not "'" + ...: GCC 12's false -Wrestrict (bug 105329)
-    where += path.string();
-    where += "' line ";
-    where += std::to_string(number);
-    if (f.size() < header.size())
-      throw InvalidInput(where + ": " + std::to_string(f.size()) + " fields, the header has " +
-                         std::to_string(header.size()));
+  for (const detail::CsvRow& r : table.rows) {
+    const std::vector<std::string>& f = r.fields;
     CountRow row;
-    row.line = number;
+    row.line = r.line;
     try {
       std::size_t used = 0;
       row.osm_way = std::stoll(f[way_col], &used);
@@ -89,11 +66,11 @@ std::vector<CountRow> read_counts_csv(const std::filesystem::path& path) {
       row.count = std::stod(f[count_col], &used);
       if (used != f[count_col].size()) throw std::invalid_argument("trailing");
     } catch (const std::exception&) {
-      throw InvalidInput(where + ": the OSM way must be an integer and the count a number");
+      throw InvalidInput(r.where + ": the OSM way must be an integer and the count a number");
     }
     if (!(std::isfinite(row.count) && row.count >= 0.0))
-      throw InvalidInput(where + ": the count must be a number >= 0");
-    row.bearing_deg = parse_direction(f[dir_col], where);
+      throw InvalidInput(r.where + ": the count must be a number >= 0");
+    row.bearing_deg = parse_direction(f[dir_col], r.where);
     rows.push_back(row);
   }
   return rows;

@@ -230,6 +230,11 @@ assert r["count_rows"] == 5 and not r["unmatched_rows"] and r["geh_ok_share"] ==
 PY
 check "sumo runs the demand" bash -c "cd '$dm' && env -u SUMO_HOME sumo -c hill.demand.sumocfg --end 60 \
   --no-step-log true >'$RELIEF_TMP/sumo_demand.log' 2>&1 || { cat '$RELIEF_TMP/sumo_demand.log'; exit 1; }"
+check "demand od" run 0 "$RELIEF_TMP/demand_od" demand --net "$out/hill.net.xml" --od "$fix/od.csv" \
+  --zones "$fix/zones.geojson" --out "$RELIEF_TMP/demand_od"
+check "demand od trips" grep -q '"od_trips": 230' "$RELIEF_TMP/demand_od/demand.json"
+check "demand od without zones" run 2 "$RELIEF_TMP/demand_od2" demand --net "$out/hill.net.xml" --od "$fix/od.csv" \
+  --out "$RELIEF_TMP/demand_od2"
 printf 'osm_way,direction,count\n101,up,5\n' >"$RELIEF_TMP/bad_counts.csv"
 check "demand bad direction" run 3 "$RELIEF_TMP/demand_bad" demand --net "$out/hill.net.xml" \
   --counts "$RELIEF_TMP/bad_counts.csv" --out "$RELIEF_TMP/demand_bad"

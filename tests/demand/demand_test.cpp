@@ -5,6 +5,7 @@
 #include <cmath>
 #include <fstream>
 #include <map>
+#include <set>
 #include <sstream>
 
 #include "relief/core/diagnostics.h"
@@ -189,12 +190,13 @@ std::map<std::string, std::vector<std::string>> routes_of(const fs::path& file) 
 // counted edge, the config SUMO runs with the emission device; trucks routed on their grade
 // travel times never take longer by them than the trucks routed on the limits.
 TEST(Demand, TheHillsCountsAreReproducedAndTrucksRouteOnTheGrades) {
-  CountDemandOptions o;
+  TrafficDemandOptions o;
   o.end_s = 3600.0;
   o.trucks = 30;
   Diagnostics d;
   const fs::path out = test::scratch_dir("demand_counts");
-  const CountDemand r = make_count_demand(hill_net(), test::fixture("hill/counts.csv"), out, o, d);
+  const TrafficDemand r =
+      make_traffic_demand(hill_net(), {test::fixture("hill/counts.csv"), {}, {}}, out, o, d);
   EXPECT_EQ(r.count_rows, 5u);
   EXPECT_GE(r.counted_edges, 10u);
   EXPECT_TRUE(r.unmatched.empty());
@@ -217,7 +219,7 @@ TEST(Demand, TheHillsCountsAreReproducedAndTrucksRouteOnTheGrades) {
   // The same trucks routed on the speed limits.
   o.grade_routing = false;
   const fs::path flat = test::scratch_dir("demand_counts_flat");
-  (void)make_count_demand(hill_net(), test::fixture("hill/counts.csv"), flat, o, d);
+  (void)make_traffic_demand(hill_net(), {test::fixture("hill/counts.csv"), {}, {}}, flat, o, d);
   std::map<std::string, double> weight;
   for (const NetEdge& e : read_net_edges(hill_net())) weight[e.id] = grade_travel_time(e, "truck");
   const auto on_grades = routes_of(out / "hill.trucks.rou.xml"),
@@ -271,7 +273,8 @@ TEST(Demand, TheHillsCountsAreReproducedAndTrucksRouteOnTheGrades) {
 
   // Counts that fit no edge are bad input.
   std::ofstream(out / "nowhere.csv") << "osm_way,direction,count\n999,NB,10\n";
-  EXPECT_THROW((void)make_count_demand(hill_net(), out / "nowhere.csv", out / "none", o, d), InvalidInput);
+  EXPECT_THROW((void)make_traffic_demand(hill_net(), {out / "nowhere.csv", {}, {}}, out / "none", o, d),
+               InvalidInput);
 }
 
 }  // namespace
@@ -333,6 +336,113 @@ TEST(Demand, DuarouterOnGradeWeightsSendsATruckAroundTheHillAndACarOverIt) {
   EXPECT_EQ(routed("truck")["truck"], around);
   EXPECT_EQ(routed("passenger")["car"], over);
   EXPECT_EQ(routed("")["truck"], over);
+}
+
+}  // namespace
+}  // namespace relief
+
+#include "relief/demand/zones.h"
+#include "relief/geometry/crs_transform.h"
+
+namespace relief {
+namespace {
+
+// Two zones drawn in WGS84 around points of a net in UTM 10 with an offset; a third, a
+// MultiPolygon with a hole. Each edge goes to the zone its middle lies in.
+TEST(Zones, PolygonsInWgs84TakeTheEdgesWhoseMiddleLiesInside) {
+  const NetLocation loc{Vec2(-550000.0, -4180000.0), "+proj=utm +zone=10 +datum=WGS84 +units=m +no_defs"};
+  const CrsTransform to_wgs84(loc.projection, "EPSG:4326");
+  const auto lonlat = [&](double x, double y) { return to_wgs84.apply(Vec2(x, y) - loc.offset); };
+  const auto ring = [&](double x0, double y0, double x1, double y1) {
+    nlohmann::json r = nlohmann::json::array();
+    for (const auto& [x, y] : {std::pair{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}, {x0, y0}}) {
+      const Vec2 p = lonlat(x, y);
+      r.push_back({p.x(), p.y()});
+    }
+    return r;
+  };
+  nlohmann::json fc = {{"type", "FeatureCollection"}, {"features", nlohmann::json::array()}};
+  fc["features"].push_back({{"type", "Feature"},
+                            {"properties", {{"id", "a"}}},
+                            {"geometry", {{"type", "Polygon"}, {"coordinates", {ring(0, 0, 100, 100)}}}}});
+  fc["features"].push_back(
+      {{"type", "Feature"},
+       {"properties", {{"name", "b"}}},
+       {"geometry",
+        {{"type", "MultiPolygon"}, {"coordinates", {{ring(200, 0, 400, 200), ring(250, 50, 350, 150)}}}}}});
+  const fs::path dir = test::scratch_dir("zones");
+  write(dir / "z.geojson", fc.dump());
+  std::vector<Zone> zones = read_zones_geojson(dir / "z.geojson", loc);
+  ASSERT_EQ(zones.size(), 2u);
+  EXPECT_EQ(zones[1].id, "b");
+  const std::vector<NetEdge> edges = {
+      edge("in_a", Vec3(10, 50, 0), Vec3(90, 50, 0), {}),
+      edge("across", Vec3(50, 50, 0), Vec3(250, 50, 0), {}),  // middle at x 150
+      edge("in_b", Vec3(210, 10, 0), Vec3(230, 10, 0), {}),
+      edge("in_hole", Vec3(290, 100, 0), Vec3(310, 100, 0), {})};
+  assign_edges(zones, edges);
+  EXPECT_EQ(zones[0].edges, (std::vector<std::string>{"in_a"}));
+  EXPECT_EQ(zones[1].edges, (std::vector<std::string>{"in_b"}));
+  // A feature without an id, a point, a repeated id: bad input naming the feature.
+  fc["features"].push_back({{"type", "Feature"},
+                            {"properties", {{"id", "a"}}},
+                            {"geometry", {{"type", "Polygon"}, {"coordinates", {ring(0, 0, 1, 1)}}}}});
+  write(dir / "twice.geojson", fc.dump());
+  EXPECT_THROW((void)read_zones_geojson(dir / "twice.geojson", loc), InvalidInput);
+  write(
+      dir / "point.geojson",
+      R"({"features": [{"properties": {"id": "p"}, "geometry": {"type": "Point", "coordinates": [0, 0]}}]})");
+  try {
+    (void)read_zones_geojson(dir / "point.geojson", loc);
+    FAIL() << "a point is no zone";
+  } catch (const InvalidInput& e) {
+    EXPECT_NE(std::string(e.what()).find("feature 0 (zone 'p'): a Point geometry"), std::string::npos)
+        << e.what();
+  }
+  EXPECT_THROW((void)read_od_csv(write(dir / "od.csv", "from,to,count\n")), InvalidInput);
+  EXPECT_EQ(read_od_csv(write(dir / "od.csv", "origin,destination,count\na,b,12\n")).front().count, 12.0);
+}
+
+// The example OD matrix between the hill's three zones (fixtures/hill/od.csv, zones.geojson):
+// every relation's trips, each route from an edge of its origin zone to one of its destination.
+TEST(Demand, AnOdMatrixBetweenZonesBecomesRoutesFromZoneToZone) {
+  TrafficDemandOptions o;
+  Diagnostics d;
+  const fs::path out = test::scratch_dir("demand_od");
+  const TrafficDemand r = make_traffic_demand(
+      hill_net(), {{}, test::fixture("hill/od.csv"), test::fixture("hill/zones.geojson")}, out, o, d);
+  EXPECT_EQ(r.od_rows, 4u);
+  EXPECT_EQ(r.zones, 3u);
+  EXPECT_EQ(r.od_trips, 230u);  // 100 + 80 + 30 + 20
+  pugi::xml_document taz;
+  ASSERT_TRUE(taz.load_file((out / "hill.taz.xml").c_str()));
+  std::map<std::string, std::set<std::string>> zone_edges;
+  for (const pugi::xml_node& t : taz.child("additional").children("taz")) {
+    std::istringstream in(t.attribute("edges").as_string());
+    for (std::string e; in >> e;) zone_edges[t.attribute("id").as_string()].insert(e);
+  }
+  ASSERT_EQ(zone_edges.size(), 3u);
+  pugi::xml_document routes;
+  ASSERT_TRUE(routes.load_file((out / "hill.od.rou.xml").c_str()));
+  std::size_t checked = 0;
+  for (const pugi::xml_node& v : routes.child("routes").children("vehicle")) {
+    std::istringstream in(v.child("route").attribute("edges").as_string());
+    std::vector<std::string> edges;
+    for (std::string e; in >> e;) edges.push_back(e);
+    ASSERT_FALSE(edges.empty());
+    EXPECT_TRUE(zone_edges[v.attribute("fromTaz").as_string()].contains(edges.front()))
+        << v.attribute("id").as_string();
+    EXPECT_TRUE(zone_edges[v.attribute("toTaz").as_string()].contains(edges.back()))
+        << v.attribute("id").as_string();
+    ++checked;
+  }
+  EXPECT_EQ(checked, 230u);
+  // A relation naming a zone the zones do not have is bad input.
+  write(out / "bad_od.csv", "origin,destination,count\nwest,nowhere,5\n");
+  EXPECT_THROW(
+      (void)make_traffic_demand(hill_net(), {{}, out / "bad_od.csv", test::fixture("hill/zones.geojson")},
+                                out / "bad", o, d),
+      InvalidInput);
 }
 
 }  // namespace

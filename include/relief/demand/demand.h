@@ -1,7 +1,8 @@
 #pragma once
 // Real demand on a relief build's SUMO net (issue 16): the traffic counts of count stations
 // (traffic_counts.h) reproduced by SUMO's routeSampler.py from candidate routes that
-// duarouter made on the grades (grade_routing.h); optionally heavy trucks, routed on their own
+// duarouter made on the grades (grade_routing.h); trips between zones of an OD matrix
+// (zones.h) by od2trips, routed on the grades; optionally heavy trucks, routed on their own
 // grade-aware travel times; and a SUMO configuration with the emission device on every vehicle
 // and slope-aware models (PHEMlight for the cars, whose fuel and CO2 follow the grade; SUMO's
 // default HBEFA class for the trucks, which has no slope), so that fuel feels the hills.
@@ -17,7 +18,7 @@ namespace relief {
 
 inline constexpr const char* kDemandReportFile = "demand.json";
 
-struct CountDemandOptions {
+struct TrafficDemandOptions {
   double begin_s = 0.0;
   double end_s = 3600.0;  ///< the counts are over [begin, end)
   unsigned seed = 42;
@@ -26,8 +27,15 @@ struct CountDemandOptions {
   bool grade_routing = true;  ///< duarouter on grade travel times (else on the limits)
 };
 
-struct CountDemand {
+/// What the demand is made of: traffic counts, an OD matrix with its zones, or both.
+struct TrafficDemandInputs {
+  std::filesystem::path counts_csv;     ///< traffic_counts.h
+  std::filesystem::path od_csv, zones;  ///< zones.h: both or neither
+};
+
+struct TrafficDemand {
   std::size_t count_rows = 0, counted_edges = 0;
+  std::size_t od_rows = 0, zones = 0, od_trips = 0;
   std::vector<std::string> unmatched;  ///< rows no edge took, with why
   std::size_t vehicles = 0, trucks = 0;
   double geh_ok_share = 0.0;  ///< counted edges whose routed count has GEH < 5
@@ -35,11 +43,13 @@ struct CountDemand {
   std::filesystem::path routes, config;
 };
 
-/// Writes in `out_dir` (created): NAME.counts.xml, NAME.grade_CLASS.weights.xml,
-/// NAME.demand.rou.xml (types and routes), NAME.demand.sumocfg (the net by path) and demand.json.
-/// Throws IoError for a missing tool or file, InvalidInput for counts that fit no edge.
-CountDemand make_count_demand(const std::filesystem::path& net_path, const std::filesystem::path& counts_csv,
-                              const std::filesystem::path& out_path, const CountDemandOptions& options,
-                              Diagnostics& diagnostics);
+/// Writes in `out_dir` (created): NAME.vtypes.xml, NAME.grade_CLASS.weights.xml; for counts
+/// NAME.counts.xml and NAME.counted.rou.xml; for an OD matrix NAME.taz.xml, NAME.od.xml and
+/// NAME.od.rou.xml; for trucks NAME.trucks.rou.xml; NAME.demand.sumocfg (the net by path) and
+/// demand.json. Throws IoError for a missing tool or file, InvalidInput for counts that fit no
+/// edge, a matrix naming a zone the zones do not have or that has no edge.
+TrafficDemand make_traffic_demand(const std::filesystem::path& net_path, const TrafficDemandInputs& inputs,
+                                  const std::filesystem::path& out_path, const TrafficDemandOptions& options,
+                                  Diagnostics& diagnostics);
 
 }  // namespace relief

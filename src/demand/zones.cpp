@@ -1,0 +1,186 @@
+#include "relief/demand/zones.h"
+
+#include "demand/csv_table.h"
+
+#include <nlohmann/json.hpp>
+#include <pugixml.hpp>
+
+#include <cmath>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include "relief/core/errors.h"
+#include "relief/core/number_format.h"
+#include "relief/core/xml_writer.h"
+#include "relief/geometry/crs_transform.h"
+
+namespace relief {
+namespace {
+
+// Even-odd rule over every ring.
+bool inside(const std::vector<std::vector<Vec2>>& rings, const Vec2& p) {
+  bool in = false;
+  for (const std::vector<Vec2>& ring : rings) {
+    for (std::size_t i = 0, j = ring.size() - 1; i < ring.size(); j = i++) {
+      const Vec2 &a = ring[i], &b = ring[j];
+      if ((a.y() > p.y()) != (b.y() > p.y()) &&
+          p.x() < (b.x() - a.x()) * (p.y() - a.y()) / (b.y() - a.y()) + a.x())
+        in = !in;
+    }
+  }
+  return in;
+}
+
+// The point half the shape's length along it.
+Vec2 middle(const std::vector<Vec3>& shape) {
+  double total = 0.0;
+  for (std::size_t i = 0; i + 1 < shape.size(); ++i) total += (shape[i + 1] - shape[i]).head<2>().norm();
+  double left = 0.5 * total;
+  for (std::size_t i = 0; i + 1 < shape.size(); ++i) {
+    const double piece = (shape[i + 1] - shape[i]).head<2>().norm();
+    if (left <= piece && piece > 0.0)
+      return (shape[i] + (left / piece) * (shape[i + 1] - shape[i])).head<2>();
+    left -= piece;
+  }
+  return shape.empty() ? Vec2::Zero() : Vec2(shape.back().head<2>());
+}
+
+}  // namespace
+
+NetLocation read_net_location(const std::filesystem::path& net) {
+  pugi::xml_document doc;
+  if (!doc.load_file(net.c_str())) throw IoError("cannot read the net '" + net.string() + "'");
+  const pugi::xml_node location = doc.child("net").child("location");
+  NetLocation loc;
+  loc.projection = location.attribute("projParameter").as_string();
+  if (location.empty() || loc.projection.empty() || loc.projection == "!")
+    throw InvalidInput("'" + net.string() +
+                       "' has no projection (<location projParameter>): zones cannot be placed");
+  const std::string offset = location.attribute("netOffset").as_string();
+  const std::size_t comma = offset.find(',');
+  if (comma != std::string::npos)
+    loc.offset = Vec2(std::stod(offset.substr(0, comma)), std::stod(offset.substr(comma + 1)));
+  return loc;
+}
+
+std::vector<Zone> read_zones_geojson(const std::filesystem::path& path, const NetLocation& net) {
+  std::ifstream in(path);
+  if (!in) throw IoError("cannot read the zones '" + path.string() + "'");
+  const nlohmann::json j = nlohmann::json::parse(in, nullptr, false);
+  if (j.is_discarded() || !j.contains("features"))
+    throw InvalidInput("'" + path.string() + "' is not a GeoJSON FeatureCollection");
+  const CrsTransform to_net("EPSG:4326", net.projection);
+  std::vector<Zone> zones;
+  std::set<std::string> ids;
+  int index = 0;
+  for (const nlohmann::json& feature : j["features"]) {
+    const std::string where = "'" + path.string() + "' feature " + std::to_string(index++);
+    const nlohmann::json props = feature.value("properties", nlohmann::json::object());
+    Zone zone;
+    for (const char* key : {"id", "name"}) {
+      if (!props.contains(key) || !zone.id.empty()) continue;
+      zone.id = props[key].is_string() ? props[key].get<std::string>() : props[key].dump();
+    }
+    if (zone.id.empty()) throw InvalidInput(where + ": no zone id (property \"id\" or \"name\")");
+    if (!ids.insert(zone.id).second) throw InvalidInput(where + ": zone '" + zone.id + "' given twice");
+    const nlohmann::json geometry = feature.value("geometry", nlohmann::json::object());
+    const std::string type = geometry.value("type", "");
+    std::vector<nlohmann::json> polygons;
+    if (type == "Polygon")
+      polygons.push_back(geometry["coordinates"]);
+    else if (type == "MultiPolygon")
+      polygons = geometry["coordinates"].get<std::vector<nlohmann::json>>();
+    else
+      throw InvalidInput(where + " (zone '" + zone.id + "'): a " + (type.empty() ? "missing" : type) +
+                         " geometry, not a Polygon or MultiPolygon");
+    for (const nlohmann::json& polygon : polygons) {
+      for (const nlohmann::json& ring : polygon) {
+        std::vector<Vec2> points;
+        for (const nlohmann::json& c : ring)
+          points.emplace_back(to_net.apply(Vec2(c[0].get<double>(), c[1].get<double>())) + net.offset);
+        if (points.size() >= 3) zone.rings.push_back(std::move(points));
+      }
+    }
+    zones.push_back(std::move(zone));
+  }
+  return zones;
+}
+
+void assign_edges(std::vector<Zone>& zones, const std::vector<NetEdge>& edges) {
+  for (Zone& zone : zones) {
+    zone.edges.clear();
+    for (const NetEdge& e : edges)
+      if (inside(zone.rings, middle(e.shape))) zone.edges.push_back(e.id);
+  }
+}
+
+void write_taz(std::ostream& out, const std::vector<Zone>& zones) {
+  std::string text;
+  XmlWriter xml(text, {.indent = 4});
+  xml.declaration();
+  xml.comment("generated by relief: traffic analysis zones, the edges whose middle lies in each");
+  xml.start("additional");
+  for (const Zone& zone : zones) {
+    if (zone.edges.empty()) continue;
+    std::string edges;
+    for (const std::string& e : zone.edges) edges += (edges.empty() ? "" : " ") + e;
+    xml.start("taz");
+    xml.attribute("id", zone.id);
+    xml.attribute("edges", edges);
+    xml.end("taz");
+  }
+  xml.end("additional");
+  out << text;
+}
+
+std::vector<OdRow> read_od_csv(const std::filesystem::path& path) {
+  const detail::CsvTable table = detail::read_csv_table(path, "OD matrix");
+  const std::string expected = "origin,destination,count";
+  const std::size_t from = table.column("origin", expected), to = table.column("destination", expected),
+                    count = table.column("count", expected);
+  std::vector<OdRow> rows;
+  for (const detail::CsvRow& r : table.rows) {
+    OdRow row{r.fields[from], r.fields[to], 0.0, r.line};
+    try {
+      std::size_t used = 0;
+      row.count = std::stod(r.fields[count], &used);
+      if (used != r.fields[count].size()) throw std::invalid_argument("trailing");
+    } catch (const std::exception&) {
+      throw InvalidInput(r.where + ": the count must be a number");
+    }
+    if (row.origin.empty() || row.destination.empty() || !(std::isfinite(row.count) && row.count >= 0.0))
+      throw InvalidInput(r.where + ": zones must be named and the count a number >= 0");
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+void write_taz_relations(std::ostream& out, const std::vector<OdRow>& rows, double begin_s, double end_s) {
+  std::string text;
+  XmlWriter xml(text, {.indent = 4});
+  xml.declaration();
+  xml.comment("generated by relief: the OD matrix between the zones");
+  xml.start("data");
+  xml.start("interval");
+  xml.attribute("id", "od");
+  std::string b, e;
+  append_fixed(b, begin_s, 2);
+  append_fixed(e, end_s, 2);
+  xml.attribute("begin", b);
+  xml.attribute("end", e);
+  for (const OdRow& r : rows) {
+    xml.start("tazRelation");
+    xml.attribute("from", r.origin);
+    xml.attribute("to", r.destination);
+    std::string n;
+    append_fixed(n, r.count, 2);
+    xml.attribute("count", n);
+    xml.end("tazRelation");
+  }
+  xml.end("interval");
+  xml.end("data");
+  out << text;
+}
+
+}  // namespace relief
