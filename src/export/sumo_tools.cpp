@@ -43,14 +43,6 @@ std::string sumo_python() {
 
 namespace {
 
-std::filesystem::path tool(const std::string& name) {
-  return sumo_tool(name);
-}
-
-Environment sumo_environment() {
-  return sumo_tool_environment();
-}
-
 std::string read_text(const std::filesystem::path& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw IoError("cannot read '" + path.string() + "'");
@@ -97,7 +89,7 @@ NetconvertRun run_netconvert(const SumoPlainNetwork& net, const std::filesystem:
   write_text(edg, [&](std::ostream& o) { write_sumo_edges(o, net); });
   write_text(con, [&](std::ostream& o) { write_sumo_connections(o, net); });
   std::vector<std::string> argv = {
-      tool("netconvert").string(), "--node-files", nod.string(), "--edge-files", edg.string(),
+      sumo_tool("netconvert").string(), "--node-files", nod.string(), "--edge-files", edg.string(),
       "--connection-files", con.string(), "--output-file", out.string(),
       // Heights are relief's: no grade "fix", no offset normalisation.
       "--geometry.max-grade.fix", "false", "--offset.disable-normalization", "true",
@@ -109,7 +101,7 @@ NetconvertRun run_netconvert(const SumoPlainNetwork& net, const std::filesystem:
   // The files are relief's own, valid against SUMO's schemas (tests/pipeline/sumo_test.cpp checks
   // them with xmllint): validating them again took half of netconvert's time (1.1 of 2.4 s on NE).
   argv.insert(argv.end(), {"--xml-validation", "never"});
-  const ProcessResult r = run_process(argv, sumo_environment());
+  const ProcessResult r = run_process(argv, sumo_tool_environment());
   if (r.exit_code != 0) {
     throw IoError("netconvert failed on '" + nod.string() + "' (exit " + std::to_string(r.exit_code) +
                   "): " + tail(r.output));
@@ -136,7 +128,7 @@ DemandRun make_demand(const std::filesystem::path& work_dir, const std::string& 
 
   DemandRun run;
   const ProcessResult trips_run = run_process({sumo_python(),
-                                               tool("randomTrips.py").string(),
+                                               sumo_tool("randomTrips.py").string(),
                                                "--net-file",
                                                net.string(),
                                                "--output-trip-file",
@@ -156,16 +148,16 @@ DemandRun make_demand(const std::filesystem::path& work_dir, const std::string& 
                                                "--trip-attributes",
                                                "departLane=\"best\" departSpeed=\"max\"",
                                                "--validate"},
-                                              sumo_environment(), work_dir);
+                                              sumo_tool_environment(), work_dir);
   run.log += trips_run.output;
   if (trips_run.exit_code != 0) {
     throw IoError("randomTrips.py failed on '" + net.string() + "': " + tail(trips_run.output));
   }
   const ProcessResult route_run =
-      run_process({tool("duarouter").string(), "--net-file", net.string(), "--route-files", trips.string(),
-                   "--output-file", routes.string(), "--ignore-errors", "true", "--no-step-log", "true",
-                   "--seed", std::to_string(options.seed)},
-                  sumo_environment(), work_dir);
+      run_process({sumo_tool("duarouter").string(), "--net-file", net.string(), "--route-files",
+                   trips.string(), "--output-file", routes.string(), "--ignore-errors", "true",
+                   "--no-step-log", "true", "--seed", std::to_string(options.seed)},
+                  sumo_tool_environment(), work_dir);
   run.log += route_run.output;
   if (route_run.exit_code != 0)
     throw IoError("duarouter failed on '" + trips.string() + "': " + tail(route_run.output));
