@@ -1,5 +1,7 @@
 #include "relief/cosim/ego_controller.h"
 
+#include "relief/geometry/polyline.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -10,32 +12,6 @@ namespace {
 
 constexpr double kGravity = 9.81;
 constexpr double kAirDensity = 1.2;
-
-// Where the path passes nearest `p`: the point and the direction there (past the path's
-// end, its last segment continued; with no path, straight ahead of `p` along `heading`).
-struct PathPoint {
-  Vec2 at;
-  Vec2 tangent;
-};
-PathPoint nearest_on_path(std::span<const Vec2> path, const Vec2& p, double heading) {
-  if (path.size() < 2) return {p, Vec2(std::cos(heading), std::sin(heading))};
-  PathPoint best{path[0], Vec2(1.0, 0.0)};
-  double best_d = std::numeric_limits<double>::infinity();
-  for (std::size_t i = 0; i + 1 < path.size(); ++i) {
-    const Vec2& a = path[i];
-    const Vec2 ab = path[i + 1] - a;
-    if (ab.squaredNorm() <= 0.0) continue;
-    const bool last = i + 2 == path.size();
-    double t = (p - a).dot(ab) / ab.squaredNorm();
-    t = last ? std::max(t, 0.0) : std::clamp(t, 0.0, 1.0);
-    const double d = (a + t * ab - p).squaredNorm();
-    if (d < best_d) {
-      best_d = d;
-      best = {a + t * ab, ab.normalized()};
-    }
-  }
-  return best;
-}
 
 // The speed the path allows now: every point ahead taken no faster than its curvature lets
 // the lateral acceleration stay at `lateral`, reached by braking at `decel`. Curvature is the
@@ -82,12 +58,13 @@ EgoControls drive_along(const EgoSpec& spec, const EgoState& state, std::span<co
   // Steering: Stanley's law (Hoffmann et al. 2007) at the front bumper: the heading error plus
   // the angle that closes the cross-track error within gain^-1 (v + softening) metres.
   const Vec2 bumper = state.centre + 0.5 * spec.length_m * heading;
-  const PathPoint near = nearest_on_path(path, bumper, state.heading_rad);
+  PolylineFoot near = nearest_on_polyline(Polyline2(path.begin(), path.end()), bumper, true);
+  if (!near.found) near = {true, 0, bumper, heading};  // no path: straight on
+  const Vec2 tangent = near.direction;
   const double heading_error =
-      std::atan2(heading.x() * near.tangent.y() - heading.y() * near.tangent.x(), heading.dot(near.tangent));
-  const Vec2 off = bumper - near.at;
-  const double cross_track =
-      near.tangent.x() * off.y() - near.tangent.y() * off.x();  // > 0: left of the path
+      std::atan2(heading.x() * tangent.y() - heading.y() * tangent.x(), heading.dot(tangent));
+  const Vec2 off = bumper - near.point;
+  const double cross_track = tangent.x() * off.y() - tangent.y() * off.x();  // > 0: left of the path
   const double correction =
       std::atan(options.cross_track_gain * cross_track / (options.softening_mps + std::max(0.0, v)));
   c.steer_rad = std::clamp(heading_error - correction, -spec.max_steer_rad, spec.max_steer_rad);

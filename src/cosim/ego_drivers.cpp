@@ -8,6 +8,7 @@
 
 #include "cosim/placement_measures.h"
 #include "relief/core/diagnostic_codes.h"
+#include "relief/geometry/polyline.h"
 
 namespace relief::detail {
 namespace {
@@ -36,42 +37,21 @@ std::string place_text(const std::string& id, double t, double error, const Sumo
   return text;
 }
 
-Vec2 closest_on_segment(const Vec2& p, const Vec2& a, const Vec2& b) {
-  const Vec2 ab = b - a;
-  const double t = ab.squaredNorm() > 0.0 ? std::clamp((p - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0) : 0.0;
-  return a + t * ab;
-}
-
 double distance_to_segment(const Vec2& p, const Vec2& a, const Vec2& b) {
-  return (p - closest_on_segment(p, a, b)).norm();
-}
-
-// The polyline's segment nearest `at` (npos for a polyline without segments).
-std::size_t nearest_segment(const std::vector<Vec2>& line, const Vec2& at) {
-  double best = std::numeric_limits<double>::infinity();
-  std::size_t nearest = std::string::npos;
-  for (std::size_t i = 0; i + 1 < line.size(); ++i) {
-    const double d = distance_to_segment(at, line[i], line[i + 1]);
-    if (d < best) {
-      best = d;
-      nearest = i;
-    }
-  }
-  return nearest;
+  const PolylineFoot foot = nearest_on_polyline({a, b}, p);
+  return ((foot.found ? foot.point : a) - p).norm();
 }
 
 // The point of the polyline nearest `at` (`at` itself without a segment).
 Vec2 nearest_on(const std::vector<Vec2>& line, const Vec2& at) {
-  const std::size_t i = nearest_segment(line, at);
-  return i == std::string::npos ? at : closest_on_segment(at, line[i], line[i + 1]);
+  const PolylineFoot foot = nearest_on_polyline(line, at);
+  return foot.found ? foot.point : at;
 }
 
 // The direction of the polyline's segment nearest `at` (`fallback` without one).
 double heading_at(const std::vector<Vec2>& line, const Vec2& at, double fallback) {
-  const std::size_t i = nearest_segment(line, at);
-  if (i == std::string::npos) return fallback;
-  const Vec2 d = line[i + 1] - line[i];
-  return std::atan2(d.y(), d.x());
+  const PolylineFoot foot = nearest_on_polyline(line, at);
+  return foot.found ? std::atan2(foot.direction.y(), foot.direction.x()) : fallback;
 }
 
 }  // namespace

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 #include "relief/core/errors.h"
@@ -30,6 +31,25 @@ Vec2 point_at(const Polyline2& line, const std::vector<double>& cumulative, doub
   const double seg = cumulative[i] - cumulative[i - 1];
   const double t = seg > 0.0 ? (s - cumulative[i - 1]) / seg : 0.0;
   return line[i - 1] + t * (line[i] - line[i - 1]);
+}
+
+PolylineFoot nearest_on_polyline(const Polyline2& line, const Vec2& p, bool extend_end) {
+  PolylineFoot foot;
+  double best = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i + 1 < line.size(); ++i) {
+    const Vec2 ab = line[i + 1] - line[i];
+    const double length2 = ab.squaredNorm();
+    if (length2 <= 0.0) continue;
+    double t = (p - line[i]).dot(ab) / length2;
+    t = extend_end && i + 2 == line.size() ? std::max(t, 0.0) : std::clamp(t, 0.0, 1.0);
+    const Vec2 q = line[i] + t * ab;
+    const double d = (q - p).squaredNorm();
+    if (d < best) {
+      best = d;
+      foot = {true, i, q, ab / std::sqrt(length2)};
+    }
+  }
+  return foot;
 }
 
 std::vector<double> sample_stations(double length, double spacing_m, const std::vector<double>& extra,

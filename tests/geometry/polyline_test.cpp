@@ -65,5 +65,24 @@ TEST(DouglasPeucker, KeepsWhatLiesBeyondTheToleranceAndSplitsWhereAsked) {
   EXPECT_EQ(douglas_peucker(2, 1.0, deviation), (std::vector<std::uint8_t>{1, 1}));
 }
 
+// The foot on an L: on each leg, at the corner, past the end only when asked; a degenerate line
+// has none.
+TEST(NearestOnPolyline, FindsTheFootOnEachLegAndPastTheEndWhenAsked) {
+  const Polyline2 l = {Vec2(0, 0), Vec2(10, 0), Vec2(10, 10)};
+  PolylineFoot f = nearest_on_polyline(l, Vec2(4, 3));
+  ASSERT_TRUE(f.found);
+  EXPECT_EQ(f.segment, 0u);
+  EXPECT_TRUE(f.point.isApprox(Vec2(4, 0)));
+  EXPECT_TRUE(f.direction.isApprox(Vec2(1, 0)));
+  f = nearest_on_polyline(l, Vec2(12, 7));
+  EXPECT_EQ(f.segment, 1u);
+  EXPECT_TRUE(f.point.isApprox(Vec2(10, 7)));
+  EXPECT_TRUE(nearest_on_polyline(l, Vec2(11, 15)).point.isApprox(Vec2(10, 10)));
+  EXPECT_TRUE(nearest_on_polyline(l, Vec2(11, 15), true).point.isApprox(Vec2(10, 15)));
+  EXPECT_TRUE(nearest_on_polyline(l, Vec2(-3, 1), true).point.isApprox(Vec2(0, 0)));  // the start is not extended
+  EXPECT_FALSE(nearest_on_polyline({Vec2(1, 1), Vec2(1, 1)}, Vec2(0, 0)).found);
+  EXPECT_FALSE(nearest_on_polyline({}, Vec2(0, 0)).found);
+}
+
 }  // namespace
 }  // namespace relief

@@ -19,6 +19,18 @@ namespace relief {
 /// cumulative_length(line).
 [[nodiscard]] Vec2 point_at(const Polyline2& line, const std::vector<double>& cumulative, double s);
 
+/// Where a polyline passes nearest a point.
+struct PolylineFoot {
+  bool found = false;       ///< false for a line without a segment of non-zero length
+  std::size_t segment = 0;  ///< index of the segment's first vertex
+  Vec2 point = Vec2::Zero();
+  Vec2 direction = Vec2::UnitX();  ///< the segment's unit direction
+};
+
+/// The point of `line` nearest `p` (the first segment on a tie). With `extend_end` the last
+/// segment continues past the line's end (a path that goes on straight). Linear in the vertices.
+[[nodiscard]] PolylineFoot nearest_on_polyline(const Polyline2& line, const Vec2& p, bool extend_end = false);
+
 /// Arc lengths at which to sample a polyline of total length `length`: every `spacing_m` from 0,
 /// plus `length` itself, plus each value in `extra` (e.g. vertex positions), sorted, with values
 /// closer than `merge_tolerance_m` merged (the earlier kept, but `extra` values win over grid
