@@ -71,6 +71,7 @@ void write_cosim_json(const std::filesystem::path& path, const CosimInputs& inpu
   j["sync_error_m"] = r.egos > 0 ? spread_json(r.sync_error_m) : Json(nullptr);
   j["resync_m"] = options.resync_m;
   j["resyncs"] = r.resyncs;
+  j["ego_steps_held_by_sumo"] = r.ego_steps_held;
   j["resync_log"] = r.resync_log;
   j["ego_speed_gap_mps"] = r.egos > 0 ? spread_json(r.ego_speed_gap_mps) : Json(nullptr);
   j["z_error_m"] = spread_json(r.z_error_m);

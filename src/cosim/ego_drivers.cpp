@@ -19,6 +19,18 @@ constexpr double kPathAhead_m = 50.0;  // of lane centre handed to the driver
 // An ego this close to the end of its route is handed back to SUMO, which lets it arrive
 // (a vehicle SUMO is told where to be every step never reaches its arrival).
 constexpr double kReleaseBeforeEnd_m = 10.0;
+// SUMO maps a moved vehicle in plan onto an edge of its whole route (by distance and angle): where
+// another part of the route passes less than this much farther from the ego than its own edge
+// (over or under it, a hairpin, the way back), or the ego is farther than kOffRoute_m from its
+// own, SUMO could take it there (in Liechtenstein 1.5 km along the route, which SUMO 1.15 then
+// aborts on): SUMO drives the ego that step instead, and the resync brings the physics back.
+constexpr double kAmbiguityMargin_m = 3.0;
+constexpr double kOffRoute_m = 1.5;
+// Through junctions SUMO drives the egos too: libsumo 1.15 (built with assertions in Debian)
+// aborts on a remote-controlled vehicle whose back spans a junction's internal lanes ("Request
+// backPos ... for invalid lane", seen in Liechtenstein). Within this of a junction, or in one.
+constexpr double kJunctionMargin_m = 2.0;
+constexpr double kGapGain_per_s = 1.0;  // speed added per metre SUMO is ahead
 
 Vec2 direction(double heading) {
   return {std::cos(heading), std::sin(heading)};
@@ -84,6 +96,7 @@ void EgoDrivers::spawn(const SumoVehicleState& v, double heading) {
   const std::optional<SurfacePose> pose =
       place_on_surface(query_, centre, heading, WheelBase{spec.wheelbase_m, spec.track_m},
                        v.front.z() - std::tan(slope) * 0.5 * v.length_m, slope, options_.max_contact_gap_m);
+  if (!route_.contains(v.id)) route_[v.id] = sumo_.route_shapes(v.id);
   if (pose) {
     world_->place(v.id, spec, centre, heading, pose->z_m, v.speed_mps, pose->pitch_rad, pose->roll_rad);
   } else {
@@ -112,6 +125,7 @@ void EgoDrivers::after_sumo_step(std::vector<SumoVehicleState>& vehicles, double
       const std::vector<Vec2> lane = sumo_.lane_path_ahead(v.id, sumo_front, 1.0);
       const Vec2 counterpart = nearest_on(lane, sumo_front);
       const double error = distance_to_segment(front, sumo_front, counterpart);
+      gap_[v.id] = (sumo_front - front).dot(direction(s.heading_rad));  // > 0: SUMO is ahead
       sync_errors_.push_back(static_cast<float>(error));
       speed_gaps_.push_back(static_cast<float>(std::abs(v.speed_mps - s.speed_mps)));
       ++result.ego_steps;
@@ -168,18 +182,46 @@ void EgoDrivers::drive(double dt_s) {
     const EgoSpec& spec = world_->spec(id);
     const EgoState s = world_->state(id);
     const std::vector<Vec2> path = sumo_.lane_path_ahead(id, s.centre, kPathAhead_m);
-    world_->set_controls(id, drive_along(spec, s, path, sumo_.desired_speed(id), options_.driver));
+    // Toward SUMO's desired speed, closing a gap to where SUMO has the vehicle (it has one after a
+    // step SUMO drove).
+    const double target = std::max(0.0, sumo_.desired_speed(id) + kGapGain_per_s * gap_[id]);
+    world_->set_controls(id, drive_along(spec, s, path, target, options_.driver));
   }
   world_->step(dt_s);
   for (const std::string& id : driven_) {
     if (!world_->has(id)) continue;
     const EgoState s = world_->state(id);
     const Vec2 front = s.centre + 0.5 * world_->spec(id).length_m * direction(s.heading_rad);
+    if (route_ambiguous_at(id, front) || sumo_.near_junction(id, kJunctionMargin_m + s.speed_mps * dt_s)) {
+      ++held_steps_;
+      continue;
+    }
     sumo_.move_to(id, lane_[id], front, sumo_angle(s.heading_rad));
   }
 }
 
+bool EgoDrivers::route_ambiguous_at(const std::string& id, const Vec2& front) const {
+  const auto it = route_.find(id);
+  if (it == route_.end()) return false;
+  const auto& route = it->second;
+  const std::string current = sumo_.route_edge(id);
+  std::size_t here = route.size();
+  for (std::size_t i = 0; i < route.size() && here == route.size(); ++i)
+    if (route[i].first == current) here = i;
+  if (here == route.size()) return true;  // off its route: SUMO drives
+  double own = std::numeric_limits<double>::infinity(), other = own;
+  for (std::size_t i = 0; i < route.size(); ++i) {
+    const PolylineFoot foot = nearest_on_polyline(route[i].second, front);
+    if (!foot.found) continue;
+    const double d = (foot.point - front).norm();
+    const bool near_here = i + 1 >= here && i <= here + 1;  // where it is and its neighbours
+    (near_here ? own : other) = std::min(near_here ? own : other, d);
+  }
+  return own > kOffRoute_m || other < own + kAmbiguityMargin_m;
+}
+
 void EgoDrivers::finish(CosimResult& result, Diagnostics& diagnostics) {
+  result.ego_steps_held = held_steps_;
   result.sync_error_m = spread_of(sync_errors_);
   result.ego_speed_gap_mps = spread_of(speed_gaps_);
   for (const std::string& id : options_.egos) {

@@ -42,6 +42,10 @@ class EgoDrivers {
 
  private:
   void pick(const SumoVehicleState& v);
+  // Whether SUMO could map `front` onto the wrong part of the ego's route: another part (not its
+  // current edge or the next or previous one) within kAmbiguityMargin_m of as near in plan as its
+  // own (a route over or under itself, a hairpin, the way back), or its own far (kOffRoute_m).
+  [[nodiscard]] bool route_ambiguous_at(const std::string& id, const Vec2& front) const;
   // Sets the ego into the physics at SUMO's front bumper, facing `heading`, on the surface.
   void spawn(const SumoVehicleState& v, double heading);
 
@@ -53,7 +57,11 @@ class EgoDrivers {
   std::unordered_set<std::string> named_, seen_, driven_;
   std::unordered_set<std::string> released_;                    // handed back to SUMO for their last metres
   std::unordered_map<std::string, std::string> lane_, vclass_;  // an ego's SUMO lane; a type's vClass
+  // Each ego's route, edge by edge with its first lane's centre line.
+  std::unordered_map<std::string, std::vector<std::pair<std::string, std::vector<Vec2>>>> route_;
   std::size_t picked_ = 0;
+  std::unordered_map<std::string, double> gap_;  // how far SUMO's front is ahead of the physics'
+  std::size_t held_steps_ = 0;                   // steps SUMO drove an ego (route_ambiguous_at)
   std::vector<float> sync_errors_, speed_gaps_;
 };
 

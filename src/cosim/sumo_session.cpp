@@ -204,6 +204,32 @@ std::vector<Vec2> SumoSession::lane_path_ahead(const std::string& id, const Vec2
   return path;
 }
 
+std::vector<std::pair<std::string, std::vector<Vec2>>> SumoSession::route_shapes(
+    const std::string& id) const {
+  std::vector<std::pair<std::string, std::vector<Vec2>>> out;
+  for (const std::string& edge : libsumo::Vehicle::getRoute(id)) {
+    std::vector<Vec2> line;
+    for (const libsumo::TraCIPosition& p : libsumo::Lane::getShape(edge + "_0").value)
+      line.emplace_back(p.x, p.y);
+    out.emplace_back(edge, std::move(line));
+  }
+  return out;
+}
+
+std::string SumoSession::route_edge(const std::string& id) const {
+  const std::vector<std::string> route = libsumo::Vehicle::getRoute(id);
+  const int index = libsumo::Vehicle::getRouteIndex(id);
+  return index >= 0 && index < static_cast<int>(route.size()) ? route[static_cast<std::size_t>(index)]
+                                                              : std::string();
+}
+
+bool SumoSession::near_junction(const std::string& id, double margin_m) const {
+  const std::string lane = libsumo::Vehicle::getLaneID(id);
+  if (lane.empty() || is_internal(lane)) return true;
+  const double pos = libsumo::Vehicle::getLanePosition(id);
+  return pos < libsumo::Vehicle::getLength(id) + margin_m || libsumo::Lane::getLength(lane) - pos < margin_m;
+}
+
 double SumoSession::distance_to_route_end(const std::string& id) const {
   const std::string lane = libsumo::Vehicle::getLaneID(id);
   const std::vector<std::string> route = libsumo::Vehicle::getRoute(id);

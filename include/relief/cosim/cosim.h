@@ -98,6 +98,7 @@ struct CosimResult {
   std::size_t ego_steps = 0;  ///< egos x steps
   Spread sync_error_m;        ///< plan distance of SUMO's front bumper from the physics' after a step
   std::size_t resyncs = 0;
+  std::size_t ego_steps_held = 0;       ///< steps SUMO drove an ego (its place on its route was ambiguous)
   std::vector<std::string> resync_log;  ///< the first 100: vehicle, time, error, place
   Spread ego_speed_gap_mps;             ///< |SUMO's speed - the physics' speed| of an ego after a step
   double physics_s = 0.0;               ///< of relief_s: the egos' physics and driving
