@@ -24,13 +24,12 @@ constexpr double kReleaseBeforeEnd_m = 10.0;
 // (over or under it, a hairpin, the way back), or the ego is farther than kOffRoute_m from its
 // own, SUMO could take it there (in Liechtenstein 1.5 km along the route, which SUMO 1.15 then
 // aborts on): SUMO drives the ego that step instead, and the resync brings the physics back.
-constexpr double kAmbiguityMargin_m = 3.0;
+constexpr double kAmbiguityMargin_m = 1.0;
 constexpr double kOffRoute_m = 1.5;
-// Through junctions SUMO drives the egos too: libsumo 1.15 (built with assertions in Debian)
-// aborts on a remote-controlled vehicle whose back spans a junction's internal lanes ("Request
-// backPos ... for invalid lane", seen in Liechtenstein). Within this of a junction, or in one.
-constexpr double kJunctionMargin_m = 2.0;
-constexpr double kGapGain_per_s = 1.0;  // speed added per metre SUMO is ahead
+// SUMO also drives an ego while any of it is in a junction (SumoSession::spans_junction):
+// libsumo 1.15 (built with assertions in Debian) aborted on a remote-controlled vehicle whose
+// back spanned a junction's internal lanes ("Request backPos ... for invalid lane", Liechtenstein).
+constexpr double kGapGain_per_s = 3.0;  // speed added per metre SUMO is ahead
 
 Vec2 direction(double heading) {
   return {std::cos(heading), std::sin(heading)};
@@ -129,10 +128,15 @@ void EgoDrivers::after_sumo_step(std::vector<SumoVehicleState>& vehicles, double
       sync_errors_.push_back(static_cast<float>(error));
       speed_gaps_.push_back(static_cast<float>(std::abs(v.speed_mps - s.speed_mps)));
       ++result.ego_steps;
-      if (error > options_.resync_m) {  // the physics yields: SUMO's place, lane direction and speed
+      // A body with no wheel on anything and off the surface under it fell through a gap in the
+      // physics' mesh: a desync too.
+      const std::optional<SurfaceHit> under = query_.nearest(s.centre.x(), s.centre.y(), v.front.z());
+      const bool fell = s.wheels_on_ground == 0 && (!under || std::abs(s.ground_z_m - under->z_m) > 1.0);
+      if (error > options_.resync_m || fell) {  // the physics yields: SUMO's place, lane direction and speed
         ++result.resyncs;
         if (result.resync_log.size() < kResyncLogSize)
-          result.resync_log.push_back(place_text(v.id, t, error, v));
+          result.resync_log.push_back(place_text(v.id, t, error, v) +
+                                      (fell ? ", fell through the mesh" : ""));
         const std::vector<Vec2> own = sumo_.lane_path_ahead(v.id, sumo_front, 1.0, v.lane);
         spawn(v, heading_at(own, sumo_front, v.heading()));  // at SUMO's speed too
       }
@@ -192,7 +196,7 @@ void EgoDrivers::drive(double dt_s) {
     if (!world_->has(id)) continue;
     const EgoState s = world_->state(id);
     const Vec2 front = s.centre + 0.5 * world_->spec(id).length_m * direction(s.heading_rad);
-    if (route_ambiguous_at(id, front) || sumo_.near_junction(id, kJunctionMargin_m + s.speed_mps * dt_s)) {
+    if (route_ambiguous_at(id, front) || sumo_.spans_junction(id)) {
       ++held_steps_;
       continue;
     }
@@ -211,11 +215,13 @@ bool EgoDrivers::route_ambiguous_at(const std::string& id, const Vec2& front) co
   if (here == route.size()) return true;  // off its route: SUMO drives
   double own = std::numeric_limits<double>::infinity(), other = own;
   for (std::size_t i = 0; i < route.size(); ++i) {
-    const PolylineFoot foot = nearest_on_polyline(route[i].second, front);
-    if (!foot.found) continue;
-    const double d = (foot.point - front).norm();
     const bool near_here = i + 1 >= here && i <= here + 1;  // where it is and its neighbours
-    (near_here ? own : other) = std::min(near_here ? own : other, d);
+    for (const std::vector<Vec2>& lane : route[i].second) {
+      const PolylineFoot foot = nearest_on_polyline(lane, front);
+      if (!foot.found) continue;
+      const double d = (foot.point - front).norm();
+      (near_here ? own : other) = std::min(near_here ? own : other, d);
+    }
   }
   return own > kOffRoute_m || other < own + kAmbiguityMargin_m;
 }

@@ -57,8 +57,8 @@ class EgoDrivers {
   std::unordered_set<std::string> named_, seen_, driven_;
   std::unordered_set<std::string> released_;                    // handed back to SUMO for their last metres
   std::unordered_map<std::string, std::string> lane_, vclass_;  // an ego's SUMO lane; a type's vClass
-  // Each ego's route, edge by edge with its first lane's centre line.
-  std::unordered_map<std::string, std::vector<std::pair<std::string, std::vector<Vec2>>>> route_;
+  // Each ego's route, edge by edge with its lanes' centre lines.
+  std::unordered_map<std::string, std::vector<std::pair<std::string, std::vector<std::vector<Vec2>>>>> route_;
   std::size_t picked_ = 0;
   std::unordered_map<std::string, double> gap_;  // how far SUMO's front is ahead of the physics'
   std::size_t held_steps_ = 0;                   // steps SUMO drove an ego (route_ambiguous_at)

@@ -204,14 +204,17 @@ std::vector<Vec2> SumoSession::lane_path_ahead(const std::string& id, const Vec2
   return path;
 }
 
-std::vector<std::pair<std::string, std::vector<Vec2>>> SumoSession::route_shapes(
+std::vector<std::pair<std::string, std::vector<std::vector<Vec2>>>> SumoSession::route_shapes(
     const std::string& id) const {
-  std::vector<std::pair<std::string, std::vector<Vec2>>> out;
+  std::vector<std::pair<std::string, std::vector<std::vector<Vec2>>>> out;
   for (const std::string& edge : libsumo::Vehicle::getRoute(id)) {
-    std::vector<Vec2> line;
-    for (const libsumo::TraCIPosition& p : libsumo::Lane::getShape(edge + "_0").value)
-      line.emplace_back(p.x, p.y);
-    out.emplace_back(edge, std::move(line));
+    std::vector<std::vector<Vec2>> lanes;
+    for (int i = 0; i < libsumo::Edge::getLaneNumber(edge); ++i) {
+      std::vector<Vec2>& line = lanes.emplace_back();
+      for (const libsumo::TraCIPosition& p : libsumo::Lane::getShape(edge + "_" + std::to_string(i)).value)
+        line.emplace_back(p.x, p.y);
+    }
+    out.emplace_back(edge, std::move(lanes));
   }
   return out;
 }
@@ -223,11 +226,11 @@ std::string SumoSession::route_edge(const std::string& id) const {
                                                               : std::string();
 }
 
-bool SumoSession::near_junction(const std::string& id, double margin_m) const {
+bool SumoSession::spans_junction(const std::string& id) const {
   const std::string lane = libsumo::Vehicle::getLaneID(id);
   if (lane.empty() || is_internal(lane)) return true;
-  const double pos = libsumo::Vehicle::getLanePosition(id);
-  return pos < libsumo::Vehicle::getLength(id) + margin_m || libsumo::Lane::getLength(lane) - pos < margin_m;
+  const double length = libsumo::Vehicle::getLength(id);
+  return libsumo::Vehicle::getLanePosition(id) < length || libsumo::Lane::getLength(lane) < 2.0 * length;
 }
 
 double SumoSession::distance_to_route_end(const std::string& id) const {

@@ -61,14 +61,15 @@ class SumoSession {
   /// `length_m` where the route goes that far.
   [[nodiscard]] std::vector<Vec2> lane_path_ahead(const std::string& id, const Vec2& from, double length_m,
                                                   const std::string& lane = {}) const;
-  /// The edges of the vehicle's route, each with the centre line of its first lane.
-  [[nodiscard]] std::vector<std::pair<std::string, std::vector<Vec2>>> route_shapes(
+  /// The edges of the vehicle's route, each with the centre lines of its lanes.
+  [[nodiscard]] std::vector<std::pair<std::string, std::vector<std::vector<Vec2>>>> route_shapes(
       const std::string& id) const;
   /// The vehicle's current edge (for an internal lane, the route edge it came from).
   [[nodiscard]] std::string route_edge(const std::string& id) const;
-  /// Whether any of the vehicle spans or nears a junction: it is on an internal lane, its back is
-  /// within `margin_m` past the start of its lane, or its front within `margin_m` of its end.
-  [[nodiscard]] bool near_junction(const std::string& id, double margin_m) const;
+  /// Whether the vehicle is in a junction or its back still is (on an internal lane, or its
+  /// front less than its length into its lane), or its lane is shorter than twice its length
+  /// (junctions close together).
+  [[nodiscard]] bool spans_junction(const std::string& id) const;
   /// How far the vehicle's front lies from the end of its route's last edge when it is on that
   /// edge (infinity elsewhere).
   [[nodiscard]] double distance_to_route_end(const std::string& id) const;
