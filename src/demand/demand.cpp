@@ -4,7 +4,6 @@
 #include <pugixml.hpp>
 
 #include <cmath>
-#include <fstream>
 #include <map>
 #include <sstream>
 
@@ -38,13 +37,6 @@ void run_tool(const std::vector<std::string>& argv, const std::filesystem::path&
               const std::string& what) {
   const ProcessResult r = run_process(argv, sumo_tool_environment(), dir);
   if (r.exit_code != 0) throw IoError(what + " failed: " + tail(r.output));
-}
-
-template <typename F>
-void write_file(const std::filesystem::path& path, F&& write) {
-  std::ofstream out(path, std::ios::binary);
-  write(out);
-  if (!out) throw IoError("cannot write '" + path.string() + "'");
 }
 
 // Random trips between the net's fringes over [begin, end), routed by duarouter on `weights`
@@ -139,7 +131,7 @@ void write_types(const std::filesystem::path& path) {
   xml.attribute("vClass", "truck");
   xml.end("vType");
   xml.end("routes");
-  write_file(path, [&](std::ostream& out) { out << text; });
+  write_file_atomically(path, text);
 }
 
 void write_config(const std::filesystem::path& path, const std::filesystem::path& net,
@@ -179,7 +171,7 @@ void write_config(const std::filesystem::path& path, const std::filesystem::path
     value("phemlight-path", (*home / "data" / "emissions" / "PHEMlight").string() + "/");
   xml.end("emissions");
   xml.end("configuration");
-  write_file(path, [&](std::ostream& out) { out << text; });
+  write_file_atomically(path, text);
 }
 
 // The counts' part: candidates routed on the cars' weights, sampled to the counts; the share of
@@ -203,8 +195,8 @@ std::filesystem::path counted_routes(const std::filesystem::path& net, const std
   for (const std::string& message : counts.unmatched)
     diagnostics.report(Severity::warning, codes::kDemandCountUnmatched, counts_csv.string() + " " + message);
   const std::filesystem::path counts_xml = out_dir / (stem + ".counts.xml");
-  write_file(counts_xml,
-             [&](std::ostream& out) { write_edge_counts(out, counts, options.begin_s, options.end_s); });
+  write_file_atomically(
+      counts_xml, [&](std::ostream& out) { write_edge_counts(out, counts, options.begin_s, options.end_s); });
   // Many more candidate trips than counted edges, so that routeSampler finds routes through
   // every count.
   const int candidates = std::max(500, 20 * static_cast<int>(counts.edges.size()));
@@ -260,8 +252,9 @@ std::filesystem::path od_routes(const std::filesystem::path& net, const std::vec
   const std::filesystem::path taz = out_dir / (stem + ".taz.xml"), od = out_dir / (stem + ".od.xml");
   const std::filesystem::path trips = out_dir / (stem + ".od.trips.xml");
   std::filesystem::path routes = out_dir / (stem + ".od.rou.xml");
-  write_file(taz, [&](std::ostream& out) { write_taz(out, zones); });
-  write_file(od, [&](std::ostream& out) { write_taz_relations(out, rows, options.begin_s, options.end_s); });
+  write_file_atomically(taz, [&](std::ostream& out) { write_taz(out, zones); });
+  write_file_atomically(
+      od, [&](std::ostream& out) { write_taz_relations(out, rows, options.begin_s, options.end_s); });
   run_tool(
       {sumo_tool("od2trips").string(), "--taz-files", taz.string(), "--tazrelation-files", od.string(),
        "--output-file", trips.string(), "--vtype", "car", "--prefix", "od_", "--seed",
@@ -321,7 +314,8 @@ TrafficDemand make_traffic_demand(const std::filesystem::path& net_path, const T
   for (const std::string vclass : {"passenger", "truck"}) {
     if (!options.grade_routing) break;
     weights[vclass] = out_dir / (stem + ".grade_" + vclass + ".weights.xml");
-    write_file(weights[vclass], [&](std::ostream& out) { write_grade_weights(out, edges, vclass); });
+    write_file_atomically(weights[vclass],
+                          [&](std::ostream& out) { write_grade_weights(out, edges, vclass); });
   }
   const std::filesystem::path car_weights =
       options.grade_routing ? weights["passenger"] : std::filesystem::path();
