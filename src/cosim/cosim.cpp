@@ -51,6 +51,7 @@ void write_cosim_json(const std::filesystem::path& path, const CosimInputs& inpu
                  {"xodr", inputs.xodr.string()},
                  {"scene", inputs.scene.string()}};  // empty: the .xodr's roads lofted
   j["step_s"] = options.step_s;
+  j["sumo"] = options.sumo.describe();
   j["steps"] = r.steps;
   j["simulated_s"] = r.simulated_s;
   j["stopped_early"] = r.stopped;
@@ -189,7 +190,7 @@ CosimResult run_cosim(const CosimInputs& inputs, const CosimOptions& options,
   detail::TrajectoryWriter trajectories(out_dir / (name + ".fcd.xml"),
                                         out_dir / (name + ".trajectories.csv"));
 
-  SumoSession sumo(inputs.sumocfg, options.step_s, options.sumo_args);
+  SumoSession sumo(inputs.sumocfg, options.step_s, options.sumo_args, options.sumo);
   detail::EgoDrivers egos(scene, query, sumo, options);
   const double configured_end = sumo.end_time();
   const std::optional<double> end = options.end_s          ? options.end_s

@@ -208,6 +208,34 @@ print("cosim hill: %d vehicles, z error max %.4f m, SUMO z error max %.4f m" %
       (r["vehicles"], r["z_error_m"]["max"], r["sumo_z_error_m"]["max"]))
 PY
 check "cosim replay" test -s "$cs/cosim.glb"
+# The same run over TraCI, with an ego: SUMO as its own process (--traci), then a SUMO the user
+# started with --remote-port (--sumo-port): the same traffic, placements and sync as in process.
+check "cosim in process with an ego" run 0 "$cs-ego" cosim --sumocfg "$out/hill.sumocfg" --out "$cs-ego" --end 20 --egos 1
+check "cosim over traci" run 0 "$cs-traci" cosim --sumocfg "$out/hill.sumocfg" --out "$cs-traci" --end 20 --egos 1 --traci
+port=$((20000 + $$ % 20000))
+(cd "$out" && sumo -c hill.sumocfg --step-length 0.05 --remote-port "$port" --no-step-log true \
+  >"$RELIEF_TMP/sumo_remote.log" 2>&1 &)
+check "cosim attached" run 0 "$cs-attach" cosim --sumocfg "$out/hill.sumocfg" --out "$cs-attach" --end 20 --egos 1 \
+  --sumo-port "$port"
+check "cosim over traci agrees" python3 - "$cs-ego" "$cs-traci" "$cs-attach" <<'PY'
+import json, sys
+a, b, c = (json.load(open(d + "/cosim.json")) for d in sys.argv[1:])
+assert a["sumo"] == "in process (libsumo)" and b["sumo"] == "TraCI to sumo (launched)", (a["sumo"], b["sumo"])
+assert c["sumo"].startswith("TraCI to localhost:"), c["sumo"]
+for k in ("steps", "vehicles", "vehicle_steps", "egos", "ego_steps", "resyncs"):
+    assert a[k] == b[k] == c[k], (k, a[k], b[k], c[k])
+for k in ("z_error_m", "sync_error_m"):
+    for q in ("p50", "p99", "max"):
+        assert abs(a[k][q] - b[k][q]) <= 1e-9 and abs(a[k][q] - c[k][q]) <= 1e-9, (k, q, a[k], b[k], c[k])
+print("cosim hill over TraCI: %d vehicle steps, %d ego steps, sync p99 %.3f m in all three; wall %.2f / %.2f / %.2f s"
+      % (a["vehicle_steps"], a["ego_steps"], a["sync_error_m"]["p99"], a["wall_s"], b["wall_s"], c["wall_s"]))
+PY
+check "cosim attach to nothing" run 3 "$RELIEF_TMP/cosim_nothing" cosim --sumocfg "$out/hill.sumocfg" \
+  --out "$RELIEF_TMP/cosim_nothing" --sumo-port 1 --end 1
+check "cosim attach to nothing says so" stderr_has "no SUMO answers at localhost:1"
+check "cosim attach to nothing no outputs" no_outputs "$RELIEF_TMP/cosim_nothing"
+check "cosim traci and port" run 2 "$RELIEF_TMP/cosim_both" cosim --sumocfg "$out/hill.sumocfg" \
+  --out "$RELIEF_TMP/cosim_both" --traci --sumo-port 9999
 check "cosim without config" run 2 "$RELIEF_TMP/cosim_none" cosim --out "$RELIEF_TMP/cosim_none"
 check "cosim missing config" run 3 "$RELIEF_TMP/cosim_missing" cosim --sumocfg "$RELIEF_TMP/nowhere.sumocfg" \
   --out "$RELIEF_TMP/cosim_missing"

@@ -3,7 +3,10 @@
 #include <gtest/gtest.h>
 #include <pugixml.hpp>
 
+#include <unistd.h>
+
 #include <cmath>
+#include <cstdlib>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <numbers>
@@ -375,6 +378,59 @@ TEST(SumoSession, AVehicleMovedJustBeforeTheEndDoesNotHauntTheNextSession) {
   for (int i = 0; i < 40; ++i) second.step();
   EXPECT_NEAR(second.time(), 2.0, 1e-9);
   EXPECT_FALSE(second.vehicles().empty());
+}
+
+// A SUMO the user started with --remote-port: the session attaches to it and runs the same
+// traffic as in this process; one whose step differs from the session's is refused, naming both,
+// and a port where nothing answers is bad input.
+TEST(SumoSession, AttachesToASumoRunningWithARemotePort) {
+  const fs::path config = write_config(hill_build() / "hill.net.xml", "hill_remote", 2.0);
+  std::vector<SumoVehicleState> in_process;
+  {
+    SumoSession sumo(config, 0.05);
+    for (int i = 0; i < 100; ++i) sumo.step();
+    in_process = sumo.vehicles();
+  }
+  ASSERT_GE(in_process.size(), 3u);
+  const int port = 20000 + static_cast<int>(::getpid() % 20000);
+  const auto start_sumo = [&](double step) {
+    const std::string command = "cd '" + config.parent_path().string() + "' && sumo -c '" + config.string() +
+                                "' --step-length " + std::to_string(step) + " --remote-port " +
+                                std::to_string(port) + " --no-step-log true >/dev/null 2>&1 &";
+    ASSERT_EQ(std::system(command.c_str()), 0);
+  };
+  SumoEndpoint remote;
+  remote.mode = SumoEndpoint::Mode::attach;
+  remote.port = port;
+  start_sumo(0.05);
+  {
+    SumoSession sumo(config, 0.05, {}, remote);
+    for (int i = 0; i < 100; ++i) sumo.step();
+    EXPECT_NEAR(sumo.time(), 5.0, 1e-9);
+    const std::vector<SumoVehicleState> attached = sumo.vehicles();
+    ASSERT_EQ(attached.size(), in_process.size());
+    for (std::size_t i = 0; i < attached.size(); ++i) {
+      EXPECT_EQ(attached[i].id, in_process[i].id);
+      EXPECT_EQ(attached[i].lane, in_process[i].lane);
+      EXPECT_NEAR((attached[i].front - in_process[i].front).norm(), 0.0, 1e-9) << attached[i].id;
+      EXPECT_NEAR(attached[i].speed_mps, in_process[i].speed_mps, 1e-9);
+    }
+  }
+  start_sumo(0.1);
+  try {
+    SumoSession sumo(config, 0.05, {}, remote);
+    ADD_FAILURE() << "a SUMO stepping 0.1 s was taken for 0.05 s";
+  } catch (const InvalidInput& e) {
+    EXPECT_NE(std::string(e.what()).find("--step-length 0.05"), std::string::npos) << e.what();
+  }
+  SumoEndpoint nowhere = remote;
+  nowhere.port = 1;
+  nowhere.connect_attempts = 1;
+  EXPECT_THROW(SumoSession(config, 0.05, {}, nowhere), InvalidInput);
+  // And a session can start after each of those.
+  SumoSession after(config, 0.05);
+  after.step();
+  EXPECT_NEAR(after.time(), 0.05, 1e-9);
 }
 
 }  // namespace

@@ -24,6 +24,7 @@ struct CosimArgs {
   std::string out;
   CosimOptions options;
   double end_s = 0.0;
+  bool traci = false, gui = false;
 };
 
 void print_spread(const char* label, const Spread& s, const char* unit, int digits) {
@@ -95,9 +96,31 @@ Runner add_cosim_command(CLI::App& app) {
                   "Chord tolerance in metres of the road surface the vehicles are set on")
       ->check(finite_positive())
       ->capture_default_str();
+  // SUMO in this process by default; over TraCI as CARLA's bridge offers it (run_synchronization.py's
+  // --sumo-gui, --sumo-host and --sumo-port).
+  auto* traci =
+      cmd->add_flag("--traci", args->traci,
+                    "Run SUMO as its own process (sumo) and talk TraCI to it instead of in this process");
+  auto* gui =
+      cmd->add_flag("--sumo-gui", args->gui, "Run sumo-gui over TraCI, to watch the traffic as it runs");
+  auto* port = cmd->add_option("--sumo-port", args->options.sumo.port,
+                               "Attach over TraCI to a SUMO already running on this configuration with "
+                               "--remote-port PORT (and the same --step-length)")
+                   ->check(CLI::Range(1, 65535));
+  cmd->add_option("--sumo-host", args->options.sumo.host, "Host of the SUMO of --sumo-port")
+      ->needs(port)
+      ->capture_default_str();
+  port->excludes(traci)->excludes(gui);
+  traci->excludes(gui);
   return [args, cmd] {
     return run_reporting_errors([&] {
       if (cmd->count("--end") > 0) args->options.end_s = args->end_s;
+      SumoEndpoint& sumo = args->options.sumo;
+      if (args->traci || args->gui) {
+        sumo.mode = SumoEndpoint::Mode::launch;
+        sumo.program = args->gui ? "sumo-gui" : "sumo";
+      }
+      if (cmd->count("--sumo-port") > 0) sumo.mode = SumoEndpoint::Mode::attach;
       args->options.progress = [](double t, std::size_t vehicles) {
         std::cerr << "relief: cosim t = " << fixed(t, 1) << " s, " << vehicles << " vehicles\n";
       };

@@ -20,6 +20,7 @@
 
 #include "relief/core/diagnostics.h"
 #include "relief/cosim/ego_controller.h"
+#include "relief/cosim/sumo_session.h"
 
 namespace relief {
 
@@ -51,6 +52,9 @@ struct CosimOptions {
   double trajectory_period_s = 0.0;    ///< trajectory rows this often (0: every step)
   double replay_period_s = 0.5;        ///< replay keys this often (0: no cosim.glb)
   std::vector<std::string> sumo_args;  ///< extra SUMO command-line arguments
+  /// Which SUMO: in this process (default), launched over TraCI (sumo-gui to watch), or one
+  /// already running (sumo_session.h).
+  SumoEndpoint sumo;
   /// Ego vehicles, driven by the physics (ego_world.h) instead of SUMO: these ids, and the
   /// first `ego_count` vehicles to depart (of type `ego_type` when it is set).
   std::vector<std::string> egos;

@@ -1,9 +1,12 @@
 #pragma once
-// SUMO in this process (libsumo, Debian's libsumocpp), behind a small adapter: no libsumo type
-// appears in relief's headers, and its errors become relief's exceptions at the seam. One
-// session at a time per process (libsumo is a singleton); a second one throws.
+// SUMO behind a small adapter: in this process by default (libsumo, Debian's libsumocpp), or as
+// its own process over TraCI (libtraci, Debian's libtracicpp): a `sumo` or `sumo-gui` the
+// session launches, or one already running with --remote-port. No SUMO type appears in relief's
+// headers, and SUMO's errors become relief's exceptions at the seam. One session at a time per
+// process (each client library drives one simulation); a second one throws.
 
 #include <filesystem>
+#include <memory>
 #include <string>
 #include <utility>
 #include <vector>
@@ -27,13 +30,40 @@ struct SumoVehicleState {
   [[nodiscard]] Vec2 centre() const;
 };
 
+namespace detail {
+class SumoBackend;
+}
+
+/// Which SUMO a session talks to.
+struct SumoEndpoint {
+  enum class Mode {
+    in_process,  ///< libsumo: SUMO runs inside relief (the fastest)
+    launch,      ///< libtraci: relief starts `program` as its own process and talks TraCI to it
+    attach,      ///< libtraci: a SUMO already running with --remote-port `port` on `host`
+  };
+  Mode mode = Mode::in_process;
+  /// launch: the SUMO program; "sumo-gui" to watch (it is started with --start and
+  /// --quit-on-end, so it runs without a click and closes at the end).
+  std::string program = "sumo";
+  std::string host = "localhost";  ///< attach
+  int port = 0;                    ///< attach
+  /// attach: how many times to try to connect, a second apart.
+  int connect_attempts = 10;
+
+  /// "in process (libsumo)", "TraCI to sumo-gui (launched)", "TraCI to localhost:8813".
+  [[nodiscard]] std::string describe() const;
+};
+
 class SumoSession {
  public:
   /// Starts SUMO on `sumocfg` with a step of `step_s` seconds (SUMO's --step-length) and the
-  /// extra command-line arguments given. Throws InvalidInput when SUMO rejects the
-  /// configuration or its files (SUMO's message), Error when a session is already running.
+  /// extra command-line arguments given, or, for SumoEndpoint::Mode::attach, connects to a
+  /// SUMO already running (started by its user on that configuration with --remote-port and
+  /// the same --step-length; `extra_args` are not used). Throws InvalidInput when SUMO rejects
+  /// the configuration or its files (SUMO's message), when no SUMO answers at the port or when
+  /// its step differs from `step_s`; Error when a session is already running.
   SumoSession(const std::filesystem::path& sumocfg, double step_s,
-              const std::vector<std::string>& extra_args = {});
+              const std::vector<std::string>& extra_args = {}, const SumoEndpoint& endpoint = {});
   ~SumoSession();
   SumoSession(const SumoSession&) = delete;
   SumoSession& operator=(const SumoSession&) = delete;
@@ -79,7 +109,7 @@ class SumoSession {
   void move_to(const std::string& id, const std::string& lane, const Vec2& front, double angle_deg);
 
  private:
-  bool moves_pending_ = false;  // move_to since the last step (see the destructor)
+  std::unique_ptr<detail::SumoBackend> sumo_;
 };
 
 }  // namespace relief
