@@ -25,6 +25,7 @@ constexpr double kStepFraction = 0.99;   // of the step to the boundary of the p
 constexpr double kNeighbourhood = 1e-3;  // gamma of the neighbourhood s_i y_i >= gamma tau_i mu
 constexpr double kStartMu = 1.0;
 constexpr double kStartForceCap = 1e3;     // complementarity at the start (force x row unit)
+constexpr double kStartPriceShare = 0.25;  // w's least share of the price at the start
 constexpr double kStartSlackShare = 0.05;  // smallest starting slack, share of the row's scale
 constexpr double kMaxCentring = 1.0;       // largest sigma
 constexpr std::size_t kStallWindow = 20;
@@ -410,24 +411,38 @@ class InteriorPoint {
         // A row known to end violated (the quadratic-penalty solution pushed it with at least
         // half its price) starts as it ends: its violation in v, the violated bound's slack ~0
         // and its multiplier the rest of the price, every product kStartMu.
+        // w and the far bound's multiplier at most a quarter of the price each, so that the
+        // near bound's keeps at least half (a cheap row's kStartMu / v alone can exceed its
+        // price: the start had a negative multiplier and the interior point stepped backwards).
         const double tiny = kStartMu / c;
         rows_.v[k] = std::max(below, above) + tiny;
         rows_.sl[k] = t - rows_.l[k] + rows_.v[k];
         rows_.su[k] = rows_.u[k] - t + rows_.v[k];
-        rows_.w[k] = kStartMu / rows_.v[k];
+        rows_.w[k] = std::min(kStartMu / rows_.v[k], kStartPriceShare * c);
         if (below > 0.0) {
-          rows_.yu[k] = kStartMu / rows_.su[k];
+          rows_.yu[k] = std::min(kStartMu / rows_.su[k], kStartPriceShare * c);
           rows_.yl[k] = c - rows_.w[k] - rows_.yu[k];
         } else {
-          rows_.yl[k] = kStartMu / rows_.sl[k];
+          rows_.yl[k] = std::min(kStartMu / rows_.sl[k], kStartPriceShare * c);
           rows_.yu[k] = c - rows_.w[k] - rows_.yl[k];
         }
       } else {
         rows_.sl[k] = std::max(t - rows_.l[k], floor);
         rows_.su[k] = std::max(rows_.u[k] - t, floor);
-        rows_.yl[k] = std::max(std::min(kStartMu / rows_.sl[k], kStartForceCap), f);
-        rows_.yu[k] = std::max(std::min(kStartMu / rows_.su[k], kStartForceCap), -f);
-        rows_.w[k] = c - rows_.yl[k] - rows_.yu[k];
+        double yl = std::max(std::min(kStartMu / rows_.sl[k], kStartForceCap), f);
+        double yu = std::max(std::min(kStartMu / rows_.su[k], kStartForceCap), -f);
+        // w = c - yl - yu keeps at least a quarter of the price: a row that ended the last
+        // round at its bound with a force near its price would otherwise start with w <= 0,
+        // v = kStartMu / w negative, outside the positive orthant.
+        const double room = (1.0 - kStartPriceShare) * c;
+        if (yl + yu > room) {
+          const double scale = room / (yl + yu);
+          yl *= scale;
+          yu *= scale;
+        }
+        rows_.yl[k] = yl;
+        rows_.yu[k] = yu;
+        rows_.w[k] = c - yl - yu;
         rows_.v[k] = kStartMu / rows_.w[k];
       }
       rows_.tl[k] = rows_.sl[k] * rows_.yl[k];
