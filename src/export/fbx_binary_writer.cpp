@@ -155,6 +155,12 @@ Node& Node::add(std::string child_name, std::vector<Property> child_properties) 
   return children.back();
 }
 
+Node& Node::add_one(std::string child_name, Property property) {
+  Node& child = add(std::move(child_name));
+  child.properties.push_back(std::move(property));
+  return child;
+}
+
 std::string encode_binary(const std::vector<Node>& top_level, const EncodeOptions& options) {
   std::string out("Kaydara FBX Binary  \0\x1a\0", 23);
   put(out, kVersion);

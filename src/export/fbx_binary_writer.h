@@ -43,6 +43,9 @@ struct Node {
 
   /// Appends a child and returns it (for building trees in place).
   Node& add(std::string child_name, std::vector<Property> child_properties = {});
+  /// Appends a child with one property moved in: for arrays (a braced list's elements are
+  /// copied, and a city's vertex arrays are tens of MB).
+  Node& add_one(std::string child_name, Property property);
 };
 
 struct EncodeOptions {

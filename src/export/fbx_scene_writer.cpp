@@ -83,7 +83,7 @@ Node geometry(std::int64_t id, const MeshDesc& mesh) {
   std::vector<double> xyz;
   xyz.reserve(3 * mesh.positions.size());
   for (const auto& p : mesh.positions) xyz.insert(xyz.end(), p.begin(), p.end());
-  g.add("Vertices", {std::move(xyz)});
+  g.add_one("Vertices", std::move(xyz));
   // The last index of each polygon is stored as -(index + 1).
   std::vector<std::int32_t> polygon_vertices;
   polygon_vertices.reserve(3 * mesh.triangles.size());
@@ -92,7 +92,7 @@ Node geometry(std::int64_t id, const MeshDesc& mesh) {
     polygon_vertices.push_back(static_cast<std::int32_t>(t[1]));
     polygon_vertices.push_back(-static_cast<std::int32_t>(t[2]) - 1);
   }
-  g.add("PolygonVertexIndex", {std::move(polygon_vertices)});
+  g.add_one("PolygonVertexIndex", std::move(polygon_vertices));
 
   std::vector<const char*> layer_elements;
   if (!mesh.normals.empty()) {
@@ -104,7 +104,7 @@ Node geometry(std::int64_t id, const MeshDesc& mesh) {
     std::vector<double> normals;
     normals.reserve(3 * mesh.normals.size());
     for (const auto& v : mesh.normals) normals.insert(normals.end(), v.begin(), v.end());
-    n.add("Normals", {std::move(normals)});
+    n.add_one("Normals", std::move(normals));
     layer_elements.push_back("LayerElementNormal");
   }
   if (!mesh.uvs.empty()) {
@@ -116,7 +116,7 @@ Node geometry(std::int64_t id, const MeshDesc& mesh) {
     std::vector<double> uvs;
     uvs.reserve(2 * mesh.uvs.size());
     for (const auto& v : mesh.uvs) uvs.insert(uvs.end(), v.begin(), v.end());
-    n.add("UV", {std::move(uvs)});
+    n.add_one("UV", std::move(uvs));
     layer_elements.push_back("LayerElementUV");
   }
   {

@@ -288,18 +288,31 @@ std::string_view extension(MeshFormat format) {
   return "";
 }
 
-std::vector<EncodedFile> encode_mesh_scene(const MeshScene& scene, MeshFormat format,
-                                           const std::string& base_name) {
+void write_mesh_scene(const MeshScene& scene, MeshFormat format, const std::string& base_name,
+                      const MeshFileSink& sink) {
   const fbx::SceneDesc desc = prepare_scene(scene);
-  if (format == MeshFormat::fbx) {
-    return {{base_name + ".fbx", fbx::encode_scene(desc)}};
-  }
   if (format == MeshFormat::obj) {
     const std::string mtl_name = base_name + ".mtl";
-    ObjText text = encode_obj(desc, mtl_name, obj_metadata_lines(desc));
-    return {{base_name + ".obj", std::move(text.obj)}, {mtl_name, std::move(text.mtl)}};
+    const std::string metadata = obj_metadata_lines(desc);
+    sink(base_name + ".obj", [&](std::ostream& out) { write_obj(desc, mtl_name, metadata, out); });
+    const std::string mtl = encode_mtl(desc);
+    sink(mtl_name, [&](std::ostream& out) { out << mtl; });
+    return;
   }
-  return {{base_name + ".glb", encode_glb(desc)}};
+  const std::string bytes = format == MeshFormat::fbx ? fbx::encode_scene(desc) : encode_glb(desc);
+  sink(base_name + std::string(extension(format)), [&](std::ostream& out) { out << bytes; });
+}
+
+std::vector<EncodedFile> encode_mesh_scene(const MeshScene& scene, MeshFormat format,
+                                           const std::string& base_name) {
+  std::vector<EncodedFile> files;
+  write_mesh_scene(scene, format, base_name,
+                   [&](const std::string& filename, const std::function<void(std::ostream&)>& write) {
+                     std::ostringstream out;
+                     write(out);
+                     files.push_back({filename, std::move(out).str()});
+                   });
+  return files;
 }
 
 std::string encode_replay_glb(const MeshScene& scene, const std::vector<ReplayTrack>& tracks) {

@@ -20,17 +20,17 @@ void append_uint(std::string& out, std::size_t value) {
 
 }  // namespace
 
-ObjText encode_obj(const fbx::SceneDesc& scene, const std::string& mtl_name,
-                   const std::string& metadata_lines) {
-  ObjText text;
-  std::string& o = text.obj;
-  // About 30 bytes per vertex for each of v, vt, vn and 40 per face: one allocation, no regrowth.
-  std::size_t estimate = 4096 + metadata_lines.size();
-  for (const fbx::MeshDesc& mesh : scene.meshes) {
-    estimate +=
-        30 * (mesh.positions.size() + mesh.uvs.size() + mesh.normals.size()) + 40 * mesh.triangles.size();
-  }
-  o.reserve(estimate);
+void write_obj(const fbx::SceneDesc& scene, const std::string& mtl_name, const std::string& metadata_lines,
+               std::ostream& out) {
+  constexpr std::size_t kChunk = std::size_t{1} << 20;
+  std::string o;
+  o.reserve(kChunk + 4096);
+  // Hands the text so far to the stream once it fills a chunk.
+  const auto flush = [&](bool always) {
+    if (!always && o.size() < kChunk) return;
+    out.write(o.data(), static_cast<std::streamsize>(o.size()));
+    o.clear();
+  };
   o += "# written by relief\n";
   o += metadata_lines;
   o += "\nmtllib " + mtl_name + "\n";
@@ -47,6 +47,7 @@ ObjText encode_obj(const fbx::SceneDesc& scene, const std::string& mtl_name,
       o += ' ';
       append_float(o, p[2]);
       o += '\n';
+      flush(false);
     }
     for (const auto& uv : mesh.uvs) {
       o += "vt ";
@@ -54,6 +55,7 @@ ObjText encode_obj(const fbx::SceneDesc& scene, const std::string& mtl_name,
       o += ' ';
       append_float(o, uv[1]);
       o += '\n';
+      flush(false);
     }
     for (const auto& n : mesh.normals) {
       o += "vn ";
@@ -63,6 +65,7 @@ ObjText encode_obj(const fbx::SceneDesc& scene, const std::string& mtl_name,
       o += ' ';
       append_float(o, n[2]);
       o += '\n';
+      flush(false);
     }
     const bool uvs = !mesh.uvs.empty(), normals = !mesh.normals.empty();
     for (const auto& t : mesh.triangles) {
@@ -80,13 +83,17 @@ ObjText encode_obj(const fbx::SceneDesc& scene, const std::string& mtl_name,
         }
       }
       o += '\n';
+      flush(false);
     }
     v_base += mesh.positions.size();
     vt_base += mesh.uvs.size();
     vn_base += mesh.normals.size();
   }
-  std::string& m = text.mtl;
-  m = "# written by relief\n";
+  flush(true);
+}
+
+std::string encode_mtl(const fbx::SceneDesc& scene) {
+  std::string m = "# written by relief\n";
   for (const fbx::MaterialDesc& mat : scene.materials) {
     m += "\nnewmtl " + mat.name + "\nKd ";
     append_float(m, mat.diffuse_rgb[0]);
@@ -96,7 +103,7 @@ ObjText encode_obj(const fbx::SceneDesc& scene, const std::string& mtl_name,
     append_float(m, mat.diffuse_rgb[2]);
     m += "\nillum 1\n";
   }
-  return text;
+  return m;
 }
 
 }  // namespace relief

@@ -4,20 +4,21 @@
 // "# relief-metadata key<TAB>value" comments. Written directly because assimp's OBJ exporter
 // takes seconds on a city (it de-duplicates every position through a map).
 
+#include <ostream>
 #include <string>
 
 #include "export/fbx_scene_writer.h"
 
 namespace relief {
 
-struct ObjText {
-  std::string obj;
-  std::string mtl;
-};
+/// Writes the .obj to `out` in pieces of about 1 MB: a city's OBJ text is hundreds of MB
+/// (central Portland's 309 MB) and is never whole in memory. `mtl_name` is the file name the
+/// mtllib line refers to; `metadata_lines` the comment lines to put in the header (each ending
+/// in '\n').
+void write_obj(const fbx::SceneDesc& scene, const std::string& mtl_name, const std::string& metadata_lines,
+               std::ostream& out);
 
-/// `mtl_name` is the file name the .obj's mtllib line refers to; `metadata_lines` the comment
-/// lines to put in the header (each ending in '\n').
-[[nodiscard]] ObjText encode_obj(const fbx::SceneDesc& scene, const std::string& mtl_name,
-                                 const std::string& metadata_lines);
+/// The .mtl: one material per entry of the scene's.
+[[nodiscard]] std::string encode_mtl(const fbx::SceneDesc& scene);
 
 }  // namespace relief

@@ -36,13 +36,13 @@ MeshSummary write_mesh_outputs(const MeshStageInput& in, OutputSet& files, Stage
   // Files: every format asked for (then the tiles, then the report).
   const auto write_scene = [&](const MeshScene& s, MeshFormat format, const std::string& base,
                                std::vector<std::string>& listed) {
-    for (EncodedFile& f : encode_mesh_scene(s, format, base)) {
-      const std::string bytes = std::move(f.bytes);
-      files.add(options.out_dir / f.filename, [&](std::ostream& out) { out << bytes; });
-      written.push_back(options.out_dir / f.filename);
-      names.push_back(f.filename);
-      listed.push_back(f.filename);
-    }
+    write_mesh_scene(s, format, base,
+                     [&](const std::string& filename, const std::function<void(std::ostream&)>& write) {
+                       files.add(options.out_dir / filename, write);
+                       written.push_back(options.out_dir / filename);
+                       names.push_back(filename);
+                       listed.push_back(filename);
+                     });
   };
   for (const MeshFormat format : options.mesh_formats) {
     timer.run("write " + std::string(to_string(format)), [&] {

@@ -81,6 +81,13 @@ void report_plan_overlaps(const PlanOverlaps& overlaps, std::size_t under, Diagn
           "clears a vehicle");
 }
 
+const TriangleMesh* mesh_named(const MeshScene& scene, std::string_view name) {
+  for (const TriangleMesh& m : scene.meshes) {
+    if (m.name == name) return &m;
+  }
+  return nullptr;
+}
+
 // Runs `f` between progress(stage, 0) and progress(stage, 1).
 template <typename F>
 auto staged(const ProgressFn& progress, std::string_view stage, F&& f) {
@@ -170,10 +177,11 @@ Scene build_scene(const RoadModel& model, const RoadNetwork& network, const DemS
     if (mesh.normals.size() != mesh.vertices.size()) mesh.normals = vertex_normals(mesh);
     scene.meshes.meshes.push_back(std::move(mesh));
   };
-  add_mesh(roads.road, "Road_Road", SurfaceKind::road);
-  add_mesh(roads.marking, "Road_Marking", SurfaceKind::marking);
-  add_mesh(roads.sidewalk, "Road_Sidewalk", SurfaceKind::sidewalk);
-  if (scene.terrain) add_mesh(scene.terrain->terrain, "Terrain", SurfaceKind::terrain);
+  // Moved, not copied: a city's meshes are hundreds of MB (scene.h).
+  add_mesh(std::move(scene.roads.road), "Road_Road", SurfaceKind::road);
+  add_mesh(std::move(scene.roads.marking), "Road_Marking", SurfaceKind::marking);
+  add_mesh(std::move(scene.roads.sidewalk), "Road_Sidewalk", SurfaceKind::sidewalk);
+  if (scene.terrain) add_mesh(std::move(scene.terrain->terrain), "Terrain", SurfaceKind::terrain);
 
   if (options.checks) {
     scene.checks = check_scene(scene);
@@ -186,8 +194,10 @@ SceneChecks check_scene(const Scene& scene) {
   SceneChecks c;
   std::vector<MeshQuality>& q = c.quality;
   for (const TriangleMesh& m : scene.meshes.meshes) q.push_back(analyse_mesh(m));
-  if (!scene.terrain) return c;
-  const TriangleMesh& terrain = scene.terrain->terrain;
+  const TriangleMesh* road = mesh_named(scene.meshes, "Road_Road");
+  const TriangleMesh* terrain_mesh = mesh_named(scene.meshes, "Terrain");
+  if (!scene.terrain || terrain_mesh == nullptr) return c;
+  const TriangleMesh& terrain = *terrain_mesh;
   // Roads on the ground and terrain as one surface: the terrain took the outline's exact
   // positions over, so welding identical positions joins them.
   TriangleMesh ground_all = scene.ground_road;
@@ -209,7 +219,7 @@ SceneChecks check_scene(const Scene& scene) {
   // terrain, welded where they share positions, only pairs across the two tested.
   std::vector<std::uint8_t> off(scene.ground.size());
   for (std::size_t i = 0; i < off.size(); ++i) off[i] = !scene.ground[i];
-  TriangleMesh structures = submesh(scene.roads.road, off);
+  TriangleMesh structures = road != nullptr ? submesh(*road, off) : TriangleMesh{};
   const std::size_t n_structures = structures.triangles.size();
   if (n_structures > 0) {
     structures.append(terrain);

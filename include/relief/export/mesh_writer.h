@@ -26,7 +26,9 @@
 // three formats).
 
 #include <filesystem>
+#include <functional>
 #include <optional>
+#include <ostream>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -54,6 +56,17 @@ struct EncodedFile {
 /// ProjectionError when the frame's CRS is unknown and metadata has no "relief:proj".
 [[nodiscard]] std::vector<EncodedFile> encode_mesh_scene(const MeshScene& scene, MeshFormat format,
                                                          const std::string& base_name);
+
+/// Receives one file of a scene being written: its name (no directory) and a function that
+/// writes its bytes to a stream.
+using MeshFileSink =
+    std::function<void(const std::string& filename, const std::function<void(std::ostream&)>& write)>;
+
+/// Writes `scene` as encode_mesh_scene encodes it, each file through `sink`: the OBJ text is
+/// streamed (never whole in memory), the binary formats are encoded first. Throws as
+/// encode_mesh_scene.
+void write_mesh_scene(const MeshScene& scene, MeshFormat format, const std::string& base_name,
+                      const MeshFileSink& sink);
 
 /// One vehicle of a replay: a box of its size, posed at its keys (local frame).
 struct ReplayKey {

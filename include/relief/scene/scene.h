@@ -68,7 +68,9 @@ struct Scene {
   /// The meshes in CARLA's naming, each with vertex normals, in the model's frame:
   /// Road_Road, Road_Marking, Road_Sidewalk (when any), Terrain (when built); empty ones left out.
   MeshScene meshes;
-  /// The paved surface as built, with the owner of each Road_Road triangle.
+  /// The paved surface as built, with the owner of each Road_Road triangle. Its meshes (road,
+  /// marking, sidewalk) are moved into `meshes` and empty here, as is terrain->terrain: a city's
+  /// meshes are hundreds of MB, and one copy of each is kept.
   RoadMeshes roads;
   /// Per triangle of roads.road: 1 when it is part of the ground the terrain meets; 1 when in a tunnel.
   std::vector<std::uint8_t> ground, tunnel;
