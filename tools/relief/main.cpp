@@ -1,8 +1,6 @@
 // relief: elevation-aware 3D road networks from OpenStreetMap and DEMs.
 // Exit codes: 0 done, 1 internal error, 2 bad usage, 3 bad input, 4 built but outputs failed
 // quality gates.
-#include <malloc.h>
-
 #include <iostream>
 
 #include "commands.h"
@@ -12,14 +10,6 @@
 // defect in the option definitions, which may abort.
 int main(int argc, char** argv) {  // NOLINT(bugprone-exception-escape)
   using namespace relief::cli;
-  // Blocks of 1 MiB and more are mapped on their own and go back to the system when freed, and
-  // free memory at the heap's top is trimmed past 1 MiB. glibc's default raises the mapping
-  // threshold to the largest block freed (up to 32 MiB): the fit's, the meshes' and the
-  // encoders' large buffers then stay in the heap after use, and every later stage's peak
-  // adds to theirs. Measured (peak RSS, whole build): NE 315-347 to 276 MB, Liechtenstein 1018
-  // to 904 MB, Portland 1580 to 1473 MB, wall time alike.
-  mallopt(M_MMAP_THRESHOLD, 1 << 20);
-  mallopt(M_TRIM_THRESHOLD, 1 << 20);
   CLI::App app{"relief " + relief::relief_version() +
                ": elevation-aware 3D road networks from OpenStreetMap and DEMs\n"
                "Exit codes: 0 done, 1 internal error, 2 bad usage, 3 bad input, 4 built but outputs failed "
