@@ -615,6 +615,10 @@ SoftQpResult interior_point(const SoftQp& problem, NormalMatrix& normal, const S
       side.push_back(low ? -1 : 1);
       ++changed;
     }
+    if (options.trace) {
+      options.trace("start round " + std::to_string(round) + ": " + std::to_string(changed) +
+                    " springs changed, " + std::to_string(penalised.size()) + " on");
+    }
     if (changed == 0) break;
     normal.factorise(penalised, rho);
     rhs = -problem.q;
