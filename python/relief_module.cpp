@@ -4,6 +4,7 @@
 //   surface = relief.Surface("out/NAME.glb")
 //   pose = surface.place(x, y, heading, length=4.5, width=1.8, z_hint=z)
 //   figures = relief.run_cosim("out/NAME.sumocfg", "out/cosim", end=60.0, ego_count=2)
+//   figures = relief.run_cosim("out/NAME.sumocfg", "out/cosim", sumo="sumo-gui")  # to watch it
 // Coordinates are the build's local frame (SUMO's net coordinates), angles in radians.
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
@@ -113,8 +114,16 @@ PYBIND11_MODULE(relief, m) {
       "run_cosim",
       [](const std::filesystem::path& sumocfg, const std::filesystem::path& out, std::optional<double> end,
          double step, double replay_period, const std::vector<std::string>& egos, std::size_t ego_count,
-         double resync) {
+         double resync, const std::string& sumo, int sumo_port, const std::string& sumo_host) {
         CosimOptions options;
+        if (sumo_port != 0) {
+          options.sumo.mode = SumoEndpoint::Mode::attach;
+          options.sumo.port = sumo_port;
+          options.sumo.host = sumo_host;
+        } else if (!sumo.empty()) {
+          options.sumo.mode = SumoEndpoint::Mode::launch;
+          options.sumo.program = sumo;
+        }
         options.end_s = end;
         options.step_s = step;
         options.replay_period_s = replay_period;
@@ -133,9 +142,12 @@ PYBIND11_MODULE(relief, m) {
       },
       py::arg("sumocfg"), py::arg("out"), py::arg("end") = py::none(), py::arg("step") = 0.05,
       py::arg("replay_period") = 0.5, py::arg("egos") = std::vector<std::string>{}, py::arg("ego_count") = 0,
-      py::arg("resync") = 0.5,
+      py::arg("resync") = 0.5, py::arg("sumo") = std::string(), py::arg("sumo_port") = 0,
+      py::arg("sumo_host") = std::string("localhost"),
       "runs SUMO on a relief build's configuration with every vehicle set on the surface (relief cosim), "
-      "the vehicles named in `egos` and the first `ego_count` to depart driven by the physics; "
+      "the vehicles named in `egos` and the first `ego_count` to depart driven by the physics; SUMO in "
+      "this process, or `sumo` ('sumo', 'sumo-gui') launched over TraCI, or the SUMO already running "
+      "with --remote-port `sumo_port` on `sumo_host`; "
       "writes cosim.json, the trajectories and cosim.glb in `out` and returns cosim.json's figures as a "
       "dict");
 }

@@ -74,3 +74,16 @@ def test_egos_from_python_are_driven_and_measured(hill):
     assert figures["resync_m"] == 0.5
     with pytest.raises(ValueError):
         relief.run_cosim(hill / "hill.sumocfg", hill / "cosim_bad", end=1.0, resync=0.0)
+
+
+def test_sumo_over_traci_from_python_runs_the_same_traffic(hill):
+    in_process = relief.run_cosim(hill / "hill.sumocfg", hill / "cosim_in", end=5.0, replay_period=0.0,
+                                  ego_count=1)
+    launched = relief.run_cosim(hill / "hill.sumocfg", hill / "cosim_traci", end=5.0, replay_period=0.0,
+                                ego_count=1, sumo="sumo")
+    assert in_process["sumo"] == "in process (libsumo)"
+    assert launched["sumo"] == "TraCI to sumo (launched)"
+    for key in ("steps", "vehicles", "vehicle_steps", "ego_steps", "resyncs"):
+        assert launched[key] == in_process[key], key
+    assert launched["z_error_m"]["max"] == pytest.approx(in_process["z_error_m"]["max"], abs=1e-9)
+    assert launched["sync_error_m"]["p99"] == pytest.approx(in_process["sync_error_m"]["p99"], abs=1e-9)
