@@ -28,7 +28,7 @@ void expect_gates(const RunReport& r, const std::set<std::string>& failing) {
   for (const Gate& g : r.gates) {
     std::cout << "  gate " << g.name << " = " << g.value << " (threshold " << g.threshold << ")"
               << (g.passed ? "" : " FAILED at " + g.where) << "\n";
-    if (failing.count(g.name) != 0) {
+    if (failing.contains(g.name)) {
       EXPECT_FALSE(g.passed) << g.name << " passes now: take it off the failing list";
     } else {
       EXPECT_TRUE(g.passed) << g.name << " = " << g.value << " over " << g.threshold << " at " << g.where;
