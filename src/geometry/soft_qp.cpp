@@ -410,9 +410,9 @@ class InteriorPoint {
       if (std::abs(f) >= 0.5 * c && std::max(below, above) > 0.0) {
         // A row known to end violated (the quadratic-penalty solution pushed it with at least
         // half its price) starts as it ends: its violation in v, the violated bound's slack ~0
-        // and its multiplier the rest of the price, every product kStartMu.
-        // w and the far bound's multiplier at most a quarter of the price each, so that the
-        // near bound's keeps at least half (a cheap row's kStartMu / v alone can exceed its
+        // and its multiplier the rest of the price, every product kStartMu where that leaves
+        // room: w and the far bound's multiplier at most a quarter of the price each, so that
+        // the near bound's keeps at least half (a cheap row's kStartMu / v alone can exceed its
         // price: the start had a negative multiplier and the interior point stepped backwards).
         const double tiny = kStartMu / c;
         rows_.v[k] = std::max(below, above) + tiny;
@@ -570,8 +570,8 @@ SoftQpResult interior_point(const SoftQp& problem, NormalMatrix& normal, const S
   // would pull the row back towards the bound with a force no bound bears; the interior point
   // then starts with every remaining spring's force as that row's multiplier, stationary. (With
   // two-sided springs, kept on, Portland's interior point started with force imbalances of 1e6
-  // on rows inside their bounds, crawled at steps of 1e-3 and stalled; 223 s for its fit, 15 s
-  // now.) The rounds end when no spring is added or released.
+  // on rows inside their bounds, crawled at steps of 1e-3 and stalled; 223 s for its fit, 17-19 s
+  // now.) The rounds end when no spring is added or released, after at most kPenaltyRounds.
   std::vector<double> force(static_cast<std::size_t>(m), 0.0);  // the rows' forces at x
   std::vector<int> penalised;
   std::vector<double> rho, aim;
@@ -580,8 +580,8 @@ SoftQpResult interior_point(const SoftQp& problem, NormalMatrix& normal, const S
   Vec rhs(n);
   int penalty_rounds = 0;
   for (int round = 0; round < kPenaltyRounds; ++round) {
-    // One-sided: a row the last solution left inside its aim is released (its spring would pull
-    // it back out, a force no bound bears), a row newly beyond a bound joins.
+    // Release the springs whose rows the last solution left inside their aim; add the rows
+    // newly beyond a bound.
     std::size_t changed = 0;
     for (std::size_t k = 0; k < penalised.size();) {
       const int r = penalised[k];
