@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdint>
 #include <limits>
 #include <numbers>
 #include <sstream>
@@ -11,6 +10,7 @@
 #include <vector>
 
 #include "relief/core/diagnostic_codes.h"
+#include "roads/close_road_pairs.h"
 #include "roads/lane_layout.h"
 
 namespace relief::detail {
@@ -19,11 +19,6 @@ namespace {
 constexpr double kMaxAngle = 30.0 * std::numbers::pi / 180.0;    // from parallel
 constexpr double kMergeAngle = 10.0 * std::numbers::pi / 180.0;  // a Y this sharp is still a junction's
 constexpr double kDuplicateShare = 0.25;  // of the half widths' sum: one road drawn twice
-
-struct Sample {
-  int road = -1;
-  Vec2 p, dir;
-};
 
 // The two carriageways of one road: one-ways of the same name, on one level.
 bool carriageways(const WayAttributes& a, const WayAttributes& b) {
@@ -43,79 +38,32 @@ struct Approach {
 
 std::size_t narrow_close_roads(RoadNetwork& network, Diagnostics& diagnostics,
                                const CloseRoadOptions& options) {
-  std::vector<Sample> samples;
-  double widest = 0.0;
-  for (const Road& road : network.roads) {
-    widest = std::max(widest, half_width(road));
-    for (std::size_t i = 0; i + 1 < road.points.size(); ++i) {
-      const Vec2 a = road.points[i], b = road.points[i + 1];
-      const double length = (b - a).norm();
-      if (!(length > 0.0)) continue;
-      const int n = std::max(1, static_cast<int>(std::ceil(length / options.sample_step_m)));
-      for (int k = 0; k < n; ++k)
-        samples.push_back({road.id, a + (b - a) * (k / static_cast<double>(n)), (b - a) / length});
-    }
-  }
+  const std::vector<RoadSample> samples = sample_roads(network, options.sample_step_m);
   if (samples.empty()) return 0;
-  // Grid of cells as wide as the farthest two roads can reach: neighbours lie in adjacent cells.
-  const double cell = std::max(2.0 * widest, options.sample_step_m);
-  const auto cell_of = [&](const Vec2& p) {
-    return std::pair(static_cast<std::int64_t>(std::floor(p.x() / cell)),
-                     static_cast<std::int64_t>(std::floor(p.y() / cell)));
-  };
-  const auto key = [](std::int64_t cx, std::int64_t cy) {
-    return (static_cast<std::uint64_t>(cx) << 32) ^ static_cast<std::uint64_t>(cy & 0xffffffff);
-  };
-  std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> cells;
-  for (std::uint32_t i = 0; i < samples.size(); ++i) {
-    const auto [cx, cy] = cell_of(samples[i].p);
-    cells[key(cx, cy)].push_back(i);
-  }
+  const double widest = widest_half_width(network);
 
-  // Shared junction positions of two roads, for the merge exclusion.
-  const auto shared_junctions = [&](const Road& a, const Road& b) {
-    std::vector<Vec2> out;
-    for (const int ja : {a.start_junction, a.end_junction}) {
-      if (ja >= 0 && (ja == b.start_junction || ja == b.end_junction))
-        out.push_back(network.junctions[static_cast<std::size_t>(ja)].position);
-    }
-    return out;
-  };
   // Per road, its closest too-close neighbour.
   std::vector<std::unordered_map<int, Approach>> approaches(network.roads.size());
-  for (const Sample& s : samples) {
-    const Road& a = network.roads[static_cast<std::size_t>(s.road)];
-    const auto [cx, cy] = cell_of(s.p);
-    for (std::int64_t dx = -1; dx <= 1; ++dx) {
-      for (std::int64_t dy = -1; dy <= 1; ++dy) {
-        const auto it = cells.find(key(cx + dx, cy + dy));
-        if (it == cells.end()) continue;
-        for (const std::uint32_t j : it->second) {
-          const Sample& t = samples[j];
-          if (t.road == s.road) continue;
-          // Carriageways run against each other; the neighbour's point lies beside this one
-          // (within half a sample step along) and too close (cheap tests first).
-          if (s.dir.dot(t.dir) > -std::cos(kMaxAngle)) continue;
-          const Vec2 d = t.p - s.p;
-          if (std::abs(s.dir.dot(d)) > 0.5 * options.sample_step_m) continue;
-          const Road& b = network.roads[static_cast<std::size_t>(t.road)];
-          const double needed = half_width(a) + half_width(b);
-          const double across = std::abs(s.dir.x() * d.y() - s.dir.y() * d.x());
-          if (!(across < needed) || across < kDuplicateShare * needed) continue;
-          if (!carriageways(a.attributes, b.attributes)) continue;
-          const double reach = needed / std::sin(kMergeAngle);
-          bool near_shared = false;
-          for (const Vec2& j_pos : shared_junctions(a, b))
-            near_shared |= (s.p - j_pos).norm() < reach || (t.p - j_pos).norm() < reach;
-          if (near_shared) continue;
-          Approach& ap = approaches[static_cast<std::size_t>(s.road)][t.road];
-          ap.distance = std::min(ap.distance, across);
-          ap.needed = needed;
-          ++ap.samples;
-        }
-      }
-    }
-  }
+  // Cells as wide as the farthest two roads can reach: neighbours lie in adjacent cells.
+  for_each_near_pair(samples, std::max(2.0 * widest, options.sample_step_m),
+                     [&](const RoadSample& s, const RoadSample& t) {
+                       // Carriageways run against each other; the neighbour's point lies beside this one and
+                       // too close (cheap tests first).
+                       if (s.dir.dot(t.dir) > -std::cos(kMaxAngle)) return;
+                       double across = 0.0;
+                       if (!beside(s, t, options.sample_step_m, across)) return;
+                       across = std::abs(across);
+                       const Road& a = network.roads[static_cast<std::size_t>(s.road)];
+                       const Road& b = network.roads[static_cast<std::size_t>(t.road)];
+                       const double needed = half_width(a) + half_width(b);
+                       if (!(across < needed) || across < kDuplicateShare * needed) return;
+                       if (!carriageways(a.attributes, b.attributes)) return;
+                       if (near_shared_junction(network, s, t, needed / std::sin(kMergeAngle))) return;
+                       Approach& ap = approaches[static_cast<std::size_t>(s.road)][t.road];
+                       ap.distance = std::min(ap.distance, across);
+                       ap.needed = needed;
+                       ++ap.samples;
+                     });
   const int min_samples =
       std::max(1, static_cast<int>(std::ceil(options.min_overlap_m / options.sample_step_m)));
   std::vector<double> factor(network.roads.size(), 1.0);

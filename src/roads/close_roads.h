@@ -5,7 +5,8 @@
 // overlap in plan, and at different heights their meshes cut through each other. Both get
 // narrower lanes, so that their pavements meet instead. Other roads drawn close (a ramp beside a
 // freeway before it merges, a service road beside a boulevard) keep their widths: narrowing a
-// freeway over its whole length for a ramp's gore would be wrong, and the mesh checks report them.
+// freeway over its whole length for a ramp's gore would be wrong; the lesser of the two is moved
+// aside instead (road_separation.h).
 
 #include <cstddef>
 

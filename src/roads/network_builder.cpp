@@ -14,6 +14,7 @@
 #include "relief/geometry/crs_transform.h"
 #include "relief/geometry/polyline.h"
 #include "roads/close_roads.h"
+#include "roads/road_separation.h"
 #include "roads/way_crossings.h"
 
 namespace relief {
@@ -321,6 +322,7 @@ RoadNetwork build_network(const OsmRoads& input, const GeoFrame& frame, Diagnost
   }
   build_junctions(network, osm, table);
   (void)detail::narrow_close_roads(network, diagnostics);
+  (void)detail::separate_close_roads(network, diagnostics);
   return network;
 }
 

@@ -43,6 +43,9 @@ inline constexpr DiagnosticCode kNetworkDegenerateWay{
 inline constexpr DiagnosticCode kNetworkRoadsNarrowed{"network.roads_narrowed",
                                                       "roads on one level drawn closer than their widths get "
                                                       "narrower lanes, so their pavements do not overlap"};
+inline constexpr DiagnosticCode kNetworkRoadsMoved{"network.roads_moved",
+                                                   "a road on one level drawn over another's pavement is "
+                                                   "moved sideways until their pavements meet"};
 
 // Elevation sampling (roads/elevation_sampling.h).
 inline constexpr DiagnosticCode kElevationVoid{"elevation.void",
@@ -136,6 +139,7 @@ inline constexpr std::array kAll{kDemDatumGridMissing,
                                  kOsmCrossingWithoutNode,
                                  kNetworkDegenerateWay,
                                  kNetworkRoadsNarrowed,
+                                 kNetworkRoadsMoved,
                                  kElevationVoid,
                                  kElevationUncovered,
                                  kElevationRoadWithoutHeight,
