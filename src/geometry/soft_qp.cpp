@@ -31,6 +31,7 @@ constexpr double kMaxCentring = 1.0;       // largest sigma
 constexpr std::size_t kStallWindow = 20;
 constexpr int kStallIterations = 4;             // without progress once the gap is closed
 constexpr double kRoundingStationarity = 1e-4;  // accepted then (relative force imbalance)
+constexpr double kRoundingGap = 1e-7;           // and the relative gap accepted with it
 constexpr double kFarBound = 1e6;               // a missing bound, this many row scales away
 constexpr int kPenaltyRounds = 20;              // of the start's quadratic penalties
 constexpr double kPenaltyShare = 1e-3;          // their weight, a share of the row's price
@@ -273,6 +274,28 @@ class InteriorPoint {
     weight_sum = std::max(weight_sum, 1e-300);
     double best_stationarity = std::numeric_limits<double>::infinity();
     Vec best_x;
+    // The best point whose bounds and prices hold and whose gap is closed to kRoundingGap (by its
+    // stationarity): where the iteration ends without meeting the tolerance (a step that turns
+    // non-finite as mu reaches 1e-10, a stall of rounding), that point is the answer when its
+    // stationarity is within kRoundingStationarity. Portland (after a one-road change) reached
+    // 2e-8 at iteration 49, and its next steps lost s and y to rounding.
+    double acceptable_stationarity = std::numeric_limits<double>::infinity();
+    Vec acceptable_x;
+    SoftQpResult acceptable;
+    const auto end_without_tolerance = [&](const char* status) {
+      if (acceptable_stationarity <= kRoundingStationarity) {
+        if (options_.trace)
+          options_.trace(std::string(status) + ": the best point within the rounding tolerances is the answer");
+        x = acceptable_x;
+        out.stationarity = acceptable.stationarity;
+        out.gap = acceptable.gap;
+        out.objective = acceptable.objective;
+        out.converged = true;
+        return;
+      }
+      out.converged = false;
+      out.status = status;
+    };
     std::vector<double> merits;
     int stalled = 0;
     for (int iter = 0;; ++iter) {
@@ -312,6 +335,16 @@ class InteriorPoint {
         out.converged = true;
         return;
       }
+      if (!std::isfinite(gap) || !std::isfinite(out.stationarity)) {
+        end_without_tolerance("not finite");
+        return;
+      }
+      if (primal <= tol && price_residual <= tol && out.gap <= kRoundingGap &&
+          out.stationarity < acceptable_stationarity) {
+        acceptable_stationarity = out.stationarity;
+        acceptable_x = x;
+        acceptable = out;
+      }
       // Complementarity gone and stationarity down to what rounding leaves in the normal
       // equations: no further step can improve the point. Keep the best point seen, and stop
       // there once the gap is closed and stationarity has not improved for a few iterations.
@@ -329,21 +362,14 @@ class InteriorPoint {
         }
       }
       if (iter >= options_.max_iterations) {
-        out.converged = false;
-        out.status = "iteration limit";
+        end_without_tolerance("iteration limit");
         return;
       }
       // No progress: the residuals and the gap not down by a tenth over kStallWindow iterations.
       const double merit = std::max({out.stationarity, primal, out.gap});
       merits.push_back(merit);
       if (merits.size() > kStallWindow && merit > 0.9 * merits[merits.size() - 1 - kStallWindow]) {
-        out.converged = false;
-        out.status = "stalled";
-        return;
-      }
-      if (!std::isfinite(gap) || !std::isfinite(out.stationarity)) {
-        out.converged = false;
-        out.status = "not finite";
+        end_without_tolerance("stalled");
         return;
       }
       ++out.iterations;
