@@ -15,6 +15,7 @@
 #include "relief/geometry/polyline.h"
 #include "roads/close_roads.h"
 #include "roads/road_separation.h"
+#include "roads/road_stubs.h"
 #include "roads/way_crossings.h"
 
 namespace relief {
@@ -316,6 +317,7 @@ RoadNetwork build_network(const OsmRoads& input, const GeoFrame& frame, Diagnost
     road.id = static_cast<int>(network.roads.size());
     network.roads.push_back(std::move(road));
   }
+  (void)detail::drop_stubs(network.roads, diagnostics);
   if (network.roads.empty()) {
     throw InvalidInput("no roads left to build a network from: all " + std::to_string(osm.ways.size()) +
                        " ways are empty or shorter than 1 cm");

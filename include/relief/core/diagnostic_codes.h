@@ -43,6 +43,8 @@ inline constexpr DiagnosticCode kNetworkDegenerateWay{
 inline constexpr DiagnosticCode kNetworkRoadsNarrowed{"network.roads_narrowed",
                                                       "roads on one level drawn closer than their widths get "
                                                       "narrower lanes, so their pavements do not overlap"};
+inline constexpr DiagnosticCode kNetworkStubDropped{
+    "network.stub_dropped", "a dead-end road shorter than the pavement of the roads it leaves is dropped"};
 inline constexpr DiagnosticCode kNetworkRoadsMoved{"network.roads_moved",
                                                    "a road on one level drawn over another's pavement is "
                                                    "moved sideways until their pavements meet"};
@@ -139,6 +141,7 @@ inline constexpr std::array kAll{kDemDatumGridMissing,
                                  kOsmCrossingWithoutNode,
                                  kNetworkDegenerateWay,
                                  kNetworkRoadsNarrowed,
+                                 kNetworkStubDropped,
                                  kNetworkRoadsMoved,
                                  kElevationVoid,
                                  kElevationUncovered,

@@ -1,0 +1,25 @@
+#pragma once
+// Private to the roads module: dead-end stubs that lie on the road they leave. A way cut by a
+// clip box a metre past a junction (--bbox, a tile's edge), or a driveway drawn a metre long,
+// leaves a road whose whole pavement lies on the other road's or the junction's: it adds no lane
+// anyone can drive, its end cannot be trimmed clear of the other pavement (stray_ends.h keeps
+// a metre of every road), and its mesh cuts through the junction's. Such stubs are dropped.
+
+#include <cstddef>
+#include <vector>
+
+#include "relief/core/diagnostics.h"
+#include "relief/roads/road_network.h"
+
+namespace relief::detail {
+
+/// Drops every road with one dead end (an end node no other road ends at) whose other end
+/// joins other roads, when the road is shorter than its own half width plus the widest half
+/// width of the others there (its pavement cannot reach past theirs), unless that node would be
+/// left with two roads at a corner (more than 30 degrees from straight through: a bend of wide
+/// roads, which the stub's junction builds better). Runs before the junctions
+/// are built (ends are matched by their OSM node ids); renumbers the kept roads' ids in order.
+/// Each drop is reported (codes::kNetworkStubDropped, a warning). Returns the number dropped.
+std::size_t drop_stubs(std::vector<Road>& roads, Diagnostics& diagnostics);
+
+}  // namespace relief::detail
