@@ -4,9 +4,11 @@
 #include <cmath>
 #include <cstdint>
 #include <deque>
+#include <limits>
 #include <numbers>
 #include <optional>
 #include <string>
+#include <unordered_map>
 #include <unordered_set>
 #include <utility>
 
@@ -45,9 +47,13 @@ using FaceBase = CGAL::Constrained_triangulation_face_base_2<Kernel, FaceBaseInf
 using Tds = CGAL::Triangulation_data_structure_2<VertexBase, FaceBase>;
 using Cdt = CGAL::Constrained_Delaunay_triangulation_2<Kernel, Tds, CGAL::Exact_intersections_tag>;
 
-constexpr double kKerbCornerGap = 0.01;  // kerb points this close to a corner are dropped (m)
-constexpr double kKerbMinAngle = 1e-6;   // kerb points must advance this much around the centre (rad)
-constexpr double kEdgeTurnedAway = 1.0;  // a road edge this far outside a straight side has left it (m)
+constexpr double kKerbCornerGap = 0.01;     // kerb points this close to a corner are dropped (m)
+constexpr double kKerbMinAngle = 1e-6;      // kerb points must advance this much around the centre (rad)
+constexpr double kEdgeTurnedAway = 1.0;     // a road edge this far outside a straight side has left it (m)
+constexpr double kInteriorSpacing = 2.0;    // interior points along a connecting road's lanes (m)
+constexpr double kInteriorEndGap = 1.0;     // none this close to a connecting road's ends (m)
+constexpr double kInteriorMerge = 1.0;      // interior points this close are merged (m)
+constexpr double kInteriorClearance = 0.3;  // none this close to the outline (m)
 
 /// Nesting level of every face: a flood fill from the infinite face that counts the
 /// constrained edges crossed (the usual domain marking of a CDT).
@@ -181,7 +187,70 @@ std::vector<Vec3> kerb_between(const RoadModel& model, const std::vector<int>& c
   return inner;
 }
 
+// Distance in plan from p to the closed outline.
+double distance_to_outline(const std::vector<OutlineVertex>& outline, const Vec2& p) {
+  double best = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < outline.size(); ++i) {
+    const Vec2 a = outline[i].p.head<2>(), b = outline[(i + 1) % outline.size()].p.head<2>();
+    const Vec2 ab = b - a;
+    const double len2 = ab.squaredNorm();
+    const double t = len2 > 0.0 ? std::clamp((p - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
+    best = std::min(best, (a + t * ab - p).norm());
+  }
+  return best;
+}
+
 }  // namespace
+
+std::vector<Vec3> junction_interior(const RoadModel& model, const std::vector<int>& connecting_roads) {
+  struct Cluster {
+    Vec3 sum = Vec3::Zero();
+    int n = 0;
+    [[nodiscard]] Vec3 mean() const { return sum / n; }
+  };
+  std::vector<Cluster> clusters;
+  std::unordered_map<std::uint64_t, std::vector<std::size_t>> cells;
+  const auto cell_key = [](std::int64_t cx, std::int64_t cy) {
+    return (static_cast<std::uint64_t>(cx) << 32) ^ static_cast<std::uint64_t>(cy & 0xffffffff);
+  };
+  const auto add = [&](const Vec3& p) {
+    const auto cx = static_cast<std::int64_t>(std::floor(p.x() / kInteriorMerge));
+    const auto cy = static_cast<std::int64_t>(std::floor(p.y() / kInteriorMerge));
+    for (std::int64_t dx = -1; dx <= 1; ++dx) {
+      for (std::int64_t dy = -1; dy <= 1; ++dy) {
+        const auto it = cells.find(cell_key(cx + dx, cy + dy));
+        if (it == cells.end()) continue;
+        for (const std::size_t c : it->second) {
+          if ((clusters[c].mean().head<2>() - p.head<2>()).norm() >= kInteriorMerge) continue;
+          clusters[c].sum += p;
+          ++clusters[c].n;
+          return;
+        }
+      }
+    }
+    cells[cell_key(cx, cy)].push_back(clusters.size());
+    clusters.push_back({p, 1});
+  };
+  for (const int r : connecting_roads) {
+    const ModelRoad& road = model.roads[static_cast<std::size_t>(r)];
+    const double length = road.length();
+    if (road.sections.empty() || !(length > 2.0 * kInteriorEndGap)) continue;
+    const int steps =
+        std::max(1, static_cast<int>(std::ceil((length - 2.0 * kInteriorEndGap) / kInteriorSpacing)));
+    for (int i = 0; i <= steps; ++i) {
+      const double s = kInteriorEndGap + (length - 2.0 * kInteriorEndGap) * i / steps;
+      const LaneSection& section = section_at(road, s);
+      for (std::size_t k = 0; k < section.left.size(); ++k)
+        add(surface_point(road, s, lane_centre_t(road, s, static_cast<int>(k) + 1)));
+      for (std::size_t k = 0; k < section.right.size(); ++k)
+        add(surface_point(road, s, lane_centre_t(road, s, -static_cast<int>(k) - 1)));
+    }
+  }
+  std::vector<Vec3> out;
+  out.reserve(clusters.size());
+  for (const Cluster& c : clusters) out.push_back(c.mean());
+  return out;
+}
 
 std::string build_junction_surface(const RoadModel& model, const JunctionModel& junction,
                                    std::vector<JunctionEnd> ends, const std::vector<int>& connecting_roads,
@@ -229,7 +298,8 @@ std::string build_junction_surface(const RoadModel& model, const JunctionModel& 
     std::erase_if(gaps[k].points, [&](const Vec3& p) { return over_end(a, p) || over_end(b, p); });
     if (gaps[k].points.empty()) gaps[k] = along_road_edges(a, b, vertices);
   }
-  std::string failed = triangulate_junction(sorted, gaps, junction.id, mesh);
+  const std::vector<Vec3> interior = junction_interior(model, connecting_roads);
+  std::string failed = triangulate_junction(sorted, gaps, junction.id, mesh, interior);
   if (failed.empty()) return failed;
   // Straight sides (along the roads' edges where a road runs along one; if even that is not a
   // simple outline, plain) for the ends in `order`.
@@ -238,9 +308,10 @@ std::string build_junction_surface(const RoadModel& model, const JunctionModel& 
     if (follow_edges)
       for (std::size_t k = 0; k < order.size(); ++k)
         sides[k] = along_road_edges(order[k], order[(k + 1) % order.size()], vertices);
-    return triangulate_junction(order, sides, junction.id, mesh).empty() ||
+    return triangulate_junction(order, sides, junction.id, mesh, interior).empty() ||
            (follow_edges &&
-            triangulate_junction(order, std::vector<OutlineGap>(order.size()), junction.id, mesh).empty());
+            triangulate_junction(order, std::vector<OutlineGap>(order.size()), junction.id, mesh, interior)
+                .empty());
   };
   // A kerb line that cuts across a neighbouring road end (a sharp fork): straight gaps instead.
   if (straight(sorted, true)) return {};
@@ -286,7 +357,7 @@ OutlineGap along_road_edges(const JunctionEnd& a, const JunctionEnd& b, const st
 }
 
 std::string triangulate_junction(const std::vector<JunctionEnd>& ends, const std::vector<OutlineGap>& gaps,
-                                 int junction_id, MeshBuilder& mesh) {
+                                 int junction_id, MeshBuilder& mesh, const std::vector<Vec3>& interior) {
   // Outline: each end from its right to its left corner, then the gap to the next end.
   std::vector<OutlineVertex> outline;
   for (std::size_t k = 0; k < ends.size(); ++k) {
@@ -335,30 +406,59 @@ std::string triangulate_junction(const std::vector<JunctionEnd>& ends, const std
   mark_nesting(cdt);
   std::vector<std::array<int, 3>> inside;
   double inside_area = 0.0;
-  for (const auto f : cdt.finite_face_handles()) {
-    if (f->info().nesting % 2 != 1) continue;
-    std::array<int, 3> t{};
-    for (int i = 0; i < 3; ++i) t[static_cast<std::size_t>(i)] = f->vertex(i)->info().index;
-    const Vec3& a = outline[static_cast<std::size_t>(t[0])].p;
-    const Vec3& b = outline[static_cast<std::size_t>(t[1])].p;
-    const Vec3& c = outline[static_cast<std::size_t>(t[2])].p;
-    inside_area += 0.5 * ((b.x() - a.x()) * (c.y() - a.y()) - (c.x() - a.x()) * (b.y() - a.y()));
-    inside.push_back(t);
-  }
+  std::vector<Vec3> steiner;  // interior points, vertex index n + k
+  const auto point_of = [&](int index) -> const Vec3& {
+    const auto i = static_cast<std::size_t>(index);
+    return i < n ? outline[i].p : steiner[i - n];
+  };
+  const auto collect = [&] {
+    inside.clear();
+    inside_area = 0.0;
+    for (const auto f : cdt.finite_face_handles()) {
+      if (f->info().nesting % 2 != 1) continue;
+      std::array<int, 3> t{};
+      for (int i = 0; i < 3; ++i) t[static_cast<std::size_t>(i)] = f->vertex(i)->info().index;
+      const Vec3& a = point_of(t[0]);
+      const Vec3& b = point_of(t[1]);
+      const Vec3& c = point_of(t[2]);
+      inside_area += 0.5 * ((b.x() - a.x()) * (c.y() - a.y()) - (c.x() - a.x()) * (b.y() - a.y()));
+      inside.push_back(t);
+    }
+  };
+  collect();
   // A simple polygon of n vertices without Steiner points has exactly n - 2 triangles
   // covering its area; anything else means the outline touches itself.
   if (inside.size() != n - 2 || std::abs(inside_area - area) > 1e-6 * std::max(1.0, area)) {
     return "outline is not a simple polygon (" + std::to_string(inside.size()) + " triangles for " +
            std::to_string(n) + " vertices)";
   }
+  for (const Vec3& p : interior) {
+    const Cdt::Face_handle f = cdt.locate(Cdt::Point(p.x(), p.y()));
+    if (f == nullptr || cdt.is_infinite(f) || f->info().nesting % 2 != 1) continue;
+    if (distance_to_outline(outline, p.head<2>()) < kInteriorClearance) continue;
+    const Cdt::Vertex_handle h = cdt.insert(Cdt::Point(p.x(), p.y()), f);
+    if (h->info().index >= 0) continue;  // at a vertex already there
+    h->info().index = static_cast<int>(n + steiner.size());
+    steiner.push_back(p);
+  }
+  if (!steiner.empty()) {
+    mark_nesting(cdt);
+    collect();
+    if (std::abs(inside_area - area) > 1e-6 * std::max(1.0, area))
+      return "interior points changed the junction's area (" + std::to_string(inside_area) + " m2)";
+  }
   for (OutlineVertex& v : outline) {
     if (v.mesh_index == kNoVertex) v.mesh_index = mesh.add_vertex(v.p, v.p.head<2>());
   }
-  for (const auto& t : inside) {
-    mesh.add_triangle(outline[static_cast<std::size_t>(t[0])].mesh_index,
-                      outline[static_cast<std::size_t>(t[1])].mesh_index,
-                      outline[static_cast<std::size_t>(t[2])].mesh_index, -1 - junction_id);
-  }
+  std::vector<std::uint32_t> steiner_index;
+  steiner_index.reserve(steiner.size());
+  for (const Vec3& p : steiner) steiner_index.push_back(mesh.add_vertex(p, p.head<2>()));
+  const auto index_of = [&](int index) {
+    const auto i = static_cast<std::size_t>(index);
+    return i < n ? outline[i].mesh_index : steiner_index[i - n];
+  };
+  for (const auto& t : inside)
+    mesh.add_triangle(index_of(t[0]), index_of(t[1]), index_of(t[2]), -1 - junction_id);
   return {};
 }
 

@@ -55,9 +55,18 @@ struct OutlineGap {
 /// Triangulates the polygon made of the ends (in counter-clockwise order around the junction)
 /// and the gaps (gaps[k] between ends[k] and ends[k + 1], cyclically) with the ends' edges as
 /// constraints, and appends the triangles (owner -1 - junction_id) and the gap points to `mesh`.
+/// The `interior` points that lie inside the outline, at least 0.3 m from it, are vertices of
+/// the triangulation too (Steiner points carrying the surface's height inside the junction).
 /// Returns an empty string on success, else what is wrong (nothing is added then).
 [[nodiscard]] std::string triangulate_junction(const std::vector<JunctionEnd>& ends,
                                                const std::vector<OutlineGap>& gaps, int junction_id,
-                                               MeshBuilder& mesh);
+                                               MeshBuilder& mesh, const std::vector<Vec3>& interior = {});
+
+/// Points of the junction's surface inside it: every lane centre of its connecting roads
+/// (`connecting_roads`, indices into model.roads) every 2 m, their first and last metre left
+/// out; points of different lanes within 1 m of each other are merged into their mean (where
+/// two turns cross, the surface takes the mean of their heights).
+[[nodiscard]] std::vector<Vec3> junction_interior(const RoadModel& model,
+                                                  const std::vector<int>& connecting_roads);
 
 }  // namespace relief::detail

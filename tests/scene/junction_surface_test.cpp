@@ -58,6 +58,62 @@ TEST(JunctionSurface, CrossingOfFourRoadEndsIsItsOctagon) {
   EXPECT_TRUE(all_facing_up(mesh.mesh));
 }
 
+// The L-shaped outline with interior points: one in the middle of the arm at (7, 2) 0.5 m
+// above the outline's heights is a vertex of the surface (its height kept); one 0.2 m from the
+// outline, one in the notch and one outside are not.
+TEST(JunctionSurface, InteriorPointsInsideTheOutlineAreVerticesOfTheSurface) {
+  MeshBuilder mesh;
+  const std::vector<JunctionEnd> ends{add_end(mesh, 0, {Vec3(0.0, 0.0, 1.0), Vec3(10.0, 0.0, 1.0)}),
+                                      add_end(mesh, 1, {Vec3(4.0, 10.0, 1.0), Vec3(0.0, 10.0, 1.0)})};
+  const std::vector<OutlineGap> gaps{{{Vec3(10.0, 4.0, 1.0), Vec3(4.0, 4.0, 1.0)}, {}}, {}};
+  const std::vector<Vec3> interior{Vec3(7.0, 2.0, 1.5), Vec3(9.8, 2.0, 1.0), Vec3(7.0, 7.0, 1.0),
+                                   Vec3(20.0, 2.0, 1.0)};
+  EXPECT_EQ(triangulate_junction(ends, gaps, 3, mesh, interior), "");
+  ASSERT_EQ(mesh.mesh.vertices.size(), 7u);
+  EXPECT_EQ(mesh.mesh.vertices[6], Vec3(7.0, 2.0, 1.5));
+  EXPECT_EQ(mesh.mesh.triangles.size(), 6u);  // 4 + 2 for the interior vertex
+  double plan_area = 0.0;
+  for (const auto& t : mesh.mesh.triangles) {
+    const Vec3 &a = mesh.mesh.vertices[t[0]], &b = mesh.mesh.vertices[t[1]], &c = mesh.mesh.vertices[t[2]];
+    plan_area += 0.5 * ((b.x() - a.x()) * (c.y() - a.y()) - (c.x() - a.x()) * (b.y() - a.y()));
+  }
+  EXPECT_NEAR(plan_area, 64.0, 1e-9);
+  EXPECT_TRUE(all_facing_up(mesh.mesh));
+}
+
+// Interior points of two crossing connecting roads, one lane each way: every 2 m along each
+// lane centre but for the first and last metre, and where the two roads' lanes come within 1 m
+// of each other, one point at their mean height.
+TEST(JunctionSurface, InteriorPointsFollowTheConnectingRoadsLanesAndMergeWhereTheyCross) {
+  RoadModel model;
+  // Road 0 along x from (-10, 0) at z 1, road 1 along y from (0, -10) at z 2, 20 m each, level.
+  model.roads.push_back(test::straight_road(1, Vec2(-10.0, 0.0), 0.0, 20.0, 1.0, 0.0));
+  model.roads.push_back(test::straight_road(2, Vec2(0.0, -10.0), std::numbers::pi / 2.0, 20.0, 2.0, 0.0));
+  const std::vector<Vec3> points = junction_interior(model, {0, 1});
+  ASSERT_FALSE(points.empty());
+  // Lane centres (the helper's lanes: 3 m on the left, 3.5 m on the right): road 0's at y = 1.5
+  // and -1.75, road 1's at x = -1.5 and 1.75; they cross at four points.
+  std::size_t merged = 0;
+  for (const Vec3& p : points) {
+    const bool lane_x = std::abs(p.y() - 1.5) < 1e-9 || std::abs(p.y() + 1.75) < 1e-9;
+    const bool lane_y = std::abs(p.x() + 1.5) < 1e-9 || std::abs(p.x() - 1.75) < 1e-9;
+    if (lane_x) EXPECT_DOUBLE_EQ(p.z(), 1.0) << p.transpose();
+    if (lane_y) EXPECT_DOUBLE_EQ(p.z(), 2.0) << p.transpose();
+    if (!lane_x && !lane_y) {
+      // A merged point: its mean height, near a crossing.
+      ++merged;
+      EXPECT_GT(p.z(), 1.0);
+      EXPECT_LT(p.z(), 2.0);
+      EXPECT_LT(std::min(std::abs(p.x() + 1.5), std::abs(p.x() - 1.75)), 1.0) << p.transpose();
+      EXPECT_LT(std::min(std::abs(p.y() - 1.5), std::abs(p.y() + 1.75)), 1.0) << p.transpose();
+    }
+    EXPECT_LE(std::abs(p.x()), 9.0 + 1e-9);
+    EXPECT_LE(std::abs(p.y()), 9.0 + 1e-9);
+  }
+  EXPECT_GE(merged, 3u);
+  EXPECT_EQ(points.size() + merged, 40u);  // 2 roads x 2 lanes x 10 stations, one less per merge
+}
+
 TEST(JunctionSurface, EndsWithoutAnEdgeAreNoSurface) {
   MeshBuilder mesh;
   const std::vector<JunctionEnd> ends{add_end(mesh, 0, {Vec3(0.0, 0.0, 0.0)})};
