@@ -3,5 +3,8 @@
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 bash "$root/tools/install-deps.sh"
-cmake -S "$root" -B "$root/build" -G Ninja -DCMAKE_BUILD_TYPE=Release "$@" >/dev/null
+# Compiles through ccache (tools/ccache-env.sh): a rebuild of unchanged sources, in this checkout
+# or another clone on the same machine, takes its objects from the cache.
+source "$root/tools/ccache-env.sh"
+cmake -S "$root" -B "$root/build" -G Ninja -DCMAKE_BUILD_TYPE=Release "${ccache_launcher[@]}" "$@" >/dev/null
 cmake --build "$root/build" -j "$(nproc)"

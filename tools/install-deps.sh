@@ -4,7 +4,7 @@
 set -euo pipefail
 
 packages=(
-  build-essential cmake ninja-build pkg-config
+  build-essential cmake ninja-build pkg-config ccache
   libcgal-dev libeigen3-dev libgmp-dev libmpfr-dev libboost-dev
   libproj-dev proj-data proj-bin
   libosmium2-dev libprotozero-dev libexpat1-dev libbz2-dev zlib1g-dev libdeflate-dev
