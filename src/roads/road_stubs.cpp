@@ -18,11 +18,15 @@ namespace relief::detail {
 namespace {
 
 constexpr double kStraight = 30.0 * std::numbers::pi / 180.0;  // from straight through
+// A stub shorter than this cannot keep a piece of itself clear of the other pavement (the end
+// trims keep 1 m of every road: stray_ends.h); it goes even where it leaves a corner.
+constexpr double kUntrimmable = 1.0;
 
-// The road ends at one node: their half widths and the unit directions they leave it in.
-struct NodeEnds {
-  std::vector<std::pair<double, Vec2>> ends;
-  void add(double half, const Vec2& out) { ends.emplace_back(half, out); }
+// One road end at a node: its road, half width and the unit direction it leaves the node in.
+struct NodeEnd {
+  std::size_t road = 0;
+  double half = 0.0;
+  Vec2 out = Vec2::Zero();
 };
 
 // Leaving the node along `line` (from its first point): the unit direction to the next
@@ -43,43 +47,50 @@ Polyline2 reversed_line(Polyline2 line) {
 }  // namespace
 
 std::size_t drop_stubs(std::vector<Road>& roads, Diagnostics& diagnostics) {
-  std::unordered_map<std::int64_t, NodeEnds> nodes;
-  for (const Road& road : roads) {
+  std::unordered_map<std::int64_t, std::vector<NodeEnd>> nodes;
+  for (std::size_t r = 0; r < roads.size(); ++r) {
+    const Road& road = roads[r];
     const double half = half_width(road);
-    nodes[road.osm_node_ids.front()].add(half, leaving(road.points));
-    nodes[road.osm_node_ids.back()].add(half, leaving(reversed_line(road.points)));
+    nodes[road.osm_node_ids.front()].push_back({r, half, leaving(road.points)});
+    nodes[road.osm_node_ids.back()].push_back({r, half, leaving(reversed_line(road.points))});
   }
-  // Once the stub is gone its other node is a plain road end, a junction of three roads or
-  // more, or a road straight through (within 30 degrees): not two roads at a corner, a bend of
-  // wide roads the stub's junction builds better.
-  const auto no_corner_left = [](const NodeEnds& node, const Vec2& stub_out) {
-    std::vector<Vec2> others;
-    bool skipped = false;
-    for (const auto& [half, out] : node.ends) {
-      if (!skipped && out == stub_out) {
-        skipped = true;
-        continue;
-      }
-      others.push_back(out);
-    }
-    return others.size() != 2 || others[0].dot(others[1]) < -std::cos(kStraight);
+  // Candidates: one dead end, shorter than the pavement at its joined node reaches.
+  std::vector<std::uint8_t> stub(roads.size(), 0);
+  std::vector<double> reach(roads.size(), 0.0), length(roads.size(), 0.0);
+  std::vector<std::int64_t> joined(roads.size(), 0);
+  for (std::size_t r = 0; r < roads.size(); ++r) {
+    const Road& road = roads[r];
+    const bool dead_start = nodes[road.osm_node_ids.front()].size() == 1;
+    const bool dead_end = nodes[road.osm_node_ids.back()].size() == 1;
+    if (dead_start == dead_end) continue;
+    joined[r] = dead_start ? road.osm_node_ids.back() : road.osm_node_ids.front();
+    for (const NodeEnd& e : nodes[joined[r]])
+      if (e.road != r) reach[r] = std::max(reach[r], e.half);
+    reach[r] += half_width(road);
+    length[r] = length_m(road.points);
+    stub[r] = length[r] < reach[r] ? 1 : 0;
+  }
+  // Once the stubs are gone, their joined node must be a plain road end, a junction of three
+  // roads or more, or a road straight through (within 30 degrees): not two roads at a corner, a
+  // bend of wide roads the stubs' junction builds better (then they stay, but for those under
+  // kUntrimmable). Stubs at one node (a junction on a clip box's edge leaves several) are judged
+  // together.
+  const auto no_corner_left = [&](std::int64_t node) {
+    std::vector<Vec2> staying;
+    for (const NodeEnd& e : nodes[node])
+      if (!stub[e.road]) staying.push_back(e.out);
+    return staying.size() != 2 || staying[0].dot(staying[1]) < -std::cos(kStraight);
   };
+  std::vector<std::uint8_t> drop(roads.size(), 0);
+  for (std::size_t r = 0; r < roads.size(); ++r)
+    drop[r] = stub[r] && (length[r] < kUntrimmable || no_corner_left(joined[r])) ? 1 : 0;
+
   std::vector<Road> kept;
   kept.reserve(roads.size());
   std::size_t dropped = 0;
-  for (Road& road : roads) {
-    const NodeEnds& start = nodes[road.osm_node_ids.front()];
-    const NodeEnds& end = nodes[road.osm_node_ids.back()];
-    const bool dead_start = start.ends.size() == 1, dead_end = end.ends.size() == 1;
-    const double half = half_width(road);
-    double reach = 0.0;
-    const NodeEnds& joined = dead_start ? end : start;
-    const Vec2 out = dead_start ? leaving(reversed_line(road.points)) : leaving(road.points);
-    for (const auto& [other_half, other_out] : joined.ends)
-      if (other_out != out) reach = std::max(reach, other_half);
-    reach += half;
-    const double length = length_m(road.points);
-    if (dead_start == dead_end || !(length < reach) || !no_corner_left(joined, out)) {
+  for (std::size_t r = 0; r < roads.size(); ++r) {
+    Road& road = roads[r];
+    if (!drop[r]) {
       road.id = static_cast<int>(kept.size());
       kept.push_back(std::move(road));
       continue;
@@ -89,7 +100,8 @@ std::size_t drop_stubs(std::vector<Road>& roads, Diagnostics& diagnostics) {
     text.precision(3);
     text << "road of OSM way " << road.osm_way_ids.front()
          << (road.attributes.name.empty() ? "" : " (" + road.attributes.name + ")") << " is a dead end "
-         << length << " m long, lying on the roads it leaves (they reach " << reach << " m): it is dropped";
+         << length[r] << " m long, lying on the roads it leaves (they reach " << reach[r]
+         << " m): it is dropped";
     diagnostics.report({Severity::warning, std::string(codes::kNetworkStubDropped), text.str(),
                         road.osm_way_ids.front(), std::nullopt, std::nullopt});
   }

@@ -63,6 +63,26 @@ TEST(RoadStubs, AStubContinuingARoadOrAcrossAStraightRoadIsDropped) {
   EXPECT_EQ(ways(through), (std::vector<std::int64_t>{10, 11}));
 }
 
+TEST(RoadStubs, StubsSharingANodeAreDroppedTogether) {
+  // A clip box's edge beside a junction: a one-way's 1.1 m piece and a service road's 1.5 m
+  // piece end there with one long road; each alone would leave the other and the long road at a
+  // corner, together they leave a plain road end. At a corner of two long roads they stay.
+  std::vector<Road> edge = {road({{0, 0}, {-100, 0}}, 1, 2, 10), road({{0, 0}, {1.1, 0.1}}, 1, 8, 11),
+                            road({{0, 0}, {0.4, 1.4}}, 1, 9, 12)};
+  Diagnostics d;
+  EXPECT_EQ(detail::drop_stubs(edge, d), 2u);
+  EXPECT_EQ(ways(edge), (std::vector<std::int64_t>{10}));
+  std::vector<Road> corner = {road({{0, 0}, {-100, 0}}, 1, 2, 10), road({{0, 0}, {0, -100}}, 1, 3, 11),
+                              road({{0, 0}, {1.1, 0.1}}, 1, 8, 12), road({{0, 0}, {0.4, 1.4}}, 1, 9, 13)};
+  EXPECT_EQ(detail::drop_stubs(corner, d), 0u);
+  // Under 1 m (Portland's Myrtle Street and 19th Avenue cut at a box's edge, 0.5 and 0.19 m):
+  // no trim can keep them clear, they go even at a corner.
+  std::vector<Road> tiny = {road({{0, 0}, {-100, 0}}, 1, 2, 10), road({{0, 0}, {0, -100}}, 1, 3, 11),
+                            road({{0, 0}, {0.5, 0.0}}, 1, 8, 12), road({{0, 0}, {0.0, 0.19}}, 1, 9, 13)};
+  EXPECT_EQ(detail::drop_stubs(tiny, d), 2u);
+  EXPECT_EQ(ways(tiny), (std::vector<std::int64_t>{10, 11}));
+}
+
 TEST(RoadStubs, LongerDeadEndsCornersAndLoneRoadsStay) {
   Diagnostics d;
   // 6.1 m: its pavement reaches past the others' 6 m.
