@@ -71,19 +71,27 @@ std::size_t drop_stubs(std::vector<Road>& roads, Diagnostics& diagnostics) {
     stub[r] = length[r] < reach[r] ? 1 : 0;
   }
   // Once the stubs are gone, their joined node must be a plain road end, a junction of three
-  // roads or more, or a road straight through (within 30 degrees): not two roads at a corner, a
-  // bend of wide roads the stubs' junction builds better (then they stay, but for those under
-  // kUntrimmable). Stubs at one node (a junction on a clip box's edge leaves several) are judged
-  // together.
+  // roads or more, or a road straight through (within 30 degrees). Where the roads that stay
+  // make a corner instead (a bend of wide roads, which a junction builds better), the longest
+  // stub stays to keep the junction, unless it is under kUntrimmable; the others go. Stubs at
+  // one node (a junction on a clip box's edge leaves several) are judged together.
   const auto no_corner_left = [&](std::int64_t node) {
     std::vector<Vec2> staying;
     for (const NodeEnd& e : nodes[node])
       if (!stub[e.road]) staying.push_back(e.out);
     return staying.size() != 2 || staying[0].dot(staying[1]) < -std::cos(kStraight);
   };
-  std::vector<std::uint8_t> drop(roads.size(), 0);
+  std::unordered_map<std::int64_t, std::vector<std::size_t>> stubs_at;
   for (std::size_t r = 0; r < roads.size(); ++r)
-    drop[r] = stub[r] && (length[r] < kUntrimmable || no_corner_left(joined[r])) ? 1 : 0;
+    if (stub[r]) stubs_at[joined[r]].push_back(r);
+  std::vector<std::uint8_t> drop = stub;
+  for (const auto& [node, at] : stubs_at) {
+    if (no_corner_left(node)) continue;
+    const auto longest = std::max_element(at.begin(), at.end(), [&](std::size_t a, std::size_t b) {
+      return length[a] < length[b] || (length[a] == length[b] && a > b);
+    });
+    if (length[*longest] >= kUntrimmable) drop[*longest] = 0;
+  }
 
   std::vector<Road> kept;
   kept.reserve(roads.size());

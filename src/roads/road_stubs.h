@@ -15,12 +15,12 @@ namespace relief::detail {
 
 /// Drops every road with one dead end (an end node no other road ends at) whose other end
 /// joins other roads, when the road is shorter than its own half width plus the widest half
-/// width of the others there (its pavement cannot reach past theirs), unless that node would be
-/// left with two roads at a corner once every such stub there is gone (more than 30 degrees from
-/// straight through: a bend of wide roads, which the stub's junction builds better; then the
-/// node's stubs stay, but for those under 1 m, which no end trim can clear). Runs before the junctions
-/// are built (ends are matched by their OSM node ids); renumbers the kept roads' ids in order.
-/// Each drop is reported (codes::kNetworkStubDropped, a warning). Returns the number dropped.
+/// width of the others there (its pavement cannot reach past theirs). Where the roads that stay
+/// at that node would make a corner once all its stubs are gone (more than 30 degrees from
+/// straight through: a bend of wide roads, which a junction builds better), the longest stub
+/// stays, unless it is under 1 m (no end trim can clear it). Runs before the junctions are built
+/// (ends are matched by their OSM node ids); renumbers the kept roads' ids in order. Each drop
+/// is reported (codes::kNetworkStubDropped, a warning). Returns the number dropped.
 std::size_t drop_stubs(std::vector<Road>& roads, Diagnostics& diagnostics);
 
 }  // namespace relief::detail

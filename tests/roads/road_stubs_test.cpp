@@ -72,9 +72,12 @@ TEST(RoadStubs, StubsSharingANodeAreDroppedTogether) {
   Diagnostics d;
   EXPECT_EQ(detail::drop_stubs(edge, d), 2u);
   EXPECT_EQ(ways(edge), (std::vector<std::int64_t>{10}));
+  // At a corner of two long roads the longest stub stays, to keep the junction; the other goes
+  // (Portland: two service roads cut 2.9 and 3.2 m past a corner by a box's edge).
   std::vector<Road> corner = {road({{0, 0}, {-100, 0}}, 1, 2, 10), road({{0, 0}, {0, -100}}, 1, 3, 11),
-                              road({{0, 0}, {1.1, 0.1}}, 1, 8, 12), road({{0, 0}, {0.4, 1.4}}, 1, 9, 13)};
-  EXPECT_EQ(detail::drop_stubs(corner, d), 0u);
+                              road({{0, 0}, {2.9, 0.1}}, 1, 8, 12), road({{0, 0}, {0.4, 3.2}}, 1, 9, 13)};
+  EXPECT_EQ(detail::drop_stubs(corner, d), 1u);
+  EXPECT_EQ(ways(corner), (std::vector<std::int64_t>{10, 11, 13}));
   // Under 1 m (Portland's Myrtle Street and 19th Avenue cut at a box's edge, 0.5 and 0.19 m):
   // no trim can keep them clear, they go even at a corner.
   std::vector<Road> tiny = {road({{0, 0}, {-100, 0}}, 1, 2, 10), road({{0, 0}, {0, -100}}, 1, 3, 11),
