@@ -325,6 +325,12 @@ for bad in nan inf 0 -1; do
   check "--spacing $bad" run 2 "" build --osm "$fix/hill.osm" --dem "$fix/hill_dem.asc" --out "$RELIEF_TMP/x" --spacing="$bad"
   check "--spacing $bad message" stderr_has "not a finite number > 0"
 done
+# --fit-trace: the fit solver's progress in a file; a file that cannot be written is bad usage.
+out="$RELIEF_TMP/fit_trace"
+check "fit trace" run 0 "$out" build --osm "$fix/hill.osm" --dem "$fix/hill_dem.asc" --out "$out" --outputs report --fit-trace "$RELIEF_TMP/fit_trace.txt"
+check "fit trace has the iterations" grep -q "^iteration 0 rows" "$RELIEF_TMP/fit_trace.txt"
+check "fit trace unwritable" run 2 "" build --osm "$fix/hill.osm" --dem "$fix/hill_dem.asc" --out "$RELIEF_TMP/x" --fit-trace /nonexistent/dir/trace.txt
+check "fit trace unwritable message" stderr_has "--fit-trace: cannot write"
 for bad in "ground_holes=nan" "ground_holes" "no_such_gate=1"; do
   check "--gate $bad" run 2 "" build --osm "$fix/hill.osm" --dem "$fix/hill_dem.asc" --out "$RELIEF_TMP/x" --gate "$bad"
 done

@@ -1,4 +1,5 @@
 // `relief build`: parse, call relief::build, print the summary.
+#include <fstream>
 #include <iostream>
 #include <map>
 #include <memory>
@@ -9,6 +10,7 @@
 #include "commands.h"
 #include "console.h"
 #include "options.h"
+#include "relief/core/errors.h"
 #include "relief/pipeline/build.h"
 #include "relief/pipeline/option_text.h"
 
@@ -20,6 +22,7 @@ namespace {
 struct BuildCommandArgs {
   BuildOptions options;
   bool quiet = false;
+  std::string fit_trace;  ///< file for the profile fit solver's progress, or empty
   std::string gate_mode = "enforce";
 };
 
@@ -80,6 +83,9 @@ Runner add_build_command(CLI::App& app) {
          "(report.html), or all")
       ->default_str(o.outputs == parse_outputs("all") ? "all" : list_text(o.outputs));
   cmd->add_flag("-q,--quiet", args->quiet, "print only errors and the summary");
+  cmd->add_option("--fit-trace", args->fit_trace,
+                  "write the profile fit solver's progress (its start, each iteration's residuals, step and "
+                  "barrier) to this file, to see why a fit is slow or does not converge");
   add_enum_option(*cmd, "--profiles", o.profile_method, &parse_profile_method, "one of relief, paper, raw",
                   "road profiles the outputs carry: relief (network-wide constrained fit), paper (the seed "
                   "paper's 3-point moving average), raw (DEM drape)");
@@ -184,6 +190,12 @@ Runner add_build_command(CLI::App& app) {
     return run_reporting_errors([&] {
       Diagnostics diagnostics;
       print_diagnostics_live(diagnostics, args->quiet);
+      std::shared_ptr<std::ofstream> trace;
+      if (!args->fit_trace.empty()) {
+        trace = std::make_shared<std::ofstream>(args->fit_trace);
+        if (!*trace) throw OptionError("--fit-trace: cannot write '" + args->fit_trace + "'");
+        args->options.fit.trace = [trace](const std::string& line) { *trace << line << '\n'; };
+      }
       const BuildResult result = build(args->options, diagnostics, stderr_progress(args->quiet));
       if (!args->quiet) print_diagnostics_summary(diagnostics);
       std::cout << format_build_summary(result);
