@@ -140,7 +140,8 @@ std::vector<Gate> evaluate_gates(const RunReport& r, const GateThresholds& t) {
       at_most("road_self_intersections", static_cast<double>(r.mesh->road->self_intersecting_pairs),
               t.road_self_intersections, where);
     }
-    at_most("junctions_open", static_cast<double>(r.mesh->junctions_failed), t.junctions_open);
+    at_most("junctions_open", static_cast<double>(r.mesh->junctions_failed), t.junctions_open,
+            r.mesh->first_failed_junction);
     at_most("ground_holes", static_cast<double>(r.mesh->ground_holes), t.ground_holes);
   }
   return gates;

@@ -21,6 +21,7 @@ MeshSummary write_mesh_outputs(const MeshStageInput& in, OutputSet& files, Stage
   MeshSummary summary;
   summary.junctions_meshed = built.stats.junctions_meshed;
   summary.junctions_failed = built.stats.junctions_failed;
+  summary.first_failed_junction = built.stats.first_failed_junction;
   summary.xodr_surface_max_distance_m = built.stats.xodr_surface_max_distance_m;
   summary.seam_road_junction_m = built.stats.seam_road_junction_m;
   summary.deck_triangles_on_ground = built.stats.deck_triangles_on_ground;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <optional>
 #include <string>
 #include <unordered_map>
@@ -274,15 +275,26 @@ RoadMeshes build_road_meshes(const RoadModel& model, const RoadMeshOptions& opti
       ends.push_back(std::move(e));
     }
     const JunctionModel& junction = model.junctions[j];
+    // Where it is: the mean of its road ends' edge vertices.
+    Vec3 centre = Vec3::Zero();
+    std::size_t corners = 0;
+    for (const JunctionEnd& e : ends) {
+      for (const std::uint32_t v : e.vertices) centre += road.mesh.vertices[v];
+      corners += e.vertices.size();
+    }
+    if (corners > 0) centre /= static_cast<double>(corners);
     const std::string problem =
         detail::build_junction_surface(model, junction, std::move(ends), connecting[j], options, road);
     if (problem.empty()) {
       ++out.junctions_meshed;
     } else {
       ++out.junctions_failed;
-      diagnostics.report(
-          Severity::warning, codes::kMeshJunctionFailed,
-          "junction " + std::to_string(junction.id) + ": " + problem + "; its area is left open");
+      char at[96];
+      std::snprintf(at, sizeof at, " at (%.1f, %.1f, %.2f)", centre.x(), centre.y(), centre.z());
+      const std::string place = "junction " + std::to_string(junction.id) + (corners > 0 ? at : "");
+      if (out.first_failed_junction.empty()) out.first_failed_junction = place;
+      diagnostics.report(Severity::warning, codes::kMeshJunctionFailed,
+                         place + ": " + problem + "; its area is left open");
     }
   }
 

@@ -107,6 +107,7 @@ Scene build_scene(const RoadModel& model, const RoadNetwork& network, const DemS
   const RoadMeshes& roads = scene.roads;
   scene.stats.junctions_meshed = roads.junctions_meshed;
   scene.stats.junctions_failed = roads.junctions_failed;
+  scene.stats.first_failed_junction = roads.first_failed_junction;
   scene.stats.xodr_surface_max_distance_m = roads.max_surface_deviation_m;
 
   // Junction patches share the road-end vertices: the seam gap measures that they do.

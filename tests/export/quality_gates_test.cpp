@@ -63,6 +63,7 @@ TEST(QualityGates, EachFailureIsNamedWithItsValueThresholdAndPlace) {
   r.sumo->first_step_lane = ":J3_0_0";
   r.mesh->road->self_intersecting_pairs = 4;
   r.mesh->junctions_failed = 1;
+  r.mesh->first_failed_junction = "junction 167 at (1369.2, -779.5, 161.92)";
   r.model_grades->connecting_roads.max_excess_percent = 26.0;
   r.model_grades->connecting_roads.worst_road = 1550;
   const std::vector<Gate> failed = failed_gates(evaluate_gates(r, {}));
@@ -79,6 +80,7 @@ TEST(QualityGates, EachFailureIsNamedWithItsValueThresholdAndPlace) {
   EXPECT_NE(gate(failed, "sumo_height_steps").where.find(":J3_0_0"), std::string::npos);
   EXPECT_NE(gate(failed, "connecting_road_grade_over_cap_percent").where.find("road 1550"),
             std::string::npos);
+  EXPECT_EQ(gate(failed, "junctions_open").where, "junction 167 at (1369.2, -779.5, 161.92)");
 }
 
 TEST(QualityGates, ThresholdsAreSetByName) {

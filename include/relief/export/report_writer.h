@@ -146,6 +146,7 @@ struct MeshSummary {
   double tile_size_m = 0.0;        ///< 0: no tiles written
   std::vector<std::string> tile_files;
   std::size_t junctions_meshed = 0, junctions_failed = 0;
+  std::string first_failed_junction;         ///< "junction J at (x, y, z)"; empty if none failed
   double xodr_surface_max_distance_m = 0.0;  ///< road mesh vs the OpenDRIVE surface
   double seam_road_junction_m = 0.0;
   std::optional<double> seam_road_terrain_m;

@@ -6,6 +6,7 @@
 
 #include <cstdint>
 #include <set>
+#include <string>
 #include <vector>
 
 #include "relief/core/diagnostics.h"
@@ -31,6 +32,7 @@ struct RoadMeshes {
   std::vector<int> road_triangle_owner;
   std::size_t junctions_meshed = 0;
   std::size_t junctions_failed = 0;      ///< reported as "mesh.junction_failed"; their area is left open
+  std::string first_failed_junction;     ///< "junction J at (x, y, z)" of the first failed; empty if none
   double max_surface_deviation_m = 0.0;  ///< largest measured mesh-to-S(road, s, t) distance on roads
 };
 

@@ -9,6 +9,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <optional>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -54,6 +55,7 @@ struct SceneChecks {
 /// Figures of the build itself (the checks are in SceneChecks).
 struct SceneStats {
   std::size_t junctions_meshed = 0, junctions_failed = 0;
+  std::string first_failed_junction;         ///< "junction J at (x, y, z)"; empty if none failed
   double xodr_surface_max_distance_m = 0.0;  ///< road mesh vs the OpenDRIVE surface S(road, s, t)
   double seam_road_junction_m = 0.0;         ///< widest gap between lofted lanes and junction patches
   /// Structure triangles meshed as roads on the ground: decks within 1 m above the DEM (or
