@@ -16,6 +16,7 @@
 #include <limits>
 #include <map>
 #include <set>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -263,6 +264,27 @@ TEST(Corpus, MountainAt90m) {
 }
 TEST(Corpus, MountainAt1m) {
   check_mountain(1.0, {});
+}
+
+// Two mountains side by side (the generator of the scale benchmark, bench/mountain_range.sh):
+// the terrain joins without a step, the valley link joins the two networks, and the build is as
+// sound as one mountain's.
+TEST(Corpus, MountainRangeOfTwo) {
+  const auto dir = test::scratch_dir("mountain_range");
+  const test::CorpusCase one = test::make_mountain(30.0, dir);
+  const test::CorpusCase c = test::make_mountain_range(2, 30.0, dir);
+  EXPECT_EQ(c.ways, 2 * one.ways + 1);
+  EXPECT_NEAR(c.road_km, 2.0 * one.road_km + 0.4, 1e-9);
+  EXPECT_EQ(c.void_centres.size(), 2 * one.void_centres.size());
+  double step = 0.0;  // across the seam at x = 2400, over the DEM's whole height
+  for (double y = -2250.0; y <= 5050.0; y += 10.0)
+    step = std::max(step, std::abs(c.ground(Vec2(2400.01, y)) - c.ground(Vec2(2399.99, y))));
+  EXPECT_LT(step, 0.01);
+  EXPECT_THROW((void)test::make_mountain_range(0, 30.0, dir), std::invalid_argument);
+
+  const Built b = build_case(c, dir);
+  expect_sound_build(b, {});
+  EXPECT_NEAR(b.report.network.length_km, c.road_km, 0.05 * c.road_km);
 }
 
 TEST(Corpus, OldTownOnASteepCoast) {

@@ -176,8 +176,11 @@ class OsmWriter {
 
   OsmWriter() : frame_(synthetic_frame()), to_wgs84_(frame_.crs(), "EPSG:4326") {}
 
+  // Every node written is shifted by this (copies of a world side by side).
+  void set_offset(const Vec2& offset) { offset_ = offset; }
+
   std::int64_t node(const Vec2& p) {
-    const Vec2 ll = to_wgs84_.apply(frame_.to_crs(p));
+    const Vec2 ll = to_wgs84_.apply(frame_.to_crs(p + offset_));
     nodes_.push_back({next_node_, ll.y(), ll.x()});
     return next_node_++;
   }
@@ -257,6 +260,7 @@ class OsmWriter {
 
   GeoFrame frame_;
   CrsTransform to_wgs84_;
+  Vec2 offset_ = Vec2::Zero();
   std::vector<Node> nodes_;
   std::vector<Way> ways_;
   std::int64_t next_node_ = 1, next_way_ = 1;
@@ -420,177 +424,189 @@ Polyline2 slice(const Polyline2& line, std::size_t from, std::size_t to) {
                    line.begin() + static_cast<std::ptrdiff_t>(to) + 1);
 }
 
+// The valley road's two end nodes: where copies of the mountain side by side are linked.
+struct ValleyEnds {
+  std::int64_t west = 0, east = 0;
+};
+constexpr double kValleyWest = -900.0, kValleyEast = 2200.0, kValleyY = -300.0;
+
+// Writes one mountain into `osm` (at its offset) and sets w's features (way ids of this copy),
+// road beds and voids (in the mountain's own frame).
+ValleyEnds add_mountain(OsmWriter& osm, MountainWorld& w) {
+  MountainFeatures& f = w.features;
+  const Trunk& trunk = mountain_trunk();
+  f.crest_m = mountain_natural(Vec2(0.0, 2400.0));
+  f.trunk_design_grade = kTrunkGrade;
+  f.trunk_climb_m = trunk.climb;
+  f.loop_crossing = trunk.crossing;
+  f.loop_design_clearance_m = trunk.crossing_clearance;
+  double sum = 0.0;
+  std::size_t count = 0;
+  for (std::size_t i = 0; i < trunk.line.size(); ++i) {
+    if (i > trunk.loop_start && i < trunk.loop_end) continue;
+    const double d = trunk.z[i] - mountain_natural(trunk.line[i]);
+    sum += d * d;
+    ++count;
+    f.trunk_cut_fill_max_m = std::max(f.trunk_cut_fill_max_m, std::abs(d));
+  }
+  f.trunk_cut_fill_rms_m = std::sqrt(sum / static_cast<double>(count));
+
+  // The valley road along the plain, with the trunk's and the viaduct's junctions.
+  const std::int64_t valley_west = osm.node(Vec2(kValleyWest, kValleyY));
+  std::vector<std::int64_t> trunk_ids = osm.nodes(trunk.line);
+  const std::int64_t valley_east = osm.node(Vec2(kValleyEast, kValleyY));
+  Polyline2 valley_line = straight_line(Vec2(kValleyWest, kValleyY), Vec2(kValleyEast, kValleyY), 100.0);
+  std::vector<std::int64_t> valley_ids;
+  std::int64_t viaduct_top = 0;
+  for (const Vec2& p : valley_line) {
+    if (p.x() == kValleyWest) {
+      valley_ids.push_back(valley_west);
+    } else if (p.x() == kValleyEast) {
+      valley_ids.push_back(valley_east);
+    } else if (std::abs(p.x()) < 1e-6) {
+      valley_ids.push_back(trunk_ids.front());
+    } else {
+      valley_ids.push_back(osm.node(p));
+      if (std::abs(p.x() - kTunnelX) < 1e-6) viaduct_top = valley_ids.back();
+    }
+  }
+  osm.way(valley_ids, {{"highway", "secondary"}, {"name", "Valley Road"}}, valley_line);
+  w.beds.add(valley_line, std::vector<double>(valley_line.size(), 300.0));
+
+  // The trunk: to the loop, the loop's bridge, the climb.
+  const auto ids = [&](std::size_t a, std::size_t b) {
+    return std::vector<std::int64_t>(trunk_ids.begin() + static_cast<std::ptrdiff_t>(a),
+                                     trunk_ids.begin() + static_cast<std::ptrdiff_t>(b) + 1);
+  };
+  const OsmWriter::Tags trunk_tags{{"highway", "trunk"}, {"name", "Pass Road"}, {"lanes", "2"}};
+  OsmWriter::Tags bridge_tags = trunk_tags;
+  bridge_tags.insert(bridge_tags.end(), {{"bridge", "yes"}, {"layer", "1"}});
+  const std::size_t last = trunk.line.size() - 1;
+  f.trunk.way_ids.push_back(
+      osm.way(ids(0, trunk.loop_start), trunk_tags, slice(trunk.line, 0, trunk.loop_start)));
+  f.loop_bridge_way = osm.way(ids(trunk.loop_start, trunk.loop_end), bridge_tags,
+                              slice(trunk.line, trunk.loop_start, trunk.loop_end));
+  f.trunk.way_ids.push_back(f.loop_bridge_way);
+  f.trunk.way_ids.push_back(
+      osm.way(ids(trunk.loop_end, last), trunk_tags, slice(trunk.line, trunk.loop_end, last)));
+  f.trunk.centreline = trunk.line;
+  w.beds.add(slice(trunk.line, 0, trunk.loop_start),
+             std::vector<double>(trunk.z.begin(),
+                                 trunk.z.begin() + static_cast<std::ptrdiff_t>(trunk.loop_start) + 1));
+  w.beds.add(
+      slice(trunk.line, trunk.loop_end, last),
+      std::vector<double>(trunk.z.begin() + static_cast<std::ptrdiff_t>(trunk.loop_end), trunk.z.end()));
+
+  // The road along the contour from the east hairpin nearest 560 m to the tunnel's south portal.
+  std::size_t apex = trunk.east_apexes.front();
+  for (const std::size_t a : trunk.east_apexes)
+    if (std::abs(trunk.z[a] - 560.0) < std::abs(trunk.z[apex] - 560.0)) apex = a;
+  const double z_tunnel = trunk.z[apex];
+  const double y_south = bisect([&](double y) { return mountain_profile()(y) - z_tunnel; }, 0.0, 2400.0);
+  const Vec2 south_portal(kTunnelX, y_south);
+  Polyline2 contour{trunk.line[apex]};
+  for (const Vec2& p : straight_line(trunk.line[apex] + Vec2(60.0, 0.0), south_portal, 50.0))
+    contour.push_back(p);
+  std::vector<std::int64_t> contour_ids{trunk_ids[apex]};
+  for (std::size_t i = 1; i < contour.size(); ++i) contour_ids.push_back(osm.node(contour[i]));
+  osm.way(contour_ids, {{"highway", "secondary"}, {"name", "Portal Road"}}, contour);
+  w.beds.add(contour, std::vector<double>(contour.size(), z_tunnel));
+
+  // The base tunnel: north, rising at 0.5 %, a junction under the crest, a side branch to a
+  // portal of its own on the north flank (both portals short of the apron's roundabout).
+  const auto tunnel_z = [&](double y) { return z_tunnel + kTunnelRise * (y - y_south); };
+  const double y_north =
+      bisect([&](double y) { return mountain_profile()(y) - tunnel_z(y); }, 2400.0, 5000.0);
+  const Vec2 inner(kTunnelX, 2400.0);
+  const Vec2 north_portal(kTunnelX, y_north);
+  const double z_inner = tunnel_z(2400.0);
+  const double y_branch = bisect([&](double y) { return mountain_profile()(y) - z_inner; }, 2400.0, 5000.0);
+  const Vec2 branch_portal(2050.0, y_branch);
+  const OsmWriter::Tags tunnel_tags{
+      {"highway", "primary"}, {"tunnel", "yes"}, {"layer", "-1"}, {"name", "Base Tunnel"}};
+  const Polyline2 south_half = straight_line(south_portal, inner, 100.0);
+  const Polyline2 north_half = straight_line(inner, north_portal, 100.0);
+  Polyline2 branch = straight_line(inner, Vec2(1800.0, 2520.0), 100.0);
+  for (const Vec2& p : straight_line(Vec2(1800.0, 2520.0), branch_portal, 100.0)) {
+    if (p != branch.back()) branch.push_back(p);
+  }
+  std::vector<std::int64_t> south_ids = osm.nodes(south_half);
+  south_ids.front() = contour_ids.back();
+  std::vector<std::int64_t> north_ids = osm.nodes(north_half);
+  north_ids.front() = south_ids.back();
+  std::vector<std::int64_t> branch_ids = osm.nodes(branch);
+  branch_ids.front() = south_ids.back();
+  f.tunnel_ways.push_back(osm.way(south_ids, tunnel_tags, south_half));
+  f.tunnel_ways.push_back(osm.way(north_ids, tunnel_tags, north_half));
+  OsmWriter::Tags branch_tags = tunnel_tags;
+  branch_tags.back().second = "Base Tunnel Branch";
+  f.tunnel_ways.push_back(osm.way(branch_ids, branch_tags, branch));
+  f.tunnel_portals = {south_portal, north_portal, branch_portal};
+
+  // The roundabout on the 12 % apron and its four arms.
+  f.roundabout_centre = Vec2(kTunnelX, 4500.0);
+  f.roundabout_radius_m = 25.0;
+  f.roundabout_slope = 0.12;
+  Polyline2 ring;
+  for (int k = 0; k <= 16; ++k) {
+    const double a = 2.0 * kPi * k / 16.0;
+    ring.push_back(f.roundabout_centre + f.roundabout_radius_m * Vec2(std::cos(a), std::sin(a)));
+  }
+  std::vector<std::int64_t> ring_ids = osm.nodes(Polyline2(ring.begin(), ring.end() - 1));
+  ring_ids.push_back(ring_ids.front());
+  osm.way(ring_ids, {{"highway", "secondary"}, {"junction", "roundabout"}, {"oneway", "yes"}}, ring);
+  const std::int64_t ring_east = ring_ids[0], ring_north = ring_ids[4], ring_west = ring_ids[8],
+                     ring_south = ring_ids[12];
+  const auto arm = [&](const Polyline2& line, std::int64_t first, std::int64_t last_id) {
+    std::vector<std::int64_t> arm_ids = osm.nodes(line);
+    if (first != 0) arm_ids.front() = first;
+    if (last_id != 0) arm_ids.back() = last_id;
+    osm.way(arm_ids, {{"highway", "secondary"}}, line);
+  };
+  arm(straight_line(north_portal, ring[12], 50.0), north_ids.back(), ring_south);
+  arm(straight_line(ring[4], ring[4] + Vec2(0.0, 350.0), 50.0), ring_north, 0);
+  arm(straight_line(ring[8], ring[8] - Vec2(400.0, 0.0), 50.0), ring_west, 0);
+  Polyline2 east_arm = straight_line(branch_portal, Vec2(branch_portal.x(), 4500.0), 50.0);
+  for (const Vec2& p : straight_line(Vec2(branch_portal.x(), 4500.0), ring[0], 50.0)) {
+    if (p != east_arm.back()) east_arm.push_back(p);
+  }
+  arm(east_arm, branch_ids.back(), ring_east);
+
+  // The viaduct: south across the valley, a bridge between its rims.
+  f.viaduct_abutment_south = Vec2(kTunnelX, -1560.0);
+  f.viaduct_abutment_north = Vec2(kTunnelX, -540.0);
+  const Polyline2 approach = straight_line(Vec2(kTunnelX, -2050.0), f.viaduct_abutment_south, 50.0);
+  const Polyline2 deck = straight_line(f.viaduct_abutment_south, f.viaduct_abutment_north, 60.0);
+  const Polyline2 ramp = straight_line(f.viaduct_abutment_north, Vec2(kTunnelX, -300.0), 60.0);
+  std::vector<std::int64_t> approach_ids = osm.nodes(approach);
+  std::vector<std::int64_t> deck_ids = osm.nodes(deck);
+  deck_ids.front() = approach_ids.back();
+  std::vector<std::int64_t> ramp_ids = osm.nodes(ramp);
+  ramp_ids.front() = deck_ids.back();
+  ramp_ids.back() = viaduct_top;
+  const OsmWriter::Tags viaduct_tags{{"highway", "primary"}, {"name", "Valley Viaduct"}};
+  OsmWriter::Tags deck_tags = viaduct_tags;
+  deck_tags.insert(deck_tags.end(), {{"bridge", "yes"}, {"layer", "1"}});
+  osm.way(approach_ids, viaduct_tags, approach);
+  f.viaduct_way = osm.way(deck_ids, deck_tags, deck);
+  osm.way(ramp_ids, viaduct_tags, ramp);
+
+  // Voids of 24..100 m: on a trunk leg, on the valley road, under the viaduct, on the
+  // roundabout's west arm, on the crest over the tunnel.
+  const std::vector<double> s = arc_lengths(trunk.line);
+  std::size_t on_leg = 0;
+  while (s[on_leg] < 0.4 * s.back()) ++on_leg;
+  w.void_centres = {trunk.line[on_leg], Vec2(-500.0, -300.0), Vec2(kTunnelX, -1050.0), Vec2(1250.0, 4500.0),
+                    Vec2(kTunnelX, 2400.0)};
+  w.void_radii = {30.0, 12.0, 50.0, 20.0, 40.0};
+  return {valley_west, valley_east};
+}
+
 const MountainWorld& mountain_world() {
   static const MountainWorld world = [] {
     MountainWorld w;
-    MountainFeatures& f = w.features;
     OsmWriter osm;
-    const Trunk& trunk = mountain_trunk();
-    f.crest_m = mountain_natural(Vec2(0.0, 2400.0));
-    f.trunk_design_grade = kTrunkGrade;
-    f.trunk_climb_m = trunk.climb;
-    f.loop_crossing = trunk.crossing;
-    f.loop_design_clearance_m = trunk.crossing_clearance;
-    double sum = 0.0;
-    std::size_t count = 0;
-    for (std::size_t i = 0; i < trunk.line.size(); ++i) {
-      if (i > trunk.loop_start && i < trunk.loop_end) continue;
-      const double d = trunk.z[i] - mountain_natural(trunk.line[i]);
-      sum += d * d;
-      ++count;
-      f.trunk_cut_fill_max_m = std::max(f.trunk_cut_fill_max_m, std::abs(d));
-    }
-    f.trunk_cut_fill_rms_m = std::sqrt(sum / static_cast<double>(count));
-
-    // The valley road along the plain, with the trunk's and the viaduct's junctions.
-    const std::int64_t valley_west = osm.node(Vec2(-900.0, -300.0));
-    std::vector<std::int64_t> trunk_ids = osm.nodes(trunk.line);
-    const std::int64_t valley_east = osm.node(Vec2(2200.0, -300.0));
-    Polyline2 valley_line = straight_line(Vec2(-900.0, -300.0), Vec2(2200.0, -300.0), 100.0);
-    std::vector<std::int64_t> valley_ids;
-    std::int64_t viaduct_top = 0;
-    for (const Vec2& p : valley_line) {
-      if (p.x() == -900.0) {
-        valley_ids.push_back(valley_west);
-      } else if (p.x() == 2200.0) {
-        valley_ids.push_back(valley_east);
-      } else if (std::abs(p.x()) < 1e-6) {
-        valley_ids.push_back(trunk_ids.front());
-      } else {
-        valley_ids.push_back(osm.node(p));
-        if (std::abs(p.x() - kTunnelX) < 1e-6) viaduct_top = valley_ids.back();
-      }
-    }
-    osm.way(valley_ids, {{"highway", "secondary"}, {"name", "Valley Road"}}, valley_line);
-    w.beds.add(valley_line, std::vector<double>(valley_line.size(), 300.0));
-
-    // The trunk: to the loop, the loop's bridge, the climb.
-    const auto ids = [&](std::size_t a, std::size_t b) {
-      return std::vector<std::int64_t>(trunk_ids.begin() + static_cast<std::ptrdiff_t>(a),
-                                       trunk_ids.begin() + static_cast<std::ptrdiff_t>(b) + 1);
-    };
-    const OsmWriter::Tags trunk_tags{{"highway", "trunk"}, {"name", "Pass Road"}, {"lanes", "2"}};
-    OsmWriter::Tags bridge_tags = trunk_tags;
-    bridge_tags.insert(bridge_tags.end(), {{"bridge", "yes"}, {"layer", "1"}});
-    const std::size_t last = trunk.line.size() - 1;
-    f.trunk.way_ids.push_back(
-        osm.way(ids(0, trunk.loop_start), trunk_tags, slice(trunk.line, 0, trunk.loop_start)));
-    f.loop_bridge_way = osm.way(ids(trunk.loop_start, trunk.loop_end), bridge_tags,
-                                slice(trunk.line, trunk.loop_start, trunk.loop_end));
-    f.trunk.way_ids.push_back(f.loop_bridge_way);
-    f.trunk.way_ids.push_back(
-        osm.way(ids(trunk.loop_end, last), trunk_tags, slice(trunk.line, trunk.loop_end, last)));
-    f.trunk.centreline = trunk.line;
-    w.beds.add(slice(trunk.line, 0, trunk.loop_start),
-               std::vector<double>(trunk.z.begin(),
-                                   trunk.z.begin() + static_cast<std::ptrdiff_t>(trunk.loop_start) + 1));
-    w.beds.add(
-        slice(trunk.line, trunk.loop_end, last),
-        std::vector<double>(trunk.z.begin() + static_cast<std::ptrdiff_t>(trunk.loop_end), trunk.z.end()));
-
-    // The road along the contour from the east hairpin nearest 560 m to the tunnel's south portal.
-    std::size_t apex = trunk.east_apexes.front();
-    for (const std::size_t a : trunk.east_apexes)
-      if (std::abs(trunk.z[a] - 560.0) < std::abs(trunk.z[apex] - 560.0)) apex = a;
-    const double z_tunnel = trunk.z[apex];
-    const double y_south = bisect([&](double y) { return mountain_profile()(y) - z_tunnel; }, 0.0, 2400.0);
-    const Vec2 south_portal(kTunnelX, y_south);
-    Polyline2 contour{trunk.line[apex]};
-    for (const Vec2& p : straight_line(trunk.line[apex] + Vec2(60.0, 0.0), south_portal, 50.0))
-      contour.push_back(p);
-    std::vector<std::int64_t> contour_ids{trunk_ids[apex]};
-    for (std::size_t i = 1; i < contour.size(); ++i) contour_ids.push_back(osm.node(contour[i]));
-    osm.way(contour_ids, {{"highway", "secondary"}, {"name", "Portal Road"}}, contour);
-    w.beds.add(contour, std::vector<double>(contour.size(), z_tunnel));
-
-    // The base tunnel: north, rising at 0.5 %, a junction under the crest, a side branch to a
-    // portal of its own on the north flank (both portals short of the apron's roundabout).
-    const auto tunnel_z = [&](double y) { return z_tunnel + kTunnelRise * (y - y_south); };
-    const double y_north =
-        bisect([&](double y) { return mountain_profile()(y) - tunnel_z(y); }, 2400.0, 5000.0);
-    const Vec2 inner(kTunnelX, 2400.0);
-    const Vec2 north_portal(kTunnelX, y_north);
-    const double z_inner = tunnel_z(2400.0);
-    const double y_branch = bisect([&](double y) { return mountain_profile()(y) - z_inner; }, 2400.0, 5000.0);
-    const Vec2 branch_portal(2050.0, y_branch);
-    const OsmWriter::Tags tunnel_tags{
-        {"highway", "primary"}, {"tunnel", "yes"}, {"layer", "-1"}, {"name", "Base Tunnel"}};
-    const Polyline2 south_half = straight_line(south_portal, inner, 100.0);
-    const Polyline2 north_half = straight_line(inner, north_portal, 100.0);
-    Polyline2 branch = straight_line(inner, Vec2(1800.0, 2520.0), 100.0);
-    for (const Vec2& p : straight_line(Vec2(1800.0, 2520.0), branch_portal, 100.0)) {
-      if (p != branch.back()) branch.push_back(p);
-    }
-    std::vector<std::int64_t> south_ids = osm.nodes(south_half);
-    south_ids.front() = contour_ids.back();
-    std::vector<std::int64_t> north_ids = osm.nodes(north_half);
-    north_ids.front() = south_ids.back();
-    std::vector<std::int64_t> branch_ids = osm.nodes(branch);
-    branch_ids.front() = south_ids.back();
-    f.tunnel_ways.push_back(osm.way(south_ids, tunnel_tags, south_half));
-    f.tunnel_ways.push_back(osm.way(north_ids, tunnel_tags, north_half));
-    OsmWriter::Tags branch_tags = tunnel_tags;
-    branch_tags.back().second = "Base Tunnel Branch";
-    f.tunnel_ways.push_back(osm.way(branch_ids, branch_tags, branch));
-    f.tunnel_portals = {south_portal, north_portal, branch_portal};
-
-    // The roundabout on the 12 % apron and its four arms.
-    f.roundabout_centre = Vec2(kTunnelX, 4500.0);
-    f.roundabout_radius_m = 25.0;
-    f.roundabout_slope = 0.12;
-    Polyline2 ring;
-    for (int k = 0; k <= 16; ++k) {
-      const double a = 2.0 * kPi * k / 16.0;
-      ring.push_back(f.roundabout_centre + f.roundabout_radius_m * Vec2(std::cos(a), std::sin(a)));
-    }
-    std::vector<std::int64_t> ring_ids = osm.nodes(Polyline2(ring.begin(), ring.end() - 1));
-    ring_ids.push_back(ring_ids.front());
-    osm.way(ring_ids, {{"highway", "secondary"}, {"junction", "roundabout"}, {"oneway", "yes"}}, ring);
-    const std::int64_t ring_east = ring_ids[0], ring_north = ring_ids[4], ring_west = ring_ids[8],
-                       ring_south = ring_ids[12];
-    const auto arm = [&](const Polyline2& line, std::int64_t first, std::int64_t last_id) {
-      std::vector<std::int64_t> arm_ids = osm.nodes(line);
-      if (first != 0) arm_ids.front() = first;
-      if (last_id != 0) arm_ids.back() = last_id;
-      osm.way(arm_ids, {{"highway", "secondary"}}, line);
-    };
-    arm(straight_line(north_portal, ring[12], 50.0), north_ids.back(), ring_south);
-    arm(straight_line(ring[4], ring[4] + Vec2(0.0, 350.0), 50.0), ring_north, 0);
-    arm(straight_line(ring[8], ring[8] - Vec2(400.0, 0.0), 50.0), ring_west, 0);
-    Polyline2 east_arm = straight_line(branch_portal, Vec2(branch_portal.x(), 4500.0), 50.0);
-    for (const Vec2& p : straight_line(Vec2(branch_portal.x(), 4500.0), ring[0], 50.0)) {
-      if (p != east_arm.back()) east_arm.push_back(p);
-    }
-    arm(east_arm, branch_ids.back(), ring_east);
-
-    // The viaduct: south across the valley, a bridge between its rims.
-    f.viaduct_abutment_south = Vec2(kTunnelX, -1560.0);
-    f.viaduct_abutment_north = Vec2(kTunnelX, -540.0);
-    const Polyline2 approach = straight_line(Vec2(kTunnelX, -2050.0), f.viaduct_abutment_south, 50.0);
-    const Polyline2 deck = straight_line(f.viaduct_abutment_south, f.viaduct_abutment_north, 60.0);
-    const Polyline2 ramp = straight_line(f.viaduct_abutment_north, Vec2(kTunnelX, -300.0), 60.0);
-    std::vector<std::int64_t> approach_ids = osm.nodes(approach);
-    std::vector<std::int64_t> deck_ids = osm.nodes(deck);
-    deck_ids.front() = approach_ids.back();
-    std::vector<std::int64_t> ramp_ids = osm.nodes(ramp);
-    ramp_ids.front() = deck_ids.back();
-    ramp_ids.back() = viaduct_top;
-    const OsmWriter::Tags viaduct_tags{{"highway", "primary"}, {"name", "Valley Viaduct"}};
-    OsmWriter::Tags deck_tags = viaduct_tags;
-    deck_tags.insert(deck_tags.end(), {{"bridge", "yes"}, {"layer", "1"}});
-    osm.way(approach_ids, viaduct_tags, approach);
-    f.viaduct_way = osm.way(deck_ids, deck_tags, deck);
-    osm.way(ramp_ids, viaduct_tags, ramp);
-
-    // Voids of 24..100 m: on a trunk leg, on the valley road, under the viaduct, on the
-    // roundabout's west arm, on the crest over the tunnel.
-    const std::vector<double> s = arc_lengths(trunk.line);
-    std::size_t on_leg = 0;
-    while (s[on_leg] < 0.4 * s.back()) ++on_leg;
-    w.void_centres = {trunk.line[on_leg], Vec2(-500.0, -300.0), Vec2(kTunnelX, -1050.0), Vec2(1250.0, 4500.0),
-                      Vec2(kTunnelX, 2400.0)};
-    w.void_radii = {30.0, 12.0, 50.0, 20.0, 40.0};
-
+    (void)add_mountain(osm, w);
     w.ways = osm.count();
     w.road_km = osm.length_km();
     w.osm_xml = osm.xml();
@@ -741,6 +757,50 @@ CorpusCase make_mountain(double cell_m, const std::filesystem::path& dir) {
     c.dem = write_int16_dem(dem, -1100.0, -2250.0, 2400.0, 5050.0, cell_m, c.ground, c.void_centres,
                             c.void_radii_m);
   }
+  return c;
+}
+
+CorpusCase make_mountain_range(int copies, double cell_m, const std::filesystem::path& dir) {
+  if (copies < 1) throw std::invalid_argument("make_mountain_range: copies must be at least 1");
+  // The ridge's terrain varies with y only, so copies kPitch apart in x join seamlessly;
+  // each valley road is linked to the next by a 400 m road on the plain.
+  constexpr double kPitch = 3500.0, kWest = -1100.0, kSouth = -2250.0, kNorth = 5050.0;
+  const MountainWorld& one = mountain_world();
+  OsmWriter osm;
+  CorpusCase c;
+  std::int64_t previous_east = 0;
+  for (int i = 0; i < copies; ++i) {
+    const Vec2 offset(kPitch * i, 0.0);
+    osm.set_offset(offset);
+    MountainWorld copy;
+    const ValleyEnds ends = add_mountain(osm, copy);
+    if (i > 0) {
+      osm.set_offset(Vec2::Zero());
+      const Polyline2 link = straight_line(Vec2(kValleyEast + kPitch * (i - 1), kValleyY),
+                                           Vec2(kValleyWest + kPitch * i, kValleyY), 100.0);
+      std::vector<std::int64_t> ids = osm.nodes(link);
+      ids.front() = previous_east;
+      ids.back() = ends.west;
+      osm.way(ids, {{"highway", "secondary"}, {"name", "Valley Link"}}, link);
+    }
+    previous_east = ends.east;
+    for (std::size_t k = 0; k < one.void_centres.size(); ++k) {
+      c.void_centres.push_back(one.void_centres[k] + offset);
+      c.void_radii_m.push_back(one.void_radii[k]);
+    }
+  }
+  c.cell_m = cell_m;
+  c.osm = dir / "mountain_range.osm";
+  std::ofstream(c.osm) << osm.xml();
+  c.ways = osm.count();
+  c.road_km = osm.length_km();
+  c.ground = [&one, copies](const Vec2& p) {
+    const int i = std::clamp(static_cast<int>(std::floor((p.x() - kWest) / kPitch)), 0, copies - 1);
+    return one.beds(p - Vec2(kPitch * i, 0.0));
+  };
+  c.dem = write_int16_dem(dir / ("mountain_range_" + std::to_string(static_cast<int>(cell_m)) + "m.tif"),
+                          kWest, kSouth, kWest + kPitch * copies, kNorth, cell_m, c.ground, c.void_centres,
+                          c.void_radii_m);
   return c;
 }
 

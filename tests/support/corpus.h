@@ -72,6 +72,11 @@ struct MountainFeatures {
 /// roads to it.
 [[nodiscard]] CorpusCase make_mountain(double cell_m, const std::filesystem::path& dir);
 
+/// Writes `copies` mountains side by side (3.5 km apart west to east, each valley road linked to
+/// the next by a 400 m road) with one DEM at `cell_m` into `dir`: the scale benchmark's network
+/// (issue 14, item 8; 18 copies are about 410 km of road).
+[[nodiscard]] CorpusCase make_mountain_range(int copies, double cell_m, const std::filesystem::path& dir);
+
 /// The old town's named features.
 struct OldTownFeatures {
   double slope = 0.0;                     ///< grade of the coastal slope the grid lies on (fraction)
