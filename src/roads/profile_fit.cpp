@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <limits>
 #include <map>
 #include <numbers>
 #include <numeric>
@@ -426,25 +427,47 @@ class FitRows {
 
   void add(std::initializer_list<std::pair<std::size_t, double>> row, double lo, double hi, Tag tag,
            bool always = false) {
-    const auto r = static_cast<int>(lower_.size());
-    for (const auto& [col, value] : row) entries_.emplace_back(r, static_cast<int>(col), value);
+    // Straight into compressed rows (the rows come in order): columns ascending within the row,
+    // a repeated column summed, as Eigen's setFromTriplets would, without the triplets and the
+    // transposed copy it builds (on a 414 km network 1.1 M rows: about 150 MB at once).
+    const std::size_t begin = columns_.size();
+    for (const auto& [col, value] : row) {
+      const auto c = static_cast<int>(col);
+      std::size_t k = begin;
+      while (k < columns_.size() && columns_[k] < c) ++k;
+      if (k < columns_.size() && columns_[k] == c) {
+        values_[k] += value;
+      } else {
+        columns_.insert(columns_.begin() + static_cast<std::ptrdiff_t>(k), c);
+        values_.insert(values_.begin() + static_cast<std::ptrdiff_t>(k), value);
+      }
+    }
+    row_end_.push_back(static_cast<int>(columns_.size()));
     lower_.push_back(lo);
     upper_.push_back(hi);
     tags_.push_back(tag);
     always_.push_back(always ? 1 : 0);
     group_.push_back(tag.road);
   }
-  [[nodiscard]] std::size_t size() const { return lower_.size(); }
+  [[nodiscard]] std::size_t size() const { return tags_.size(); }
   [[nodiscard]] const Tag& tag(std::size_t r) const { return tags_[r]; }
 
-  /// Moves the rows into `qp` (A, bounds, prices).
+  /// Moves the rows into `qp` (A, bounds, prices); only the tags stay.
   void move_into(SoftQp& qp, std::size_t variables) {
     const auto m = static_cast<Eigen::Index>(lower_.size());
-    qp.A.resize(m, static_cast<Eigen::Index>(variables));
-    qp.A.setFromTriplets(entries_.begin(), entries_.end());
-    std::vector<Triplet>().swap(entries_);
+    if (columns_.size() >= static_cast<std::size_t>(std::numeric_limits<int>::max()))
+      throw Error("profile fit: too many constraint entries");
+    row_end_.insert(row_end_.begin(), 0);
+    qp.A = Eigen::Map<const Eigen::SparseMatrix<double, Eigen::RowMajor>>(
+        m, static_cast<Eigen::Index>(variables), static_cast<Eigen::Index>(columns_.size()), row_end_.data(),
+        columns_.data(), values_.data());
+    release(columns_);
+    release(values_);
+    release(row_end_);
     qp.lower = Eigen::Map<const Vec>(lower_.data(), m);
     qp.upper = Eigen::Map<const Vec>(upper_.data(), m);
+    release(lower_);
+    release(upper_);
     qp.price.resize(m);
     for (Eigen::Index r = 0; r < m; ++r) qp.price[r] = price(tags_[static_cast<std::size_t>(r)].limit);
     qp.always = std::move(always_);
@@ -452,7 +475,14 @@ class FitRows {
   }
 
  private:
-  std::vector<Triplet> entries_;
+  template <typename T>
+  static void release(std::vector<T>& v) {
+    std::vector<T>().swap(v);
+  }
+
+  std::vector<int> columns_;    // column of each entry, row after row
+  std::vector<double> values_;  // and its value
+  std::vector<int> row_end_;    // one past each row's last entry
   std::vector<double> lower_, upper_;
   std::vector<Tag> tags_;
   std::vector<std::uint8_t> always_;
