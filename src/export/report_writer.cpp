@@ -208,6 +208,7 @@ std::string report_json(const RunReport& r) {
                       {"version", o.version},
                       {"roads", o.roads},
                       {"connecting_roads", o.connecting_roads},
+                      {"connecting_roads_off_surface", o.connecting_roads_off_surface},
                       {"junctions", o.junctions},
                       {"junctions_without_movements", o.junctions_without_movements},
                       {"junctions_joined", o.junctions_joined},

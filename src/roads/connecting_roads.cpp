@@ -13,6 +13,7 @@
 #include "relief/geometry/plane.h"
 #include "relief/geometry/reference_line_fit.h"
 #include "relief/roads/way_attributes.h"
+#include "roads/junction_height.h"
 #include "roads/junction_planes.h"
 #include "roads/lane_layout.h"
 
@@ -62,10 +63,12 @@ std::vector<std::pair<int, int>> lane_pairs(const std::vector<std::string>& turn
 }
 
 // The connecting road `id` of junction `junction_id` from lane `la` of road a's end `in` to lane
-// `lb` of road b's end `to`, its roll blended from gradient g0 to g1.
+// `lb` of road b's end `to`, on the junction's surface where that keeps the grade bound of
+// slope_bounded_profile; else the bounded profile between its ends, its roll blended from the
+// plane gradient g0 to g1.
 ModelRoad connecting_road(int id, int junction_id, const ModelRoad& a, const EndRef& in, int la,
-                          const ModelRoad& b, const EndRef& to, int lb, const Vec2& g0_plane,
-                          const Vec2& g1_plane) {
+                          const ModelRoad& b, const EndRef& to, int lb, const JunctionHeight& surface,
+                          const Vec2& g0_plane, const Vec2& g1_plane, bool& on_surface) {
   ModelRoad c;
   c.id = id;
   c.junction = junction_id;
@@ -83,8 +86,17 @@ ModelRoad connecting_road(int id, int junction_id, const ModelRoad& a, const End
   const double len = c.plan.length();
   const auto [z0, g0] = lane_end_height(a, in.at_start, la);
   const auto [z1, g1] = lane_end_height(b, to.at_start, lb);
-  c.elevation = slope_bounded_profile(len, z0, g0, z1, g1, kConnectionGradeAllowance);
-  c.superelevation = plane_rolls(c.plan, g0_plane, g1_plane);
+  const double bound =
+      std::max({std::abs(g0), std::abs(g1), std::abs(z1 - z0) / len + kConnectionGradeAllowance});
+  SurfaceProfiles on = surface_profiles(c.plan, surface);
+  on_surface = on.max_grade <= bound;
+  if (on_surface) {
+    c.elevation = std::move(on.elevation);
+    c.superelevation = std::move(on.superelevation);
+  } else {
+    c.elevation = slope_bounded_profile(len, z0, g0, z1, g1, kConnectionGradeAllowance);
+    c.superelevation = plane_rolls(c.plan, g0_plane, g1_plane);
+  }
   c.lane_offset = CubicProfile({CubicPiece{0.0, Poly3{0.5 * w0, 0.5 * (w1 - w0) / len, 0.0, 0.0}}});
   LaneSection sec;
   LaneModel lane;
@@ -126,6 +138,9 @@ void add_junction(const RoadNetwork& network, const JunctionClusters& clusters, 
     (e.at_start ? m.predecessor : m.successor) =
         RoadLink{RoadLink::Element::junction, jm.id, RoadLink::Contact::start};
   }
+  std::vector<EndPlane> end_planes;
+  for (const EndRef& e : ends) end_planes.push_back(end_plane(model_of(e), e.at_start));
+  const JunctionHeight surface(std::move(end_planes));
   for (std::size_t ia = 0; ia < ends.size(); ++ia) {
     for (std::size_t ib = 0; ib < ends.size(); ++ib) {
       if (ia == ib) continue;
@@ -154,8 +169,11 @@ void add_junction(const RoadNetwork& network, const JunctionClusters& clusters, 
       const WayAttributes& in_attr = network.roads[in.network_road].attributes;
       const std::vector<std::string>& turns = in.at_start ? in_attr.turn_backward : in_attr.turn_forward;
       for (const auto& [la, lb] : lane_pairs(turns, arriving, departing, movement, slight)) {
-        ModelRoad c = connecting_road(static_cast<int>(model.roads.size()) + 1, jm.id, a, in, la, b, to, lb,
-                                      planes[junction_of(network, in)], planes[junction_of(network, to)]);
+        bool on_surface = false;
+        ModelRoad c =
+            connecting_road(static_cast<int>(model.roads.size()) + 1, jm.id, a, in, la, b, to, lb, surface,
+                            planes[junction_of(network, in)], planes[junction_of(network, to)], on_surface);
+        if (!on_surface) ++out.stats.connecting_roads_off_surface;
         JunctionConnection conn;
         conn.id = static_cast<int>(jm.connections.size());
         conn.incoming_road = a.id;

@@ -1,0 +1,118 @@
+// The junction height surface (roads/junction_height.h): a plane stays a plane, every road end
+// is met with its own height, grade and roll (C1 across the junction's edge), the analytic
+// gradient is the surface's derivative, and a road laid on it follows it.
+#include "roads/junction_height.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <random>
+
+#include "relief/core/errors.h"
+#include "roads/junction_planes.h"
+
+namespace relief::detail {
+namespace {
+
+// An end of a junction centred at the origin: its reference point at distance r in direction
+// `bearing`, its cross-section 7 m wide across that direction, on the plane (z0, g).
+EndPlane end_on(double bearing, double r, double z0, const Vec2& g) {
+  const Vec2 out(std::cos(bearing), std::sin(bearing));
+  const Vec2 across(-out.y(), out.x());
+  EndPlane e;
+  e.point = r * out;
+  e.right = e.point - 3.5 * across;
+  e.left = e.point + 3.5 * across;
+  e.z = z0 + g.dot(e.point);
+  e.gradient = g;
+  return e;
+}
+
+// Three ends of a T junction on the plane z = 10 + 0.12 x - 0.05 y.
+std::vector<EndPlane> t_on_a_plane() {
+  const Vec2 g(0.12, -0.05);
+  return {end_on(0.0, 8.0, 10.0, g), end_on(std::numbers::pi / 2, 8.0, 10.0, g),
+          end_on(std::numbers::pi, 8.0, 10.0, g)};
+}
+
+TEST(JunctionHeight, APlaneStaysThePlane) {
+  const JunctionHeight s(t_on_a_plane());
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(-7.0, 7.0);
+  for (int i = 0; i < 200; ++i) {
+    const Vec2 p(u(rng), u(rng));
+    const auto [z, g] = s.at(p);
+    EXPECT_NEAR(z, 10.0 + 0.12 * p.x() - 0.05 * p.y(), 1e-9);
+    EXPECT_NEAR((g - Vec2(0.12, -0.05)).norm(), 0.0, 1e-9);
+  }
+}
+
+// Ends whose planes disagree (heights 0.6 m apart, grades and rolls of their own): on an end's
+// cross-section the surface is that end's plane, and just inside it its gradient too.
+TEST(JunctionHeight, EveryEndIsMetWithItsOwnHeightGradeAndRoll) {
+  std::vector<EndPlane> ends{end_on(0.0, 8.0, 10.0, Vec2(0.10, 0.02)),
+                             end_on(std::numbers::pi / 2, 8.0, 10.6, Vec2(-0.03, 0.15)),
+                             end_on(std::numbers::pi, 9.0, 10.2, Vec2(0.04, -0.01))};
+  const JunctionHeight s(ends);
+  for (const EndPlane& e : ends) {
+    for (const double f : {0.0, 0.3, 0.5, 1.0}) {
+      const Vec2 p = e.right + f * (e.left - e.right);
+      const auto [z, g] = s.at(p);
+      EXPECT_NEAR(z, e.z + e.gradient.dot(p - e.point), 1e-12);
+      // 1 mm inside the junction: the height within the plane's, the gradient within 1e-3.
+      const Vec2 inside = p - 1e-3 * e.point.normalized();
+      const auto [zi, gi] = s.at(inside);
+      EXPECT_NEAR(zi, e.z + e.gradient.dot(inside - e.point), 1e-5);
+      EXPECT_LT((gi - e.gradient).norm(), 1e-3);
+    }
+  }
+}
+
+TEST(JunctionHeight, TheGradientIsTheSurfacesDerivative) {
+  const JunctionHeight s({end_on(0.3, 8.0, 10.0, Vec2(0.10, 0.02)), end_on(1.9, 7.0, 11.0, Vec2(-0.2, 0.05)),
+                          end_on(3.5, 9.0, 10.2, Vec2(0.04, -0.01)), end_on(4.9, 6.0, 9.5, Vec2(0.0, 0.3))});
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(-5.0, 5.0);
+  const double h = 1e-6;
+  for (int i = 0; i < 200; ++i) {
+    const Vec2 p(u(rng), u(rng));
+    const Vec2 g = s.at(p).second;
+    const double gx = (s.at(p + Vec2(h, 0.0)).first - s.at(p - Vec2(h, 0.0)).first) / (2.0 * h);
+    const double gy = (s.at(p + Vec2(0.0, h)).first - s.at(p - Vec2(0.0, h)).first) / (2.0 * h);
+    EXPECT_NEAR(g.x(), gx, 1e-6);
+    EXPECT_NEAR(g.y(), gy, 1e-6);
+  }
+}
+
+TEST(JunctionHeight, NoEndIsRefused) {
+  EXPECT_THROW(JunctionHeight({}), InvalidInput);
+}
+
+// A quarter turn of radius 8 m across the plane of the T: its elevation follows the plane within
+// the fit's 1 mm, its roll lays the cross-section on it within 1e-4 rad, and its steepest chord
+// is the plane's slope along the arc.
+TEST(JunctionHeight, ARoadLaidOnTheSurfaceFollowsIt) {
+  const JunctionHeight s(t_on_a_plane());
+  PlanGeometry arc;
+  arc.kind = PlanGeometry::Kind::arc;
+  arc.start = Vec2(-8.0, -3.0);
+  arc.heading = 0.0;
+  arc.length = 8.0 * std::numbers::pi / 2;
+  arc.curvature = 1.0 / 8.0;
+  const PlanView plan({arc});
+  const SurfaceProfiles on = surface_profiles(plan, s);
+  double steepest = 0.0;
+  for (double t = 0.0; t <= plan.length(); t += 0.1) {
+    const Pose2 pose = plan.at(t);
+    const Vec2 g(0.12, -0.05);
+    EXPECT_NEAR(on.elevation.value(t), 10.0 + g.dot(pose.position), 1e-3) << t;
+    EXPECT_NEAR(on.superelevation.value(t), plane_roll(g, pose.heading), 1e-4) << t;
+    steepest = std::max(steepest, std::abs(g.dot(Vec2(std::cos(pose.heading), std::sin(pose.heading)))));
+  }
+  EXPECT_LE(on.max_grade, steepest + 1e-9);
+  EXPECT_GT(on.max_grade, steepest - 0.01);
+}
+
+}  // namespace
+}  // namespace relief::detail
