@@ -6,6 +6,7 @@
 #include <cmath>
 #include <map>
 #include <sstream>
+#include <tuple>
 
 #include "relief/core/atomic_file.h"
 #include "relief/core/diagnostic_codes.h"
@@ -224,13 +225,15 @@ std::filesystem::path counted_routes(const std::filesystem::path& net, const std
   return sampled;
 }
 
-// The OD part: the zones as TAZ of their edges, the matrix as tazRelations, od2trips, and
-// duarouter on the cars' weights. Returns the routes file.
-std::filesystem::path od_routes(const std::filesystem::path& net, const std::vector<NetEdge>& edges,
-                                const TrafficDemandInputs& inputs, const std::filesystem::path& out_dir,
-                                const std::string& stem, const std::filesystem::path& types,
-                                const std::filesystem::path& car_weights, const TrafficDemandOptions& options,
-                                TrafficDemand& result) {
+// The OD part: the zones as TAZ of their edges, the matrix as tazRelations (one per vehicle
+// class), od2trips, and duarouter on that class's weights. Returns the routes files.
+std::vector<std::filesystem::path> od_routes(const std::filesystem::path& net,
+                                             const std::vector<NetEdge>& edges,
+                                             const TrafficDemandInputs& inputs,
+                                             const std::filesystem::path& out_dir, const std::string& stem,
+                                             const std::filesystem::path& types,
+                                             const std::map<std::string, std::filesystem::path>& weights,
+                                             const TrafficDemandOptions& options, TrafficDemand& result) {
   std::vector<Zone> zones = read_zones_geojson(inputs.zones, read_net_location(net));
   assign_edges(zones, edges);
   const std::vector<OdRow> rows = read_od_csv(inputs.od_csv);
@@ -249,43 +252,58 @@ std::filesystem::path od_routes(const std::filesystem::path& net, const std::vec
   }
   result.od_rows = rows.size();
   result.zones = zones.size();
-  const std::filesystem::path taz = out_dir / (stem + ".taz.xml"), od = out_dir / (stem + ".od.xml");
-  const std::filesystem::path trips = out_dir / (stem + ".od.trips.xml");
-  std::filesystem::path routes = out_dir / (stem + ".od.rou.xml");
+  const std::filesystem::path taz = out_dir / (stem + ".taz.xml");
   write_file_atomically(taz, [&](std::ostream& out) { write_taz(out, zones); });
-  write_file_atomically(
-      od, [&](std::ostream& out) { write_taz_relations(out, rows, options.begin_s, options.end_s); });
-  run_tool(
-      {sumo_tool("od2trips").string(), "--taz-files", taz.string(), "--tazrelation-files", od.string(),
-       "--output-file", trips.string(), "--vtype", "car", "--prefix", "od_", "--seed",
-       std::to_string(options.seed), "--departlane", "best", "--departspeed", "max", "--no-step-log", "true"},
-      out_dir, "od2trips on '" + od.string() + "'");
-  const std::filesystem::path used_types = out_dir / (stem + ".od.used_types.xml");
-  std::vector<std::string> route = {sumo_tool("duarouter").string(),
-                                    "--net-file",
-                                    net.string(),
-                                    "--route-files",
-                                    trips.string(),
-                                    "--additional-files",
-                                    (types.string() + "," + taz.string()),
-                                    "--output-file",
-                                    routes.string(),
-                                    "--ignore-errors",
-                                    "true",
-                                    "--no-step-log",
-                                    "true",
-                                    "--seed",
-                                    std::to_string(options.seed),
-                                    "--vtype-output",
-                                    used_types.string(),
-                                    "--with-taz",
-                                    "true"};
-  if (!car_weights.empty()) route.insert(route.end(), {"--weight-files", car_weights.string()});
-  run_tool(route, out_dir, "duarouter on '" + trips.string() + "'");
-  std::filesystem::remove(used_types);
-  result.od_trips = static_cast<std::size_t>(edge_passages(routes)[""]);
+  std::vector<std::filesystem::path> routes_files;
+  // (vehicle type, SUMO class of its weights, file suffix)
+  for (const auto& [vtype, vclass, suffix] :
+       {std::tuple<std::string, std::string, std::string>{"car", "passenger", ""},
+        {"truck", "truck", "_truck"}}) {
+    std::vector<OdRow> of_type;
+    for (const OdRow& r : rows)
+      if (r.vtype == vtype) of_type.push_back(r);
+    if (of_type.empty() && vtype != "car") continue;
+    const std::string name = stem + ".od" + suffix;
+    const std::filesystem::path od = out_dir / (name + ".xml"), trips = out_dir / (name + ".trips.xml");
+    const std::filesystem::path routes = out_dir / (name + ".rou.xml");
+    write_file_atomically(
+        od, [&](std::ostream& out) { write_taz_relations(out, of_type, options.begin_s, options.end_s); });
+    run_tool({sumo_tool("od2trips").string(), "--taz-files", taz.string(), "--tazrelation-files", od.string(),
+              "--output-file", trips.string(), "--vtype", vtype, "--prefix", "od" + suffix + "_", "--seed",
+              std::to_string(options.seed), "--departlane", "best", "--departspeed", "max", "--no-step-log",
+              "true"},
+             out_dir, "od2trips on '" + od.string() + "'");
+    const std::filesystem::path used_types = out_dir / (name + ".used_types.xml");
+    std::vector<std::string> route = {sumo_tool("duarouter").string(),
+                                      "--net-file",
+                                      net.string(),
+                                      "--route-files",
+                                      trips.string(),
+                                      "--additional-files",
+                                      (types.string() + "," + taz.string()),
+                                      "--output-file",
+                                      routes.string(),
+                                      "--ignore-errors",
+                                      "true",
+                                      "--no-step-log",
+                                      "true",
+                                      "--seed",
+                                      std::to_string(options.seed),
+                                      "--vtype-output",
+                                      used_types.string(),
+                                      "--with-taz",
+                                      "true"};
+    const auto w = weights.find(vclass);
+    if (w != weights.end()) route.insert(route.end(), {"--weight-files", w->second.string()});
+    run_tool(route, out_dir, "duarouter on '" + trips.string() + "'");
+    std::filesystem::remove(used_types);
+    const auto trips_routed = static_cast<std::size_t>(edge_passages(routes)[""]);
+    result.od_trips += trips_routed;
+    if (vtype == "truck") result.od_truck_trips = trips_routed;
+    routes_files.push_back(routes);
+  }
   result.vehicles += result.od_trips;
-  return routes;
+  return routes_files;
 }
 
 }  // namespace
@@ -328,10 +346,11 @@ TrafficDemand make_traffic_demand(const std::filesystem::path& net_path, const T
     route_files.push_back(result.routes.filename().string());
   }
   if (!inputs.od_csv.empty()) {
-    const std::filesystem::path od =
-        od_routes(net, edges, inputs, out_dir, stem, types, car_weights, options, result);
-    route_files.push_back(od.filename().string());
-    if (result.routes.empty()) result.routes = od;
+    for (const std::filesystem::path& od :
+         od_routes(net, edges, inputs, out_dir, stem, types, weights, options, result)) {
+      route_files.push_back(od.filename().string());
+      if (result.routes.empty()) result.routes = od;
+    }
   }
   if (options.trucks > 0) {
     routed_trips(net, out_dir, stem + ".trucks", options.trucks, options, "truck", "truck", types,
@@ -357,6 +376,7 @@ TrafficDemand make_traffic_demand(const std::filesystem::path& net_path, const T
   j["od_rows"] = result.od_rows;
   j["zones_count"] = result.zones;
   j["od_trips"] = result.od_trips;
+  j["od_truck_trips"] = result.od_truck_trips;
   j["vehicles"] = result.vehicles;
   j["trucks"] = result.trucks;
   j["geh_ok_share"] = result.geh_ok_share;

@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 #include <pugixml.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <set>
@@ -136,9 +137,12 @@ void write_taz(std::ostream& out, const std::vector<Zone>& zones) {
 
 std::vector<OdRow> read_od_csv(const std::filesystem::path& path) {
   const detail::CsvTable table = detail::read_csv_table(path, "OD matrix");
-  const std::string expected = "origin,destination,count";
+  const std::string expected = "origin,destination,count[,class]";
   const std::size_t from = table.column("origin", expected), to = table.column("destination", expected),
                     count = table.column("count", expected);
+  const auto class_it = std::find(table.header.begin(), table.header.end(), "class");
+  const bool has_class = class_it != table.header.end();
+  const auto vclass = static_cast<std::size_t>(class_it - table.header.begin());
   std::vector<OdRow> rows;
   for (const detail::CsvRow& r : table.rows) {
     OdRow row{r.fields[from], r.fields[to], 0.0, r.line};
@@ -151,6 +155,14 @@ std::vector<OdRow> read_od_csv(const std::filesystem::path& path) {
     }
     if (row.origin.empty() || row.destination.empty() || !(std::isfinite(row.count) && row.count >= 0.0))
       throw InvalidInput(r.where + ": zones must be named and the count a number >= 0");
+    if (has_class) {
+      const std::string& c = r.fields[vclass];
+      if (c == "truck") {
+        row.vtype = "truck";
+      } else if (!(c == "car" || c == "passenger")) {
+        throw InvalidInput(r.where + ": the class must be car (or passenger) or truck, not '" + c + "'");
+      }
+    }
     rows.push_back(row);
   }
   return rows;

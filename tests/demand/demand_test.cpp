@@ -445,5 +445,47 @@ TEST(Demand, AnOdMatrixBetweenZonesBecomesRoutesFromZoneToZone) {
       InvalidInput);
 }
 
+// A matrix with a class column: each class's relations become trips of its vehicle type,
+// routed on its own grade weights, in a routes file of its own that the configuration lists.
+TEST(Demand, AnOdMatrixPerVehicleClassRoutesEachClassOnItsWeights) {
+  TrafficDemandOptions o;
+  Diagnostics d;
+  const fs::path out = test::scratch_dir("demand_od_class");
+  write(out / "od.csv",
+        "origin,destination,count,class\nwest,east,60,car\neast,west,25,truck\n"
+        "centre,west,15,car\nwest,centre,10,passenger\n");
+  const TrafficDemand r = make_traffic_demand(
+      hill_net(), {{}, out / "od.csv", test::fixture("hill/zones.geojson")}, out / "run", o, d);
+  EXPECT_EQ(r.od_rows, 4u);
+  EXPECT_EQ(r.od_trips, 110u);
+  EXPECT_EQ(r.od_truck_trips, 25u);
+  const auto types_in = [](const fs::path& file) {
+    pugi::xml_document doc;
+    EXPECT_TRUE(doc.load_file(file.c_str())) << file;
+    std::map<std::string, std::size_t> types;
+    for (const pugi::xml_node& v : doc.child("routes").children("vehicle"))
+      ++types[v.attribute("type").as_string()];
+    return types;
+  };
+  EXPECT_EQ(types_in(out / "run" / "hill.od.rou.xml"), (std::map<std::string, std::size_t>{{"car", 85}}));
+  EXPECT_EQ(types_in(out / "run" / "hill.od_truck.rou.xml"),
+            (std::map<std::string, std::size_t>{{"truck", 25}}));
+  std::ifstream config(r.config);
+  const std::string text((std::istreambuf_iterator<char>(config)), std::istreambuf_iterator<char>());
+  EXPECT_NE(text.find("hill.od_truck.rou.xml"), std::string::npos);
+  const nlohmann::json report = nlohmann::json::parse(std::ifstream(out / "run" / "demand.json"));
+  EXPECT_EQ(report.at("od_truck_trips").get<int>(), 25);
+  // An unknown class is bad input, named with its line.
+  write(out / "bad.csv", "origin,destination,count,class\nwest,east,5,bus\n");
+  try {
+    (void)make_traffic_demand(hill_net(), {{}, out / "bad.csv", test::fixture("hill/zones.geojson")},
+                              out / "bad", o, d);
+    ADD_FAILURE() << "a bus class was taken";
+  } catch (const InvalidInput& e) {
+    EXPECT_NE(std::string(e.what()).find("line 2"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("'bus'"), std::string::npos) << e.what();
+  }
+}
+
 }  // namespace
 }  // namespace relief

@@ -31,8 +31,9 @@ Runner add_demand_command(CLI::App& app) {
       "--counts", args->counts,
       "CSV with the header osm_way,direction,count (direction NB, SB, EB, WB, a bearing in degrees, "
       "or both)");
-  auto* od =
-      cmd->add_option("--od", args->od, "OD matrix: CSV with the header origin,destination,count (zone ids)");
+  auto* od = cmd->add_option(
+      "--od", args->od,
+      "OD matrix: CSV with the header origin,destination,count[,class] (zone ids; class car or truck)");
   auto* zones = cmd->add_option("--zones", args->zones,
                                 "GeoJSON polygons of the OD matrix's zones (WGS84; property id or name)");
   od->needs(zones);

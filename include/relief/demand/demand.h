@@ -36,6 +36,7 @@ struct TrafficDemandInputs {
 struct TrafficDemand {
   std::size_t count_rows = 0, counted_edges = 0;
   std::size_t od_rows = 0, zones = 0, od_trips = 0;
+  std::size_t od_truck_trips = 0;      ///< of od_trips, the trucks' (rows of class truck)
   std::vector<std::string> unmatched;  ///< rows no edge took, with why
   std::size_t vehicles = 0, trucks = 0;
   double geh_ok_share = 0.0;  ///< counted edges whose routed count has GEH < 5
@@ -45,7 +46,8 @@ struct TrafficDemand {
 
 /// Writes in `out_dir` (created): NAME.vtypes.xml, NAME.grade_CLASS.weights.xml; for counts
 /// NAME.counts.xml and NAME.counted.rou.xml; for an OD matrix NAME.taz.xml, NAME.od.xml and
-/// NAME.od.rou.xml; for trucks NAME.trucks.rou.xml; NAME.demand.sumocfg (the net by path) and
+/// NAME.od.rou.xml (its truck rows: NAME.od_truck.xml and NAME.od_truck.rou.xml, routed on the
+/// trucks' weights); for trucks NAME.trucks.rou.xml; NAME.demand.sumocfg (the net by path) and
 /// demand.json. Throws IoError for a missing tool or file, InvalidInput for counts that fit no
 /// edge, a matrix naming a zone the zones do not have or that has no edge.
 TrafficDemand make_traffic_demand(const std::filesystem::path& net_path, const TrafficDemandInputs& inputs,

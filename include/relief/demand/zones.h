@@ -45,9 +45,12 @@ struct OdRow {
   std::string origin, destination;
   double count = 0.0;
   int line = 0;
+  std::string vtype = "car";  ///< the vehicle type of relief demand's types: "car" or "truck"
 };
 
-/// Reads the matrix. Throws IoError / InvalidInput naming the file and line.
+/// Reads the matrix: the header origin,destination,count and an optional column `class`
+/// (`car` or `passenger`, or `truck`; without the column every row is cars). Throws IoError / InvalidInput
+/// naming the file and line.
 [[nodiscard]] std::vector<OdRow> read_od_csv(const std::filesystem::path& path);
 
 /// SUMO's tazRelation data for od2trips (--tazrelation-files).
