@@ -16,6 +16,7 @@
 #include "relief/core/xml_writer.h"
 #include "relief/demand/grade_routing.h"
 #include "relief/demand/traffic_counts.h"
+#include "relief/demand/turn_counts.h"
 #include "relief/demand/zones.h"
 #include "relief/export/sumo_tools.h"
 
@@ -109,7 +110,11 @@ std::map<std::string, double> edge_passages(const std::filesystem::path& routes)
     std::string edges = v.child("route").attribute("edges").as_string();
     if (edges.empty()) edges = named[v.attribute("route").as_string()];
     std::istringstream in(edges);
-    for (std::string e; in >> e;) passages[e] += 1.0;
+    std::string previous;
+    for (std::string e; in >> e; previous = e) {
+      passages[e] += 1.0;
+      if (!previous.empty()) passages[previous + " " + e] += 1.0;  // a turn (ids have no spaces)
+    }
   }
   passages[""] = static_cast<double>(vehicles);
   return passages;
@@ -175,53 +180,89 @@ void write_config(const std::filesystem::path& path, const std::filesystem::path
   write_file_atomically(path, text);
 }
 
-// The counts' part: candidates routed on the cars' weights, sampled to the counts; the share of
-// counted edges the sampled routes carry within GEH 5. Returns the routes file.
+// The counted part: edge counts and turn counts onto the net, candidate routes on the cars'
+// weights, routeSampler.py on both. Returns the sampled routes.
 std::filesystem::path counted_routes(const std::filesystem::path& net, const std::vector<NetEdge>& edges,
-                                     const std::filesystem::path& counts_csv,
-                                     const std::filesystem::path& out_dir, const std::string& stem,
-                                     const std::filesystem::path& types,
+                                     const TrafficDemandInputs& inputs, const std::filesystem::path& out_dir,
+                                     const std::string& stem, const std::filesystem::path& types,
                                      const std::filesystem::path& car_weights,
                                      const TrafficDemandOptions& options, TrafficDemand& result,
-                                     nlohmann::ordered_json& per_edge, Diagnostics& diagnostics) {
-  const std::vector<CountRow> rows = read_counts_csv(counts_csv);
-  const CountsOnEdges counts = counts_on_edges(rows, edges);
-  result.count_rows = rows.size();
-  result.counted_edges = counts.edges.size();
-  result.unmatched = counts.unmatched;
-  if (counts.edges.empty()) {
-    throw InvalidInput("no count of '" + counts_csv.string() + "' fits an edge of '" + net.string() + "'" +
-                       (counts.unmatched.empty() ? std::string() : ": " + counts.unmatched.front()));
+                                     nlohmann::ordered_json& per_edge, nlohmann::ordered_json& per_turn,
+                                     Diagnostics& diagnostics) {
+  CountsOnEdges counts;
+  TurnsOnEdges turns;
+  std::vector<std::string> tool = {sumo_python(), sumo_tool("routeSampler.py").string()};
+  if (!inputs.counts_csv.empty()) {
+    const std::vector<CountRow> rows = read_counts_csv(inputs.counts_csv);
+    counts = counts_on_edges(rows, edges);
+    result.count_rows = rows.size();
+    for (const std::string& message : counts.unmatched) {
+      result.unmatched.push_back(message);
+      diagnostics.report(Severity::warning, codes::kDemandCountUnmatched,
+                         inputs.counts_csv.string() + " " + message);
+    }
   }
-  for (const std::string& message : counts.unmatched)
-    diagnostics.report(Severity::warning, codes::kDemandCountUnmatched, counts_csv.string() + " " + message);
-  const std::filesystem::path counts_xml = out_dir / (stem + ".counts.xml");
-  write_file_atomically(
-      counts_xml, [&](std::ostream& out) { write_edge_counts(out, counts, options.begin_s, options.end_s); });
-  // Many more candidate trips than counted edges, so that routeSampler finds routes through
-  // every count.
-  const int candidates = std::max(500, 20 * static_cast<int>(counts.edges.size()));
+  if (!inputs.turns_csv.empty()) {
+    const std::vector<TurnRow> rows = read_turn_counts_csv(inputs.turns_csv);
+    turns = turns_on_edges(rows, edges);
+    result.turn_rows = rows.size();
+    for (const std::string& message : turns.unmatched) {
+      result.unmatched.push_back(message);
+      diagnostics.report(Severity::warning, codes::kDemandCountUnmatched,
+                         inputs.turns_csv.string() + " " + message);
+    }
+  }
+  result.counted_edges = counts.edges.size();
+  result.counted_turns = turns.turns.size();
+  if (counts.edges.empty() && turns.turns.empty()) {
+    const std::filesystem::path& given = inputs.counts_csv.empty() ? inputs.turns_csv : inputs.counts_csv;
+    throw InvalidInput("no count of '" + given.string() + "' fits the edges of '" + net.string() + "'" +
+                       (result.unmatched.empty() ? std::string() : ": " + result.unmatched.front()));
+  }
+  if (!counts.edges.empty()) {
+    const std::filesystem::path counts_xml = out_dir / (stem + ".counts.xml");
+    write_file_atomically(counts_xml, [&](std::ostream& out) {
+      write_edge_counts(out, counts, options.begin_s, options.end_s);
+    });
+    tool.insert(tool.end(), {"--edgedata-files", counts_xml.string()});
+  }
+  if (!turns.turns.empty()) {
+    const std::filesystem::path turns_xml = out_dir / (stem + ".turns.xml");
+    write_file_atomically(
+        turns_xml, [&](std::ostream& out) { write_turn_counts(out, turns, options.begin_s, options.end_s); });
+    tool.insert(tool.end(), {"--turn-files", turns_xml.string()});
+  }
+  // Many more candidate trips than counts, so that routeSampler finds routes through every one.
+  const int candidates = std::max(500, 20 * static_cast<int>(counts.edges.size() + turns.turns.size()));
   routed_trips(net, out_dir, stem + ".candidates", candidates, options, "car", "passenger", types,
                car_weights);
   std::filesystem::path sampled = out_dir / (stem + ".counted.rou.xml");
-  run_tool({sumo_python(), sumo_tool("routeSampler.py").string(), "--route-files",
-            (out_dir / (stem + ".candidates.rou.xml")).string(), "--edgedata-files", counts_xml.string(),
-            "--output-file", sampled.string(), "--begin", fixed(options.begin_s, 2), "--end",
-            fixed(options.end_s, 2), "--seed", std::to_string(options.seed), "--prefix", "count_",
-            "--attributes", "type=\"car\" departLane=\"best\" departSpeed=\"max\""},
-           out_dir, "routeSampler.py on '" + counts_xml.string() + "'");
+  tool.insert(tool.end(), {"--route-files", (out_dir / (stem + ".candidates.rou.xml")).string(),
+                           "--output-file", sampled.string(), "--begin", fixed(options.begin_s, 2), "--end",
+                           fixed(options.end_s, 2), "--seed", std::to_string(options.seed), "--prefix",
+                           "count_", "--attributes", "type=\"car\" departLane=\"best\" departSpeed=\"max\""});
+  run_tool(tool, out_dir, "routeSampler.py on the counts");
   std::map<std::string, double> passages = edge_passages(sampled);
   result.vehicles += static_cast<std::size_t>(passages[""]);
   std::size_t ok = 0;
+  const auto geh = [&](double routed, double count) {
+    const double g =
+        routed + count > 0.0 ? std::sqrt(2.0 * (routed - count) * (routed - count) / (routed + count)) : 0.0;
+    if (g < kGehOk) ++ok;
+    result.worst_geh = std::max(result.worst_geh, g);
+    return g;
+  };
   for (const EdgeCount& c : counts.edges) {
     const double m = passages[c.edge];
-    const double geh =
-        m + c.count > 0.0 ? std::sqrt(2.0 * (m - c.count) * (m - c.count) / (m + c.count)) : 0.0;
-    if (geh < kGehOk) ++ok;
-    result.worst_geh = std::max(result.worst_geh, geh);
-    per_edge.push_back({{"edge", c.edge}, {"count", c.count}, {"routed", m}, {"geh", geh}});
+    per_edge.push_back({{"edge", c.edge}, {"count", c.count}, {"routed", m}, {"geh", geh(m, c.count)}});
   }
-  result.geh_ok_share = static_cast<double>(ok) / static_cast<double>(counts.edges.size());
+  for (const TurnCount& t : turns.turns) {
+    const double m = passages[t.from + " " + t.to];
+    per_turn.push_back(
+        {{"from", t.from}, {"to", t.to}, {"count", t.count}, {"routed", m}, {"geh", geh(m, t.count)}});
+  }
+  result.geh_ok_share =
+      static_cast<double>(ok) / static_cast<double>(counts.edges.size() + turns.turns.size());
   return sampled;
 }
 
@@ -319,8 +360,9 @@ TrafficDemand make_traffic_demand(const std::filesystem::path& net_path, const T
   if (options.trucks < 0) throw InvalidInput("demand: the number of trucks must be >= 0");
   if (inputs.od_csv.empty() != inputs.zones.empty())
     throw InvalidInput("demand: an OD matrix needs its zones and zones their OD matrix");
-  if (inputs.counts_csv.empty() && inputs.od_csv.empty() && options.trucks == 0)
-    throw InvalidInput("demand: nothing to make (give counts, an OD matrix with zones, or trucks)");
+  if (inputs.counts_csv.empty() && inputs.turns_csv.empty() && inputs.od_csv.empty() && options.trucks == 0)
+    throw InvalidInput(
+        "demand: nothing to make (give counts, turn counts, an OD matrix with zones, or trucks)");
   const std::vector<NetEdge> edges = read_net_edges(net);
   TrafficDemand result;
 
@@ -340,9 +382,10 @@ TrafficDemand make_traffic_demand(const std::filesystem::path& net_path, const T
 
   std::vector<std::string> route_files = {types.filename().string()};
   nlohmann::ordered_json per_edge = nlohmann::ordered_json::array();
-  if (!inputs.counts_csv.empty()) {
-    result.routes = counted_routes(net, edges, inputs.counts_csv, out_dir, stem, types, car_weights, options,
-                                   result, per_edge, diagnostics);
+  nlohmann::ordered_json per_turn = nlohmann::ordered_json::array();
+  if (!inputs.counts_csv.empty() || !inputs.turns_csv.empty()) {
+    result.routes = counted_routes(net, edges, inputs, out_dir, stem, types, car_weights, options, result,
+                                   per_edge, per_turn, diagnostics);
     route_files.push_back(result.routes.filename().string());
   }
   if (!inputs.od_csv.empty()) {
@@ -365,6 +408,7 @@ TrafficDemand make_traffic_demand(const std::filesystem::path& net_path, const T
   nlohmann::ordered_json j;
   j["net"] = net.string();
   j["counts"] = inputs.counts_csv.string();
+  j["turn_counts"] = inputs.turns_csv.string();
   j["od"] = inputs.od_csv.string();
   j["zones"] = inputs.zones.string();
   j["begin_s"] = options.begin_s;
@@ -372,6 +416,8 @@ TrafficDemand make_traffic_demand(const std::filesystem::path& net_path, const T
   j["grade_routing"] = options.grade_routing;
   j["count_rows"] = result.count_rows;
   j["counted_edges"] = result.counted_edges;
+  j["turn_rows"] = result.turn_rows;
+  j["counted_turns"] = result.counted_turns;
   j["unmatched_rows"] = result.unmatched;
   j["od_rows"] = result.od_rows;
   j["zones_count"] = result.zones;
@@ -382,6 +428,7 @@ TrafficDemand make_traffic_demand(const std::filesystem::path& net_path, const T
   j["geh_ok_share"] = result.geh_ok_share;
   j["worst_geh"] = result.worst_geh;
   j["edges"] = per_edge;
+  j["turns"] = per_turn;
   j["config"] = result.config.string();
   write_file_atomically(out_dir / kDemandReportFile, j.dump(2) + "\n");
   return result;

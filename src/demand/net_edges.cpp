@@ -73,6 +73,15 @@ std::vector<NetEdge> read_net_edges(const std::filesystem::path& net) {
     edges.push_back(std::move(e));
   }
   if (edges.empty()) throw InvalidInput("'" + net.string() + "' has no edges");
+  std::unordered_map<std::string, std::size_t> index;
+  for (std::size_t i = 0; i < edges.size(); ++i) index.emplace(edges[i].id, i);
+  for (const pugi::xml_node& c : doc.child("net").children("connection")) {
+    const auto from = index.find(c.attribute("from").as_string());
+    const std::string to = c.attribute("to").as_string();
+    if (from == index.end() || !index.contains(to)) continue;  // internal lanes' connections
+    std::vector<std::string>& next = edges[from->second].successors;
+    if (std::find(next.begin(), next.end(), to) == next.end()) next.push_back(to);
+  }
   const std::filesystem::path mapping = net.parent_path() / (sumo_net_name(net) + ".sumo_mapping.json");
   if (std::filesystem::is_regular_file(mapping)) {
     std::ifstream in(mapping);

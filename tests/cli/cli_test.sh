@@ -261,6 +261,15 @@ check "sumo runs the demand" bash -c "cd '$dm' && env -u SUMO_HOME sumo -c hill.
 check "demand od" run 0 "$RELIEF_TMP/demand_od" demand --net "$out/hill.net.xml" --od "$fix/od.csv" \
   --zones "$fix/zones.geojson" --out "$RELIEF_TMP/demand_od"
 check "demand od trips" grep -q '"od_trips": 230' "$RELIEF_TMP/demand_od/demand.json"
+check "demand turn counts" run 0 "$RELIEF_TMP/demand_turns" demand --net "$out/hill.net.xml" \
+  --turn-counts "$fix/turns.csv" --out "$RELIEF_TMP/demand_turns"
+check "demand turn figures" python3 - "$RELIEF_TMP/demand_turns/demand.json" <<'PY'
+import json, sys
+r = json.load(open(sys.argv[1]))
+print("demand hill turns: %d rows on %d turns, %d vehicles, GEH < 5 on %.0f %%" %
+      (r["turn_rows"], r["counted_turns"], r["vehicles"], 100 * r["geh_ok_share"]))
+assert r["turn_rows"] == 3 and r["counted_turns"] == 3 and r["geh_ok_share"] == 1.0, r
+PY
 check "demand od without zones" run 2 "$RELIEF_TMP/demand_od2" demand --net "$out/hill.net.xml" --od "$fix/od.csv" \
   --out "$RELIEF_TMP/demand_od2"
 printf 'osm_way,direction,count\n101,up,5\n' >"$RELIEF_TMP/bad_counts.csv"

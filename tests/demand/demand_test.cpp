@@ -487,5 +487,51 @@ TEST(Demand, AnOdMatrixPerVehicleClassRoutesEachClassOnItsWeights) {
   }
 }
 
+// Turn counts at the hill's signalised crossing of 21th Street (way 101) and Avenue B (201):
+// each movement goes onto the one pair of edges the net connects in those directions, and
+// routeSampler.py reproduces every turn within GEH 5; with the edge counts too, both are fed to
+// it at once.
+TEST(Demand, TurnCountsBecomeEdgeRelationsThatTheSampledRoutesReproduce) {
+  TrafficDemandOptions o;
+  Diagnostics d;
+  const fs::path out = test::scratch_dir("demand_turns");
+  write(out / "turns.csv",
+        "from_way,from_direction,to_way,to_direction,count\n"
+        "101,EB,201,NB,40\n101,EB,201,SB,25\n201,SB,101,WB,15\n101,NB,201,NB,5\n");
+  TrafficDemandInputs inputs;
+  inputs.turns_csv = out / "turns.csv";
+  const TrafficDemand r = make_traffic_demand(hill_net(), inputs, out / "run", o, d);
+  EXPECT_EQ(r.turn_rows, 4u);
+  EXPECT_EQ(r.counted_turns, 3u);
+  ASSERT_EQ(r.unmatched.size(), 1u);  // way 101 runs east-west: no northbound edge
+  EXPECT_NE(r.unmatched.front().find("line 5"), std::string::npos) << r.unmatched.front();
+  pugi::xml_document turns;
+  ASSERT_TRUE(turns.load_file((out / "run" / "hill.turns.xml").c_str()));
+  std::map<double, std::size_t> counts;
+  for (const pugi::xml_node& t : turns.child("data").child("interval").children("edgeRelation"))
+    ++counts[t.attribute("count").as_double()];
+  EXPECT_EQ(counts, (std::map<double, std::size_t>{{15.0, 1}, {25.0, 1}, {40.0, 1}}));
+  const nlohmann::json report = nlohmann::json::parse(std::ifstream(out / "run" / "demand.json"));
+  ASSERT_EQ(report.at("turns").size(), 3u);
+  for (const nlohmann::json& t : report.at("turns")) {
+    EXPECT_LT(t.at("geh").get<double>(), 5.0) << t.dump();
+    EXPECT_NE(t.at("from").get<std::string>(), t.at("to").get<std::string>());
+  }
+  EXPECT_EQ(r.geh_ok_share, 1.0);
+  // With the fixture's edge counts: one sampling on both (turns of 40 into a 30-vehicle edge
+  // cannot all hold, so only that both were counted is asserted).
+  inputs.counts_csv = test::fixture("hill/counts.csv");
+  const TrafficDemand both = make_traffic_demand(hill_net(), inputs, out / "both", o, d);
+  EXPECT_EQ(both.counted_turns, 3u);
+  EXPECT_GT(both.counted_edges, 10u);
+  EXPECT_TRUE(fs::exists(out / "both" / "hill.counts.xml"));
+  EXPECT_TRUE(fs::exists(out / "both" / "hill.turns.xml"));
+  // Turn counts alone, none of which fits, are bad input.
+  write(out / "none.csv", "from_way,from_direction,to_way,to_direction,count\n101,NB,201,NB,5\n");
+  TrafficDemandInputs none;
+  none.turns_csv = out / "none.csv";
+  EXPECT_THROW((void)make_traffic_demand(hill_net(), none, out / "none", o, d), InvalidInput);
+}
+
 }  // namespace
 }  // namespace relief

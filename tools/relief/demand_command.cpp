@@ -12,7 +12,7 @@ namespace relief::cli {
 namespace {
 
 struct DemandArgs {
-  std::string net, counts, od, zones, out;
+  std::string net, counts, turns, od, zones, out;
   TrafficDemandOptions options;
   bool flat_routing = false;
 };
@@ -20,10 +20,11 @@ struct DemandArgs {
 }  // namespace
 
 Runner add_demand_command(CLI::App& app) {
-  auto* cmd = app.add_subcommand("demand",
-                                 "Traffic counts per OSM way (routeSampler) and OD matrices (od2trips) on a "
-                                 "relief build's SUMO net, routed on "
-                                 "the grades");
+  auto* cmd =
+      app.add_subcommand("demand",
+                         "Traffic and turn counts per OSM way (routeSampler) and OD matrices (od2trips) on a "
+                         "relief build's SUMO net, routed on "
+                         "the grades");
   auto args = std::make_shared<DemandArgs>();
   cmd->add_option("--net", args->net, "A relief build's NAME.net.xml (NAME.sumo_mapping.json beside it)")
       ->required();
@@ -31,6 +32,9 @@ Runner add_demand_command(CLI::App& app) {
       "--counts", args->counts,
       "CSV with the header osm_way,direction,count (direction NB, SB, EB, WB, a bearing in degrees, "
       "or both)");
+  cmd->add_option("--turn-counts", args->turns,
+                  "CSV with the header from_way,from_direction,to_way,to_direction,count (directions as for "
+                  "--counts; both: any)");
   auto* od = cmd->add_option(
       "--od", args->od,
       "OD matrix: CSV with the header origin,destination,count[,class] (zone ids; class car or truck)");
@@ -59,12 +63,13 @@ Runner add_demand_command(CLI::App& app) {
       args->options.grade_routing = !args->flat_routing;
       Diagnostics diagnostics;
       print_diagnostics_live(diagnostics, false);
-      const TrafficDemandInputs inputs{args->counts, args->od, args->zones};
+      const TrafficDemandInputs inputs{args->counts, args->od, args->zones, args->turns};
       const TrafficDemand d = make_traffic_demand(args->net, inputs, args->out, args->options, diagnostics);
-      if (d.count_rows > 0)
-        std::cout << "counts     " << d.count_rows << " rows on " << d.counted_edges << " edges ("
-                  << d.unmatched.size() << " unmatched); GEH < 5 on " << fixed(100.0 * d.geh_ok_share, 1)
-                  << " % of the counted edges (worst " << fixed(d.worst_geh, 2) << ")\n";
+      if (d.count_rows + d.turn_rows > 0)
+        std::cout << "counts     " << d.count_rows << " rows on " << d.counted_edges << " edges, "
+                  << d.turn_rows << " turn rows on " << d.counted_turns << " turns (" << d.unmatched.size()
+                  << " unmatched); GEH < 5 on " << fixed(100.0 * d.geh_ok_share, 1) << " % of them (worst "
+                  << fixed(d.worst_geh, 2) << ")\n";
       if (d.od_rows > 0)
         std::cout << "od         " << d.od_rows << " relations between " << d.zones << " zones, "
                   << d.od_trips << " trips routed\n";

@@ -27,29 +27,32 @@ struct TrafficDemandOptions {
   bool grade_routing = true;  ///< duarouter on grade travel times (else on the limits)
 };
 
-/// What the demand is made of: traffic counts, an OD matrix with its zones, or both.
+/// What the demand is made of: traffic counts, turn counts, an OD matrix with its zones, or any of them.
 struct TrafficDemandInputs {
   std::filesystem::path counts_csv;     ///< traffic_counts.h
   std::filesystem::path od_csv, zones;  ///< zones.h: both or neither
+  std::filesystem::path turns_csv;      ///< turn_counts.h
 };
 
 struct TrafficDemand {
   std::size_t count_rows = 0, counted_edges = 0;
+  std::size_t turn_rows = 0, counted_turns = 0;  ///< turn counts: rows, and edge pairs they went onto
   std::size_t od_rows = 0, zones = 0, od_trips = 0;
   std::size_t od_truck_trips = 0;      ///< of od_trips, the trucks' (rows of class truck)
   std::vector<std::string> unmatched;  ///< rows no edge took, with why
   std::size_t vehicles = 0, trucks = 0;
-  double geh_ok_share = 0.0;  ///< counted edges whose routed count has GEH < 5
+  double geh_ok_share = 0.0;  ///< counted edges and turns whose routed count has GEH < 5
   double worst_geh = 0.0;
   std::filesystem::path routes, config;
 };
 
 /// Writes in `out_dir` (created): NAME.vtypes.xml, NAME.grade_CLASS.weights.xml; for counts
-/// NAME.counts.xml and NAME.counted.rou.xml; for an OD matrix NAME.taz.xml, NAME.od.xml and
+/// NAME.counts.xml (edge counts) and/or NAME.turns.xml (turn counts) and NAME.counted.rou.xml
+/// (routeSampler.py on both at once); for an OD matrix NAME.taz.xml, NAME.od.xml and
 /// NAME.od.rou.xml (its truck rows: NAME.od_truck.xml and NAME.od_truck.rou.xml, routed on the
 /// trucks' weights); for trucks NAME.trucks.rou.xml; NAME.demand.sumocfg (the net by path) and
-/// demand.json. Throws IoError for a missing tool or file, InvalidInput for counts that fit no
-/// edge, a matrix naming a zone the zones do not have or that has no edge.
+/// demand.json. Throws IoError for a missing tool or file, InvalidInput for counts (edge and
+/// turn counts together) that fit no edge, a matrix naming a zone the zones do not have or that has no edge.
 TrafficDemand make_traffic_demand(const std::filesystem::path& net_path, const TrafficDemandInputs& inputs,
                                   const std::filesystem::path& out_path, const TrafficDemandOptions& options,
                                   Diagnostics& diagnostics);

@@ -19,6 +19,8 @@ struct NetEdge {
   double speed_mps = 0.0;
   std::vector<std::string> disallow;      ///< of the first lane
   std::vector<std::int64_t> osm_way_ids;  ///< from the mapping; empty for an edge it does not list
+  /// The normal edges a connection of the net leads to from this one (a vehicle can turn into).
+  std::vector<std::string> successors;
 
   /// Compass bearing of the edge from its first to its last point, degrees clockwise from north.
   [[nodiscard]] double bearing_deg() const;
