@@ -78,6 +78,9 @@ void write_cosim_json(const std::filesystem::path& path, const CosimInputs& inpu
   j["z_error_m"] = spread_json(r.z_error_m);
   j["z_error_on_roads_m"] = spread_json(r.z_error_on_roads_m);
   j["z_error_in_junctions_m"] = spread_json(r.z_error_in_junctions_m);
+  j["z_error_body_m"] = spread_json(r.z_error_body_m);
+  j["z_error_body_on_roads_m"] = spread_json(r.z_error_body_on_roads_m);
+  j["z_error_body_in_junctions_m"] = spread_json(r.z_error_body_in_junctions_m);
   j["sumo_z_error_m"] = spread_json(r.sumo_z_error_m);
   j["pitch_error_deg"] = spread_json(r.pitch_error_deg);
   j["wheel_under_m"] = spread_json(r.wheel_under_m);

@@ -47,6 +47,23 @@ void PlacementMeasures::unplaced(const SumoVehicleState& v, double t, CosimResul
   first_unplaced_ = where.str();
 }
 
+std::optional<double> PlacementMeasures::odr_body_z(const SumoVehicleState& v, const std::string& lane) {
+  const WheelBase wheels = wheel_base_of(v.length_m, v.width_m);
+  const Vec2 centre = v.centre();
+  const double heading = v.heading();
+  const Vec2 forward(std::cos(heading), std::sin(heading));
+  const Vec2 left(-forward.y(), forward.x());
+  double sum = 0.0;
+  for (const double along : {0.5 * wheels.wheelbase_m, -0.5 * wheels.wheelbase_m}) {
+    for (const double across : {0.5 * wheels.track_m, -0.5 * wheels.track_m}) {
+      const std::optional<LaneSurfacePoint> at = odr_.at(lane, centre + along * forward + across * left);
+      if (!at || !at->on_road()) return std::nullopt;
+      sum += at->z_m;
+    }
+  }
+  return 0.25 * sum;
+}
+
 void PlacementMeasures::add(const SumoVehicleState& v, const SurfacePose& pose, double t, CosimResult& result,
                             bool sumo_placed) {
   ++result.vehicle_steps;
@@ -92,6 +109,12 @@ void PlacementMeasures::add(const SumoVehicleState& v, const SurfacePose& pose, 
   (centre_lane->starts_with(':') ? z_errors_junction_ : z_errors_road_)
       .push_back(static_cast<float>(z_error));
   pitch_errors_.push_back(static_cast<float>(std::abs(pose.pitch_rad - std::atan(*slope)) * kDegree));
+  // The same vehicle set on the OpenDRIVE surface: its wheel contacts' mean height there.
+  if (const std::optional<double> body = odr_body_z(v, *centre_lane)) {
+    const auto e = static_cast<float>(std::abs(pose.z_m - *body));
+    body_errors_.push_back(e);
+    (centre_lane->starts_with(':') ? body_errors_junction_ : body_errors_road_).push_back(e);
+  }
   if (z_error > worst_z_) {
     worst_z_ = z_error;
     std::ostringstream where;
@@ -107,6 +130,9 @@ void PlacementMeasures::finish(CosimResult& result, Diagnostics& diagnostics) {
   result.z_error_m = spread_of(z_errors_);
   result.z_error_on_roads_m = spread_of(z_errors_road_);
   result.z_error_in_junctions_m = spread_of(z_errors_junction_);
+  result.z_error_body_m = spread_of(body_errors_);
+  result.z_error_body_on_roads_m = spread_of(body_errors_road_);
+  result.z_error_body_in_junctions_m = spread_of(body_errors_junction_);
   result.sumo_z_error_m = spread_of(sumo_z_errors_);
   result.pitch_error_deg = spread_of(pitch_errors_);
   result.wheel_under_m = spread_of(wheel_under_);

@@ -1,10 +1,12 @@
 #pragma once
 // Private to the cosim module: every placement measured against the OpenDRIVE surface of the
 // lane the vehicle's centre is on (its height, its pitch against the surface's slope along the
-// heading, SUMO's own lane height at the front bumper), the wheel contacts tallied, and the
+// heading, SUMO's own lane height at the front bumper; the vehicle's body against the same
+// wheel contacts on that surface), the wheel contacts tallied, and the
 // spreads and worst place summed up into a CosimResult.
 
 #include <array>
+#include <optional>
 #include <string>
 #include <unordered_map>
 #include <vector>
@@ -36,13 +38,17 @@ class PlacementMeasures {
   void finish(CosimResult& result, Diagnostics& diagnostics);
 
  private:
+  // The mean height of the vehicle's four wheel contacts (vehicle_pose.h's wheel base) on the
+  // OpenDRIVE road of `lane`; none when a contact lies beyond that road's ends.
+  std::optional<double> odr_body_z(const SumoVehicleState& v, const std::string& lane);
+
   SumoSurface& odr_;
   const CosimOptions& options_;
   // The last lanes of every vehicle, newest first: its centre, half a length behind the front
   // bumper, may still be on a lane the bumper has left.
   std::unordered_map<std::string, std::array<std::string, 3>> recent_;
   std::vector<float> z_errors_, z_errors_road_, z_errors_junction_, sumo_z_errors_, pitch_errors_,
-      wheel_under_;
+      wheel_under_, body_errors_, body_errors_road_, body_errors_junction_;
   double worst_z_ = -1.0;
   std::string first_unplaced_, first_unmapped_;
 };

@@ -276,7 +276,13 @@ BuildResult build(const BuildOptions& options, Diagnostics& diagnostics, const P
       static const std::vector<Vec2> level;
       const std::vector<Vec2>& planes =
           options.profile_method == ProfileMethod::relief ? fit->junction_gradient : level;
-      return build_road_model(network, profiles, options.road_model, diagnostics, planes);
+      RoadModelOptions model_options = options.road_model;
+      if (options.profile_method == ProfileMethod::relief) {
+        model_options.grade_caps.resize(network.roads.size());
+        for (std::size_t r = 0; r < network.roads.size(); ++r)
+          model_options.grade_caps[r] = grade_limit(options.fit, network.roads[r].attributes);
+      }
+      return build_road_model(network, profiles, model_options, diagnostics, planes);
     });
     built->model.name = report.name;
     // The elevation records' grades against the caps the fit applied (connecting roads: the

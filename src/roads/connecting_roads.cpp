@@ -22,6 +22,7 @@ namespace {
 
 constexpr double kPi = std::numbers::pi;
 constexpr double kUTurn_rad = 5.0 * kPi / 6.0;
+constexpr double kCapMargin = 0.005;  // a road on the junction's surface stays this far inside cap + 2 %
 
 // The lane pairs (arriving lane, departing lane) that make `movement` ("through", "left",
 // "right"; `slight`: a turn under 60 degrees, which a through lane may make too). With
@@ -63,12 +64,13 @@ std::vector<std::pair<int, int>> lane_pairs(const std::vector<std::string>& turn
 }
 
 // The connecting road `id` of junction `junction_id` from lane `la` of road a's end `in` to lane
-// `lb` of road b's end `to`, on the junction's surface where that keeps the grade bound of
-// slope_bounded_profile; else the bounded profile between its ends, its roll blended from the
+// `lb` of road b's end `to`, on the junction's surface where that keeps its grade within `cap`
+// (the larger fitted cap of the two roads + 2 %, less kCapMargin) or within the bound of
+// slope_bounded_profile; else that bounded profile between its ends, its roll blended from the
 // plane gradient g0 to g1.
 ModelRoad connecting_road(int id, int junction_id, const ModelRoad& a, const EndRef& in, int la,
                           const ModelRoad& b, const EndRef& to, int lb, const JunctionHeight& surface,
-                          const Vec2& g0_plane, const Vec2& g1_plane, bool& on_surface) {
+                          double cap, const Vec2& g0_plane, const Vec2& g1_plane, bool& on_surface) {
   ModelRoad c;
   c.id = id;
   c.junction = junction_id;
@@ -89,7 +91,7 @@ ModelRoad connecting_road(int id, int junction_id, const ModelRoad& a, const End
   const double bound =
       std::max({std::abs(g0), std::abs(g1), std::abs(z1 - z0) / len + kConnectionGradeAllowance});
   SurfaceProfiles on = surface_profiles(c.plan, surface);
-  on_surface = on.max_grade <= bound;
+  on_surface = on.max_grade <= std::max(bound, cap - kCapMargin);
   if (on_surface) {
     c.elevation = std::move(on.elevation);
     c.superelevation = std::move(on.superelevation);
@@ -138,6 +140,11 @@ void add_junction(const RoadNetwork& network, const JunctionClusters& clusters, 
     (e.at_start ? m.predecessor : m.successor) =
         RoadLink{RoadLink::Element::junction, jm.id, RoadLink::Contact::start};
   }
+  // The larger fitted cap of two roads (0 when none is known: the cubic's bound alone).
+  const auto cap_of = [&](const EndRef& x, const EndRef& y) {
+    if (options.grade_caps.empty()) return -kConnectionGradeAllowance;
+    return std::max(options.grade_caps[x.network_road], options.grade_caps[y.network_road]);
+  };
   std::vector<EndPlane> end_planes;
   for (const EndRef& e : ends) end_planes.push_back(end_plane(model_of(e), e.at_start));
   const JunctionHeight surface(std::move(end_planes));
@@ -172,7 +179,8 @@ void add_junction(const RoadNetwork& network, const JunctionClusters& clusters, 
         bool on_surface = false;
         ModelRoad c =
             connecting_road(static_cast<int>(model.roads.size()) + 1, jm.id, a, in, la, b, to, lb, surface,
-                            planes[junction_of(network, in)], planes[junction_of(network, to)], on_surface);
+                            cap_of(in, to) + kConnectionGradeAllowance, planes[junction_of(network, in)],
+                            planes[junction_of(network, to)], on_surface);
         if (!on_surface) ++out.stats.connecting_roads_off_surface;
         JunctionConnection conn;
         conn.id = static_cast<int>(jm.connections.size());

@@ -88,10 +88,14 @@ struct CosimResult {
   std::size_t off_pavement = 0;      ///< wheel contacts on a surface other than road or junction
   std::size_t contacts_missing = 0;  ///< wheel contacts with no surface near (vehicle_pose.h)
   double wall_s = 0.0, sumo_s = 0.0, relief_s = 0.0, setup_s = 0.0;
-  bool stopped = false;               ///< ended by stop_requested
-  Spread z_error_m;                   ///< |placed z - S(road, s, t).z| at the vehicle's centre
-  Spread z_error_on_roads_m;          ///< the same where the centre is on a road's lane
-  Spread z_error_in_junctions_m;      ///< the same where it is on an internal lane (a junction)
+  bool stopped = false;           ///< ended by stop_requested
+  Spread z_error_m;               ///< |placed z - S(road, s, t).z| at the vehicle's centre
+  Spread z_error_on_roads_m;      ///< the same where the centre is on a road's lane
+  Spread z_error_in_junctions_m;  ///< the same where it is on an internal lane (a junction)
+  /// |placed z - the same wheel contacts' mean on the OpenDRIVE surface|: the vehicle set on the
+  /// scene against the vehicle set the same way on the .xodr (the body's own sag over a crest,
+  /// in both, cancels), where every contact lies on the centre's road; and split as above.
+  Spread z_error_body_m, z_error_body_on_roads_m, z_error_body_in_junctions_m;
   Spread sumo_z_error_m;              ///< |SUMO's z - S(road, s, t).z| at the front bumper
   Spread pitch_error_deg;             ///< |pitch - atan(surface slope along the heading)|
   Spread wheel_under_m;               ///< the deepest contact per vehicle-step (0 when none is under)

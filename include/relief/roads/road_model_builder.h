@@ -60,6 +60,11 @@ struct RoadModelOptions {
   double min_radius_margin_m = 0.5;  ///< smallest arc radius beyond the outermost lane border
   double junction_end_gap_m = 0.5;   ///< least distance between road ends at a junction
   bool u_turns = false;              ///< U-turns: back into the arriving road, or any turn over 150 degrees
+  /// Per network road, the grade cap its profile was fitted to (fraction; empty: none known). A
+  /// connecting road follows its junction's height surface where that keeps it within the larger
+  /// cap of the two roads it joins (less 0.5 %, inside the grade gate's 2 %), else within the
+  /// bound of the cubic between its ends.
+  std::vector<double> grade_caps;
 };
 
 struct RoadModelStats {
