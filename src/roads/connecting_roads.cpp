@@ -146,6 +146,7 @@ void add_junction(const RoadNetwork& network, const JunctionClusters& clusters, 
     return std::max(options.grade_caps[x.network_road], options.grade_caps[y.network_road]);
   };
   std::vector<EndPlane> end_planes;
+  end_planes.reserve(ends.size());
   for (const EndRef& e : ends) end_planes.push_back(end_plane(model_of(e), e.at_start));
   const JunctionHeight surface(std::move(end_planes));
   for (std::size_t ia = 0; ia < ends.size(); ++ia) {
