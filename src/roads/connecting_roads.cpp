@@ -142,7 +142,7 @@ void add_junction(const RoadNetwork& network, const JunctionClusters& clusters, 
   }
   // The larger fitted cap of two roads (0 when none is known: the cubic's bound alone).
   const auto cap_of = [&](const EndRef& x, const EndRef& y) {
-    if (options.grade_caps.empty()) return -kConnectionGradeAllowance;
+    if (options.grade_caps.empty()) return 0.0;
     return std::max(options.grade_caps[x.network_road], options.grade_caps[y.network_road]);
   };
   std::vector<EndPlane> end_planes;
