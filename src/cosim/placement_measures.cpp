@@ -114,6 +114,14 @@ void PlacementMeasures::add(const SumoVehicleState& v, const SurfacePose& pose, 
     const auto e = static_cast<float>(std::abs(pose.z_m - *body));
     body_errors_.push_back(e);
     (centre_lane->starts_with(':') ? body_errors_junction_ : body_errors_road_).push_back(e);
+    if (e > worst_body_) {
+      worst_body_ = e;
+      std::ostringstream where;
+      where << "vehicle '" << v.id << "' at t = " << t << " s on lane '" << v.lane << "' (OpenDRIVE road "
+            << at_centre->odr_road << ", s = " << at_centre->s << ") at (" << centre.x() << ", " << centre.y()
+            << "): " << e << " m";
+      result.worst_body_place = where.str();
+    }
   }
   if (z_error > worst_z_) {
     worst_z_ = z_error;

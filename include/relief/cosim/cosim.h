@@ -101,6 +101,7 @@ struct CosimResult {
   Spread wheel_under_m;               ///< the deepest contact per vehicle-step (0 when none is under)
   std::size_t wheels_under_road = 0;  ///< contacts deeper than wheel_under_limit_m
   std::string worst_z_place;          ///< vehicle, time, lane and (x, y) of the largest z error
+  std::string worst_body_place;       ///< the same for the largest z_error_body_m
   // The egos.
   std::size_t egos = 0;       ///< distinct ego vehicles driven
   std::size_t ego_steps = 0;  ///< egos x steps
