@@ -47,7 +47,8 @@ void PlacementMeasures::unplaced(const SumoVehicleState& v, double t, CosimResul
   first_unplaced_ = where.str();
 }
 
-std::optional<double> PlacementMeasures::odr_body_z(const SumoVehicleState& v, const std::string& lane) {
+std::optional<double> PlacementMeasures::odr_body_z(const SumoVehicleState& v, const std::string& lane,
+                                                    const LaneSurfacePoint& near) {
   const WheelBase wheels = wheel_base_of(v.length_m, v.width_m);
   const Vec2 centre = v.centre();
   const double heading = v.heading();
@@ -56,7 +57,8 @@ std::optional<double> PlacementMeasures::odr_body_z(const SumoVehicleState& v, c
   double sum = 0.0;
   for (const double along : {0.5 * wheels.wheelbase_m, -0.5 * wheels.wheelbase_m}) {
     for (const double across : {0.5 * wheels.track_m, -0.5 * wheels.track_m}) {
-      const std::optional<LaneSurfacePoint> at = odr_.at(lane, centre + along * forward + across * left);
+      const std::optional<LaneSurfacePoint> at =
+          odr_.at(lane, centre + along * forward + across * left, &near);
       if (!at || !at->on_road()) return std::nullopt;
       sum += at->z_m;
     }
@@ -95,7 +97,9 @@ void PlacementMeasures::add(const SumoVehicleState& v, const SurfacePose& pose, 
     }
     at_centre.reset();
   }
-  const std::optional<double> slope = centre_lane ? odr_.slope(*centre_lane, centre, heading) : std::nullopt;
+  // The nearby points start their projections at the centre's station (no search along the road).
+  const std::optional<double> slope =
+      centre_lane ? odr_.slope(*centre_lane, centre, heading, 0.5, &*at_centre) : std::nullopt;
   if (!at_centre || !slope) {
     if (result.unmapped++ == 0) {
       std::ostringstream where;
@@ -110,7 +114,7 @@ void PlacementMeasures::add(const SumoVehicleState& v, const SurfacePose& pose, 
       .push_back(static_cast<float>(z_error));
   pitch_errors_.push_back(static_cast<float>(std::abs(pose.pitch_rad - std::atan(*slope)) * kDegree));
   // The same vehicle set on the OpenDRIVE surface: its wheel contacts' mean height there.
-  if (const std::optional<double> body = odr_body_z(v, *centre_lane)) {
+  if (const std::optional<double> body = odr_body_z(v, *centre_lane, *at_centre)) {
     const auto e = static_cast<float>(std::abs(pose.z_m - *body));
     body_errors_.push_back(e);
     (centre_lane->starts_with(':') ? body_errors_junction_ : body_errors_road_).push_back(e);

@@ -39,8 +39,10 @@ class PlacementMeasures {
 
  private:
   // The mean height of the vehicle's four wheel contacts (vehicle_pose.h's wheel base) on the
-  // OpenDRIVE road of `lane`; none when a contact lies beyond that road's ends.
-  std::optional<double> odr_body_z(const SumoVehicleState& v, const std::string& lane);
+  // OpenDRIVE road of `lane` (`near`: the centre's answer there); none when a contact lies
+  // beyond that road's ends.
+  std::optional<double> odr_body_z(const SumoVehicleState& v, const std::string& lane,
+                                   const LaneSurfacePoint& near);
 
   SumoSurface& odr_;
   const CosimOptions& options_;

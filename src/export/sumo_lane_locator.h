@@ -7,12 +7,14 @@
 
 #include <pugixml.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <optional>
 #include <string>
 #include <string_view>
 #include <unordered_map>
+#include <utility>
 #include <vector>
 
 #include "relief/geometry/types.h"
@@ -37,7 +39,9 @@ struct Projection {
   double s = 0.0, t = 0.0, beyond = 0.0;
 };
 
-// (s, t) of the point of `road`'s reference line nearest to p: a 1 m scan, then Newton steps.
+// (s, t) of the point of `road`'s reference line nearest to p: a 1 m scan, then Newton steps;
+// with a station `hint` near the answer (a point a few metres from one projected before), Newton
+// from there alone (the scan is O(length) per point).
 class RoadProjector {
  public:
   explicit RoadProjector(const ModelRoad& road) : road_(road) {
@@ -50,17 +54,22 @@ class RoadProjector {
     }
   }
 
-  [[nodiscard]] Projection project(const Vec2& p) const {
-    std::size_t best = 0;
-    double best_d = std::numeric_limits<double>::infinity();
-    for (std::size_t i = 0; i < points_.size(); ++i) {
-      const double d = (points_[i] - p).squaredNorm();
-      if (d < best_d) {
-        best_d = d;
-        best = i;
+  [[nodiscard]] Projection project(const Vec2& p, std::optional<double> hint = std::nullopt) const {
+    double s = 0.0;
+    if (hint) {
+      s = std::clamp(*hint, 0.0, road_.length());
+    } else {
+      std::size_t best = 0;
+      double best_d = std::numeric_limits<double>::infinity();
+      for (std::size_t i = 0; i < points_.size(); ++i) {
+        const double d = (points_[i] - p).squaredNorm();
+        if (d < best_d) {
+          best_d = d;
+          best = i;
+        }
       }
+      s = stations_[best];
     }
-    double s = stations_[best];
     for (int it = 0; it < 20; ++it) {
       // Newton on (p - o(s)) . T(s) = 0, whose derivative is -(1 - curvature t): on a tight
       // bend the plain tangent step (the derivative taken as -1) overshoots on the outside and
@@ -164,18 +173,23 @@ class LaneLocator {
   /// The OpenDRIVE road, lane and (s, t) of point p of SUMO lane `lane_id`; nullopt when the
   /// lane has no road in the model. A point past an end of its road (netconvert stretches an
   /// internal lane to where it cut the next lane) lies on the road linked there, if any: the
-  /// surface at that (x, y) is that road's.
-  [[nodiscard]] std::optional<LanePoint> locate(const std::string& lane_id, const Vec2& p) {
+  /// surface at that (x, y) is that road's. `near`: (OpenDRIVE road id, station) of a point a
+  /// few metres from p, used as the projection's start on that road (RoadProjector::project).
+  [[nodiscard]] std::optional<LanePoint> locate(const std::string& lane_id, const Vec2& p,
+                                                std::optional<std::pair<int, double>> near = std::nullopt) {
+    const auto hint = [&](const ModelRoad& r) {
+      return near && near->first == r.id ? std::optional<double>(near->second) : std::nullopt;
+    };
     const auto it = lanes_.find(lane_id);
     if (it == lanes_.end()) return std::nullopt;
     const ModelRoad* road = road_of(it->second.road);
     if (road == nullptr) return std::nullopt;
-    const Projection at = projector(*road).project(p);
+    const Projection at = projector(*road).project(p, hint(*road));
     if (std::abs(at.beyond) > kPastEnd_m) {
       const std::optional<RoadLink>& link = at.beyond < 0.0 ? road->predecessor : road->successor;
       const ModelRoad* next = link && link->element == RoadLink::Element::road ? road_of(link->id) : nullptr;
       if (next != nullptr) {
-        const Projection on = projector(*next).project(p);
+        const Projection on = projector(*next).project(p, hint(*next));
         if (std::abs(on.beyond) <= kPastEnd_m) {
           LaneRoad lane = it->second;
           lane.lane.reset();  // not on this road's lane centre: height only

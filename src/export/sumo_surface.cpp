@@ -30,17 +30,19 @@ SumoSurface::~SumoSurface() = default;
 SumoSurface::SumoSurface(SumoSurface&&) noexcept = default;
 SumoSurface& SumoSurface::operator=(SumoSurface&&) noexcept = default;
 
-std::optional<LaneSurfacePoint> SumoSurface::at(const std::string& lane_id, const Vec2& p) {
-  const std::optional<detail::LanePoint> on = impl_->locator->locate(lane_id, p);
+std::optional<LaneSurfacePoint> SumoSurface::at(const std::string& lane_id, const Vec2& p,
+                                                const LaneSurfacePoint* near) {
+  const std::optional<detail::LanePoint> on = impl_->locator->locate(
+      lane_id, p, near ? std::optional<std::pair<int, double>>({near->odr_road, near->s}) : std::nullopt);
   if (!on) return std::nullopt;
   return LaneSurfacePoint{on->road->id, on->s, on->t, surface_z(*on->road, on->s, on->t), on->beyond};
 }
 
 std::optional<double> SumoSurface::slope(const std::string& lane_id, const Vec2& p, double heading,
-                                         double half_step_m) {
+                                         double half_step_m, const LaneSurfacePoint* near) {
   const Vec2 along(std::cos(heading), std::sin(heading));
-  const auto ahead = at(lane_id, p + half_step_m * along);
-  const auto behind = at(lane_id, p - half_step_m * along);
+  const auto ahead = at(lane_id, p + half_step_m * along, near);
+  const auto behind = at(lane_id, p - half_step_m * along, near);
   if (!ahead || !behind || ahead->odr_road != behind->odr_road || !ahead->on_road() || !behind->on_road())
     return std::nullopt;
   return (ahead->z_m - behind->z_m) / (2.0 * half_step_m);

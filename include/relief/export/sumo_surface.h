@@ -40,14 +40,16 @@ class SumoSurface {
 
   /// Where plan point p of SUMO lane `lane_id` lies on the lane's OpenDRIVE road, and the
   /// surface height there; nullopt for a lane without a road in the model. Not thread-safe
-  /// (road projectors are made on first use).
-  [[nodiscard]] std::optional<LaneSurfacePoint> at(const std::string& lane_id, const Vec2& p);
+  /// (road projectors are made on first use). `near`: the answer for a point a few metres from
+  /// p, whose station starts the projection on the same road (sparing the search along it).
+  [[nodiscard]] std::optional<LaneSurfacePoint> at(const std::string& lane_id, const Vec2& p,
+                                                   const LaneSurfacePoint* near = nullptr);
 
   /// Slope dz/dl of that surface along `heading` (radians, counter-clockwise from +x) at p:
   /// central difference over +-half_step_m on the same road; nullopt as for at(), and when
   /// either end of the difference lies past the road.
   [[nodiscard]] std::optional<double> slope(const std::string& lane_id, const Vec2& p, double heading,
-                                            double half_step_m = 0.5);
+                                            double half_step_m = 0.5, const LaneSurfacePoint* near = nullptr);
 
  private:
   struct Impl;
