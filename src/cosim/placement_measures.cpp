@@ -113,6 +113,14 @@ void PlacementMeasures::add(const SumoVehicleState& v, const SurfacePose& pose, 
   (centre_lane->starts_with(':') ? z_errors_junction_ : z_errors_road_)
       .push_back(static_cast<float>(z_error));
   pitch_errors_.push_back(static_cast<float>(std::abs(pose.pitch_rad - std::atan(*slope)) * kDegree));
+  // The vehicle, time, lane and place of an error (the worst of its kind so far).
+  const auto place = [&](double error) {
+    std::ostringstream where;
+    where << "vehicle '" << v.id << "' at t = " << t << " s on lane '" << v.lane << "' (OpenDRIVE road "
+          << at_centre->odr_road << ", s = " << at_centre->s << ") at (" << centre.x() << ", " << centre.y()
+          << "): " << error << " m";
+    return where.str();
+  };
   // The same vehicle set on the OpenDRIVE surface: its wheel contacts' mean height there.
   if (const std::optional<double> body = odr_body_z(v, *centre_lane, *at_centre)) {
     const auto e = static_cast<float>(std::abs(pose.z_m - *body));
@@ -120,20 +128,12 @@ void PlacementMeasures::add(const SumoVehicleState& v, const SurfacePose& pose, 
     (centre_lane->starts_with(':') ? body_errors_junction_ : body_errors_road_).push_back(e);
     if (e > worst_body_) {
       worst_body_ = e;
-      std::ostringstream where;
-      where << "vehicle '" << v.id << "' at t = " << t << " s on lane '" << v.lane << "' (OpenDRIVE road "
-            << at_centre->odr_road << ", s = " << at_centre->s << ") at (" << centre.x() << ", " << centre.y()
-            << "): " << e << " m";
-      result.worst_body_place = where.str();
+      result.worst_body_place = place(e);
     }
   }
   if (z_error > worst_z_) {
     worst_z_ = z_error;
-    std::ostringstream where;
-    where << "vehicle '" << v.id << "' at t = " << t << " s on lane '" << v.lane << "' (OpenDRIVE road "
-          << at_centre->odr_road << ", s = " << at_centre->s << ") at (" << centre.x() << ", " << centre.y()
-          << "): " << z_error << " m";
-    result.worst_z_place = where.str();
+    result.worst_z_place = place(z_error);
   }
 }
 
