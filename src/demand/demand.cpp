@@ -192,25 +192,24 @@ std::filesystem::path counted_routes(const std::filesystem::path& net, const std
   CountsOnEdges counts;
   TurnsOnEdges turns;
   std::vector<std::string> tool = {sumo_python(), sumo_tool("routeSampler.py").string()};
+  const auto report_unmatched = [&](const std::filesystem::path& file,
+                                    const std::vector<std::string>& messages) {
+    for (const std::string& message : messages) {
+      result.unmatched.push_back(message);
+      diagnostics.report(Severity::warning, codes::kDemandCountUnmatched, file.string() + " " + message);
+    }
+  };
   if (!inputs.counts_csv.empty()) {
     const std::vector<CountRow> rows = read_counts_csv(inputs.counts_csv);
     counts = counts_on_edges(rows, edges);
     result.count_rows = rows.size();
-    for (const std::string& message : counts.unmatched) {
-      result.unmatched.push_back(message);
-      diagnostics.report(Severity::warning, codes::kDemandCountUnmatched,
-                         inputs.counts_csv.string() + " " + message);
-    }
+    report_unmatched(inputs.counts_csv, counts.unmatched);
   }
   if (!inputs.turns_csv.empty()) {
     const std::vector<TurnRow> rows = read_turn_counts_csv(inputs.turns_csv);
     turns = turns_on_edges(rows, edges);
     result.turn_rows = rows.size();
-    for (const std::string& message : turns.unmatched) {
-      result.unmatched.push_back(message);
-      diagnostics.report(Severity::warning, codes::kDemandCountUnmatched,
-                         inputs.turns_csv.string() + " " + message);
-    }
+    report_unmatched(inputs.turns_csv, turns.unmatched);
   }
   result.counted_edges = counts.edges.size();
   result.counted_turns = turns.turns.size();

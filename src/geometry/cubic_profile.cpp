@@ -287,12 +287,16 @@ CubicProfile hermite_profile(double length, double z0, double g0, double z1, dou
   return CubicProfile({CubicPiece{0.0, hermite(length, z0, g0, z1, g1)}});
 }
 
+double slope_bound(double length, double z0, double g0, double z1, double g1, double allowance) {
+  return std::max({std::abs(g0), std::abs(g1), std::abs(z1 - z0) / length + allowance});
+}
+
 CubicProfile slope_bounded_profile(double length, double z0, double g0, double z1, double g1,
                                    double allowance) {
   CubicProfile cubic = hermite_profile(length, z0, g0, z1, g1);
   if (!(allowance >= 0.0)) throw InvalidInput("slope-bounded profile: the allowance must be >= 0");
   const double rise = z1 - z0;
-  const double bound = std::max({std::abs(g0), std::abs(g1), std::abs(rise) / length + allowance});
+  const double bound = slope_bound(length, z0, g0, z1, g1, allowance);
   // The Hermite slope is a quadratic in s: its extreme lies at an end or at its vertex.
   const Poly3& h = cubic.pieces().front().poly;
   double steepest = std::max(std::abs(g0), std::abs(g1));

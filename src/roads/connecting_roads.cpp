@@ -88,8 +88,7 @@ ModelRoad connecting_road(int id, int junction_id, const ModelRoad& a, const End
   const double len = c.plan.length();
   const auto [z0, g0] = lane_end_height(a, in.at_start, la);
   const auto [z1, g1] = lane_end_height(b, to.at_start, lb);
-  const double bound =
-      std::max({std::abs(g0), std::abs(g1), std::abs(z1 - z0) / len + kConnectionGradeAllowance});
+  const double bound = slope_bound(len, z0, g0, z1, g1, kConnectionGradeAllowance);
   SurfaceProfiles on = surface_profiles(c.plan, surface);
   on_surface = on.max_grade <= std::max(bound, cap - kCapMargin);
   if (on_surface) {

@@ -196,7 +196,7 @@ TEST(Demand, TheHillsCountsAreReproducedAndTrucksRouteOnTheGrades) {
   Diagnostics d;
   const fs::path out = test::scratch_dir("demand_counts");
   const TrafficDemand r =
-      make_traffic_demand(hill_net(), {test::fixture("hill/counts.csv"), {}, {}}, out, o, d);
+      make_traffic_demand(hill_net(), {test::fixture("hill/counts.csv"), {}, {}, {}}, out, o, d);
   EXPECT_EQ(r.count_rows, 5u);
   EXPECT_GE(r.counted_edges, 10u);
   EXPECT_TRUE(r.unmatched.empty());
@@ -219,7 +219,7 @@ TEST(Demand, TheHillsCountsAreReproducedAndTrucksRouteOnTheGrades) {
   // The same trucks routed on the speed limits.
   o.grade_routing = false;
   const fs::path flat = test::scratch_dir("demand_counts_flat");
-  (void)make_traffic_demand(hill_net(), {test::fixture("hill/counts.csv"), {}, {}}, flat, o, d);
+  (void)make_traffic_demand(hill_net(), {test::fixture("hill/counts.csv"), {}, {}, {}}, flat, o, d);
   std::map<std::string, double> weight;
   for (const NetEdge& e : read_net_edges(hill_net())) weight[e.id] = grade_travel_time(e, "truck");
   const auto on_grades = routes_of(out / "hill.trucks.rou.xml"),
@@ -273,7 +273,7 @@ TEST(Demand, TheHillsCountsAreReproducedAndTrucksRouteOnTheGrades) {
 
   // Counts that fit no edge are bad input.
   std::ofstream(out / "nowhere.csv") << "osm_way,direction,count\n999,NB,10\n";
-  EXPECT_THROW((void)make_traffic_demand(hill_net(), {out / "nowhere.csv", {}, {}}, out / "none", o, d),
+  EXPECT_THROW((void)make_traffic_demand(hill_net(), {out / "nowhere.csv", {}, {}, {}}, out / "none", o, d),
                InvalidInput);
 }
 
@@ -410,7 +410,7 @@ TEST(Demand, AnOdMatrixBetweenZonesBecomesRoutesFromZoneToZone) {
   Diagnostics d;
   const fs::path out = test::scratch_dir("demand_od");
   const TrafficDemand r = make_traffic_demand(
-      hill_net(), {{}, test::fixture("hill/od.csv"), test::fixture("hill/zones.geojson")}, out, o, d);
+      hill_net(), {{}, test::fixture("hill/od.csv"), test::fixture("hill/zones.geojson"), {}}, out, o, d);
   EXPECT_EQ(r.od_rows, 4u);
   EXPECT_EQ(r.zones, 3u);
   EXPECT_EQ(r.od_trips, 230u);  // 100 + 80 + 30 + 20
@@ -440,7 +440,7 @@ TEST(Demand, AnOdMatrixBetweenZonesBecomesRoutesFromZoneToZone) {
   // A relation naming a zone the zones do not have is bad input.
   write(out / "bad_od.csv", "origin,destination,count\nwest,nowhere,5\n");
   EXPECT_THROW(
-      (void)make_traffic_demand(hill_net(), {{}, out / "bad_od.csv", test::fixture("hill/zones.geojson")},
+      (void)make_traffic_demand(hill_net(), {{}, out / "bad_od.csv", test::fixture("hill/zones.geojson"), {}},
                                 out / "bad", o, d),
       InvalidInput);
 }
@@ -455,7 +455,7 @@ TEST(Demand, AnOdMatrixPerVehicleClassRoutesEachClassOnItsWeights) {
         "origin,destination,count,class\nwest,east,60,car\neast,west,25,truck\n"
         "centre,west,15,car\nwest,centre,10,passenger\n");
   const TrafficDemand r = make_traffic_demand(
-      hill_net(), {{}, out / "od.csv", test::fixture("hill/zones.geojson")}, out / "run", o, d);
+      hill_net(), {{}, out / "od.csv", test::fixture("hill/zones.geojson"), {}}, out / "run", o, d);
   EXPECT_EQ(r.od_rows, 4u);
   EXPECT_EQ(r.od_trips, 110u);
   EXPECT_EQ(r.od_truck_trips, 25u);
@@ -478,7 +478,7 @@ TEST(Demand, AnOdMatrixPerVehicleClassRoutesEachClassOnItsWeights) {
   // An unknown class is bad input, named with its line.
   write(out / "bad.csv", "origin,destination,count,class\nwest,east,5,bus\n");
   try {
-    (void)make_traffic_demand(hill_net(), {{}, out / "bad.csv", test::fixture("hill/zones.geojson")},
+    (void)make_traffic_demand(hill_net(), {{}, out / "bad.csv", test::fixture("hill/zones.geojson"), {}},
                               out / "bad", o, d);
     ADD_FAILURE() << "a bus class was taken";
   } catch (const InvalidInput& e) {

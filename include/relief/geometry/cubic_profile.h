@@ -65,6 +65,9 @@ class CubicProfile {
 /// Throws InvalidInput unless length is positive and finite.
 [[nodiscard]] CubicProfile hermite_profile(double length, double z0, double g0, double z1, double g1);
 
+/// The slope bound of slope_bounded_profile: max(|g0|, |g1|, |z1 - z0| / length + allowance).
+[[nodiscard]] double slope_bound(double length, double z0, double g0, double z1, double g1, double allowance);
+
 /// A C1 profile on [0, length] with the ends of hermite_profile whose slope stays within
 /// bound = max(|g0|, |g1|, |z1 - z0| / length + `allowance`): the Hermite cubic (the smoothest)
 /// where its slope stays within bound + allowance (it overshoots where the end slopes pull
