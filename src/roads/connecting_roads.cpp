@@ -13,7 +13,7 @@
 #include "relief/geometry/plane.h"
 #include "relief/geometry/reference_line_fit.h"
 #include "relief/roads/way_attributes.h"
-#include "roads/junction_height.h"
+#include "relief/roads/junction_height.h"
 #include "roads/junction_planes.h"
 #include "roads/lane_layout.h"
 

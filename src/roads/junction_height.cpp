@@ -1,4 +1,4 @@
-#include "roads/junction_height.h"
+#include "relief/roads/junction_height.h"
 
 #include <algorithm>
 #include <cmath>
@@ -9,7 +9,7 @@
 #include "relief/roads/road_surface.h"
 #include "roads/junction_planes.h"
 
-namespace relief::detail {
+namespace relief {
 namespace {
 
 constexpr double kOnSegment_m = 1e-9;  // closer than this, a point is on the end's segment
@@ -118,7 +118,7 @@ SurfaceProfiles surface_profiles(const PlanView& plan, const JunctionHeight& sur
     const Pose2 pose = plan.at(s[i]);
     const auto [height, gradient] = surface.at(pose.position);
     z[i] = height;
-    roll[i] = plane_roll(gradient, pose.heading);
+    roll[i] = detail::plane_roll(gradient, pose.heading);
     const double slope = gradient.dot(Vec2(std::cos(pose.heading), std::sin(pose.heading)));
     if (i == 0) slope0 = slope;
     if (i == n) slope1 = slope;
@@ -129,4 +129,4 @@ SurfaceProfiles surface_profiles(const PlanView& plan, const JunctionHeight& sur
   return out;
 }
 
-}  // namespace relief::detail
+}  // namespace relief

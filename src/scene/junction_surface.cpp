@@ -54,6 +54,8 @@ constexpr double kInteriorSpacing = 2.0;    // interior points along a connectin
 constexpr double kInteriorEndGap = 1.0;     // none this close to a connecting road's ends (m)
 constexpr double kInteriorMerge = 1.0;      // interior points this close are merged (m)
 constexpr double kInteriorClearance = 0.3;  // none this close to the outline (m)
+constexpr double kSurfaceSpacing = 2.0;     // the height surface's points on straight sides and inside (m)
+constexpr double kMaxSurfacePoints = 4000;  // a larger junction gets them farther apart
 
 /// Nesting level of every face: a flood fill from the infinite face that counts the
 /// constrained edges crossed (the usual domain marking of a CDT).
@@ -252,6 +254,47 @@ std::vector<Vec3> junction_interior(const RoadModel& model, const std::vector<in
   return out;
 }
 
+std::vector<Vec3> surface_grid(const std::vector<Vec2>& outline, const std::vector<Vec3>& lane_points,
+                               const JunctionHeight& surface) {
+  if (outline.empty()) return {};
+  Vec2 lo = outline.front(), hi = outline.front();
+  for (const Vec2& p : outline) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  const Vec2 size = hi - lo;
+  const double spacing = std::max(kSurfaceSpacing, std::sqrt(size.x() * size.y() / kMaxSurfacePoints));
+  // The lane points by 1 m cell, to skip the grid points near one.
+  std::unordered_set<std::uint64_t> near_lane;
+  const auto key = [](std::int64_t cx, std::int64_t cy) {
+    return (static_cast<std::uint64_t>(cx) << 32) ^ static_cast<std::uint64_t>(cy & 0xffffffff);
+  };
+  const auto cell = [&](double v) { return static_cast<std::int64_t>(std::floor(v / kInteriorMerge)); };
+  std::unordered_map<std::uint64_t, std::vector<Vec2>> lanes;
+  for (const Vec3& p : lane_points) lanes[key(cell(p.x()), cell(p.y()))].push_back(p.head<2>());
+  const auto near = [&](const Vec2& p) {
+    for (std::int64_t dx = -1; dx <= 1; ++dx)
+      for (std::int64_t dy = -1; dy <= 1; ++dy) {
+        const auto it = lanes.find(key(cell(p.x()) + dx, cell(p.y()) + dy));
+        if (it == lanes.end()) continue;
+        for (const Vec2& q : it->second)
+          if ((q - p).norm() < kInteriorMerge) return true;
+      }
+    return false;
+  };
+  std::vector<Vec3> points;
+  const auto nx = static_cast<int>(std::floor(size.x() / spacing));
+  const auto ny = static_cast<int>(std::floor(size.y() / spacing));
+  // Centred in the box, so that a symmetric junction gets a symmetric grid.
+  const Vec2 origin = lo + 0.5 * (size - spacing * Vec2(nx, ny));
+  for (int i = 0; i <= nx; ++i)
+    for (int j = 0; j <= ny; ++j) {
+      const Vec2 p = origin + spacing * Vec2(i, j);
+      if (!near(p)) points.emplace_back(p.x(), p.y(), surface.at(p).first);
+    }
+  return points;
+}
+
 std::string build_junction_surface(const RoadModel& model, const JunctionModel& junction,
                                    std::vector<JunctionEnd> ends, const std::vector<int>& connecting_roads,
                                    const RoadMeshOptions& options, MeshBuilder& mesh) {
@@ -298,8 +341,22 @@ std::string build_junction_surface(const RoadModel& model, const JunctionModel& 
     std::erase_if(gaps[k].points, [&](const Vec3& p) { return over_end(a, p) || over_end(b, p); });
     if (gaps[k].points.empty()) gaps[k] = along_road_edges(a, b, vertices);
   }
-  const std::vector<Vec3> interior = junction_interior(model, connecting_roads);
-  std::string failed = triangulate_junction(sorted, gaps, junction.id, mesh, interior);
+  // The junction's height surface (relief/roads/junction_height.h): the one its connecting roads
+  // take their heights from.
+  std::vector<EndPlane> planes;
+  planes.reserve(sorted.size());
+  for (const JunctionEnd& e : sorted)
+    planes.push_back(end_plane(model.roads[static_cast<std::size_t>(e.road_index)], e.at_start));
+  const JunctionHeight surface(std::move(planes));
+  std::vector<Vec3> interior = junction_interior(model, connecting_roads);
+  std::vector<Vec2> extent;
+  for (const JunctionEnd& e : sorted)
+    for (const std::uint32_t v : e.vertices) extent.push_back(vertices[v].head<2>());
+  for (const OutlineGap& gap : gaps)
+    for (const Vec3& p : gap.points) extent.push_back(p.head<2>());
+  const std::vector<Vec3> grid = surface_grid(extent, interior, surface);
+  interior.insert(interior.end(), grid.begin(), grid.end());
+  std::string failed = triangulate_junction(sorted, gaps, junction.id, mesh, interior, &surface);
   if (failed.empty()) return failed;
   // Straight sides (along the roads' edges where a road runs along one; if even that is not a
   // simple outline, plain) for the ends in `order`.
@@ -308,10 +365,10 @@ std::string build_junction_surface(const RoadModel& model, const JunctionModel& 
     if (follow_edges)
       for (std::size_t k = 0; k < order.size(); ++k)
         sides[k] = along_road_edges(order[k], order[(k + 1) % order.size()], vertices);
-    return triangulate_junction(order, sides, junction.id, mesh, interior).empty() ||
-           (follow_edges &&
-            triangulate_junction(order, std::vector<OutlineGap>(order.size()), junction.id, mesh, interior)
-                .empty());
+    return triangulate_junction(order, sides, junction.id, mesh, interior, &surface).empty() ||
+           (follow_edges && triangulate_junction(order, std::vector<OutlineGap>(order.size()), junction.id,
+                                                 mesh, interior, &surface)
+                                .empty());
   };
   // A kerb line that cuts across a neighbouring road end (a sharp fork): straight gaps instead.
   if (straight(sorted, true)) return {};
@@ -357,9 +414,25 @@ OutlineGap along_road_edges(const JunctionEnd& a, const JunctionEnd& b, const st
 }
 
 std::string triangulate_junction(const std::vector<JunctionEnd>& ends, const std::vector<OutlineGap>& gaps,
-                                 int junction_id, MeshBuilder& mesh, const std::vector<Vec3>& interior) {
+                                 int junction_id, MeshBuilder& mesh, const std::vector<Vec3>& interior,
+                                 const JunctionHeight* surface) {
   // Outline: each end from its right to its left corner, then the gap to the next end.
+  // On the surface, a straight side (no points), or a piece of a side with a new point at either
+  // end, gets points every kSurfaceSpacing: a piece between two mesh vertices may be a road's
+  // edge, which must stay whole.
   std::vector<OutlineVertex> outline;
+  const auto side_to = [&](const OutlineVertex& to, bool straight) {
+    const OutlineVertex& from = outline.back();
+    if (surface != nullptr && (straight || from.mesh_index == kNoVertex || to.mesh_index == kNoVertex)) {
+      const Vec2 a = from.p.head<2>(), b = to.p.head<2>();
+      const int pieces = static_cast<int>(std::ceil((b - a).norm() / kSurfaceSpacing));
+      for (int i = 1; i < pieces; ++i) {
+        const Vec2 xy = a + (b - a) * (static_cast<double>(i) / pieces);
+        outline.push_back({Vec3(xy.x(), xy.y(), surface->at(xy).first), kNoVertex});
+      }
+    }
+    outline.push_back(to);
+  };
   for (std::size_t k = 0; k < ends.size(); ++k) {
     for (const std::uint32_t v : ends[k].vertices) {
       if (outline.empty() || outline.back().mesh_index != v) outline.push_back({mesh.mesh.vertices[v], v});
@@ -367,7 +440,11 @@ std::string triangulate_junction(const std::vector<JunctionEnd>& ends, const std
     if (k < gaps.size()) {
       const OutlineGap& gap = gaps[k];
       for (std::size_t i = 0; i < gap.points.size(); ++i)
-        outline.push_back({gap.points[i], i < gap.vertices.size() ? gap.vertices[i] : kNoVertex});
+        side_to({gap.points[i], i < gap.vertices.size() ? gap.vertices[i] : kNoVertex}, false);
+      // To the next end's first corner (which that end then does not repeat; the first end's
+      // comes twice, and is popped below).
+      const std::uint32_t next = ends[(k + 1) % ends.size()].vertices.front();
+      side_to({mesh.mesh.vertices[next], next}, gap.points.empty());
     }
   }
   while (outline.size() > 1 && outline.front().mesh_index != kNoVertex &&
@@ -432,15 +509,23 @@ std::string triangulate_junction(const std::vector<JunctionEnd>& ends, const std
     return "outline is not a simple polygon (" + std::to_string(inside.size()) + " triangles for " +
            std::to_string(n) + " vertices)";
   }
+  // Which points lie inside is read off the outline's own faces, before any is inserted: the
+  // faces an insertion creates carry no nesting yet (reading them dropped every later point
+  // that fell in one, half of a large junction's).
+  std::vector<Vec3> inserted;
   for (const Vec3& p : interior) {
     const Cdt::Face_handle f = cdt.locate(Cdt::Point(p.x(), p.y()));
     if (f == nullptr || cdt.is_infinite(f) || f->info().nesting % 2 != 1) continue;
     if (distance_to_outline(outline, p.head<2>()) < kInteriorClearance) continue;
-    const Cdt::Vertex_handle h = cdt.insert(Cdt::Point(p.x(), p.y()), f);
+    inserted.push_back(p);
+  }
+  for (const Vec3& p : inserted) {
+    const Cdt::Vertex_handle h = cdt.insert(Cdt::Point(p.x(), p.y()));
     if (h->info().index >= 0) continue;  // at a vertex already there
     h->info().index = static_cast<int>(n + steiner.size());
     steiner.push_back(p);
   }
+
   if (!steiner.empty()) {
     mark_nesting(cdt);
     collect();

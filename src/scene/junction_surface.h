@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "relief/roads/junction_height.h"
 #include "relief/scene/road_mesh.h"
 #include "scene/mesh_builder.h"
 
@@ -57,10 +58,22 @@ struct OutlineGap {
 /// constraints, and appends the triangles (owner -1 - junction_id) and the gap points to `mesh`.
 /// The `interior` points that lie inside the outline, at least 0.3 m from it, are vertices of
 /// the triangulation too (Steiner points carrying the surface's height inside the junction).
+/// With a `surface`, the outline's straight sides and the pieces of a gap that end at a new
+/// point get points on it every 2 m (a side 13 m long across a junction on a grade change
+/// otherwise cut 0.2 m under the connecting road along it).
 /// Returns an empty string on success, else what is wrong (nothing is added then).
 [[nodiscard]] std::string triangulate_junction(const std::vector<JunctionEnd>& ends,
                                                const std::vector<OutlineGap>& gaps, int junction_id,
-                                               MeshBuilder& mesh, const std::vector<Vec3>& interior = {});
+                                               MeshBuilder& mesh, const std::vector<Vec3>& interior = {},
+                                               const JunctionHeight* surface = nullptr);
+
+/// Points of the junction's height surface on a square grid over the outline's bounding box
+/// (`outline`: the ends' vertices and the gaps' points), every 2 m (farther apart where that
+/// would give over 4000), except those within 1 m of a `lane_points` point: between its
+/// connecting roads the patch follows the surface, not a plane across tens of metres.
+[[nodiscard]] std::vector<Vec3> surface_grid(const std::vector<Vec2>& outline,
+                                             const std::vector<Vec3>& lane_points,
+                                             const JunctionHeight& surface);
 
 /// Points of the junction's surface inside it: every lane centre of its connecting roads
 /// (`connecting_roads`, indices into model.roads) every 2 m, their first and last metre left

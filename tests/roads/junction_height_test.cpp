@@ -1,7 +1,7 @@
 // The junction height surface (roads/junction_height.h): a plane stays a plane, every road end
 // is met with its own height, grade and roll (C1 across the junction's edge), the analytic
 // gradient is the surface's derivative, and a road laid on it follows it.
-#include "roads/junction_height.h"
+#include "relief/roads/junction_height.h"
 
 #include <gtest/gtest.h>
 

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <numbers>
 
+#include "relief/roads/road_surface.h"
 #include "support/road_models.h"
 
 namespace relief::detail {
@@ -25,7 +26,10 @@ JunctionEnd add_end(MeshBuilder& mesh, int road_index, const std::vector<Vec3>& 
 
 // Four roads 6 m wide (3 m each side of the reference line) start 5 m from the centre, east,
 // north, west and south: the outline is the 10 m square less four corner triangles of legs 2 m,
-// 92 m2 in 12 vertices, so 10 triangles, with the ends given in any order.
+// 92 m2, with the ends given in any order. Its 12 end vertices, a point on the height surface
+// in the middle of each 2.83 m corner side, and the surface's 2 m grid inside (x, y in -3, -1,
+// 1, 3: 16 points) make 32 vertices, all at the roads' height 2 m, and 16 - 2 + 2 x 16 = 46
+// triangles.
 TEST(JunctionSurface, CrossingOfFourRoadEndsIsItsOctagon) {
   RoadModel model;
   for (int k = 0; k < 4; ++k) {
@@ -51,10 +55,53 @@ TEST(JunctionSurface, CrossingOfFourRoadEndsIsItsOctagon) {
   junction.id = 7;
   const std::string failed = build_junction_surface(model, junction, ends, {}, {}, mesh);
   EXPECT_EQ(failed, "");
-  EXPECT_EQ(mesh.mesh.vertices.size(), 12u);  // straight gaps: no vertex added
-  EXPECT_EQ(mesh.mesh.triangles.size(), 10u);
+  EXPECT_EQ(mesh.mesh.vertices.size(), 32u);
+  for (const Vec3& v : mesh.mesh.vertices) EXPECT_NEAR(v.z(), 2.0, 1e-12);
+  EXPECT_EQ(mesh.mesh.triangles.size(), 46u);
   EXPECT_NEAR(mesh_area(mesh.mesh), 100.0 - 4.0 * 2.0, 1e-9);
-  EXPECT_EQ(mesh.owner, std::vector<int>(10, -8));
+  EXPECT_EQ(mesh.owner, std::vector<int>(46, -8));
+  EXPECT_TRUE(all_facing_up(mesh.mesh));
+}
+
+// The same crossing in a valley: the east and west roads climb 12 % away from it, the north and
+// south ones are level. The junction's height surface (relief/roads/junction_height.h) sags
+// between the ends, so a plane through the corners is not it: every vertex the patch adds (on
+// the straight corner sides and inside) lies on the surface, and the middle of a corner side
+// lies 0.044 m below its chord, as connecting roads there do.
+TEST(JunctionSurface, ThePatchBetweenTheEndsFollowsTheJunctionsHeightSurface) {
+  RoadModel model;
+  for (int k = 0; k < 4; ++k) {
+    const double heading = k * std::numbers::pi / 2.0;
+    const Vec2 dir(std::cos(heading), std::sin(heading));
+    model.roads.push_back(test::straight_road(k + 1, 5.0 * dir, heading, 50.0, 2.0, k % 2 == 0 ? 0.12 : 0.0));
+  }
+  MeshBuilder mesh;
+  std::vector<JunctionEnd> ends;
+  std::vector<EndPlane> planes;
+  for (int k = 0; k < 4; ++k) {
+    const ModelRoad& road = model.roads[static_cast<std::size_t>(k)];
+    std::vector<Vec3> points;
+    for (const double t : {-3.0, 0.0, 3.0}) points.push_back(surface_point(road, 0.0, t));
+    ends.push_back(add_end(mesh, k, points));
+    planes.push_back(end_plane(road, true));
+  }
+  const JunctionHeight surface(planes);
+  JunctionModel junction;
+  junction.id = 7;
+  ASSERT_EQ(build_junction_surface(model, junction, ends, {}, {}, mesh), "");
+  ASSERT_EQ(mesh.mesh.vertices.size(), 32u);
+  for (std::size_t v = 12; v < mesh.mesh.vertices.size(); ++v) {
+    const Vec3& p = mesh.mesh.vertices[v];
+    EXPECT_NEAR(p.z(), surface.at(p.head<2>()).first, 1e-9) << p.transpose();
+  }
+  // The side from the east end's left corner (5, 3) to the north end's right corner (3, 5).
+  const auto side_middle =
+      std::find_if(mesh.mesh.vertices.begin(), mesh.mesh.vertices.end(),
+                   [](const Vec3& p) { return (p.head<2>() - Vec2(4.0, 4.0)).norm() < 1e-9; });
+  ASSERT_NE(side_middle, mesh.mesh.vertices.end());
+  const double chord =
+      0.5 * (surface_point(model.roads[0], 0.0, 3.0).z() + surface_point(model.roads[1], 0.0, -3.0).z());
+  EXPECT_LT(side_middle->z(), chord - 0.03);  // 0.044 m below
   EXPECT_TRUE(all_facing_up(mesh.mesh));
 }
 

@@ -48,7 +48,9 @@ TEST(Scene, BridgeWorldChecksAsThePipelineReportedThem) {
   EXPECT_EQ(c.seam_road_terrain_m, std::optional<double>(0.0));
   const MeshQuality* road = quality_of(c, "Road_Road");
   ASSERT_NE(road, nullptr);
-  EXPECT_EQ(road->triangles, 387u);  // 369 before the junction's interior points
+  // 369 before the junction's interior points, 387 with those a lane's, 417 with all of them
+  // and the surface's points on the straight sides and inside.
+  EXPECT_EQ(road->triangles, 417u);
   EXPECT_EQ(road->components, 2u);
   EXPECT_EQ(road->holes, 0u);
   EXPECT_EQ(road->self_intersecting_pairs, 0u);
@@ -56,7 +58,7 @@ TEST(Scene, BridgeWorldChecksAsThePipelineReportedThem) {
   EXPECT_DOUBLE_EQ(road->area_m2, 4486.9897244227286);
   const MeshQuality* terrain = quality_of(c, "Terrain");
   ASSERT_NE(terrain, nullptr);
-  EXPECT_EQ(terrain->triangles, 275u);
+  EXPECT_EQ(terrain->triangles, 279u);  // 275 before the straight sides had the surface's points
   EXPECT_EQ(terrain->components, 1u);
   EXPECT_EQ(terrain->holes, 3u);
   EXPECT_EQ(c.ground_holes, 0u);

@@ -1,6 +1,6 @@
 #pragma once
-// Private to the roads module: one height surface per junction, which every road inside it
-// samples. Each road end at the junction brings the plane its end cross-section lies in (its
+// One height surface per junction, which every road inside it and the junction's mesh patch
+// sample. Each road end at the junction brings the plane its end cross-section lies in (its
 // height, its grade along the road, its roll across); inside the junction the surface blends
 // a trend plane T (the least-squares plane through the ends' cross-sections) with each end's
 // departure from it, blended by inverse squared distance to the end's cross-section (Shepard's
@@ -24,7 +24,7 @@
 #include "relief/geometry/types.h"
 #include "relief/roads/road_model.h"
 
-namespace relief::detail {
+namespace relief {
 
 /// The plane of one road end's cross-section: its segment (right to left corner), and the plane
 /// z(p) = z + gradient . (p - point).
@@ -65,4 +65,4 @@ struct SurfaceProfiles {
 };
 [[nodiscard]] SurfaceProfiles surface_profiles(const PlanView& plan, const JunctionHeight& surface);
 
-}  // namespace relief::detail
+}  // namespace relief
