@@ -10,6 +10,7 @@
 #include <string_view>
 
 #include "export/html_text.h"
+#include "export/report_html_sight.h"
 #include "export/svg_plot.h"
 #include "relief/core/errors.h"
 #include "relief/core/number_format.h"
@@ -831,6 +832,7 @@ void write_report_html(std::ostream& out, const HtmlReportInput& in) {
   h += kStyle;
   h += scale_css(grade_scale());
   h += scale_css(departure_scale());
+  h += sight_css();
   h += "</style>\n</head>\n<body>\n<main>\n";
   write_header(h, r);
   write_gates(h, r);
@@ -840,6 +842,7 @@ void write_report_html(std::ostream& out, const HtmlReportInput& in) {
   write_profiles(h, in, series);
   write_histogram(h, r, series);
   write_maps(h, in, series);
+  write_sight_section(h, r, *in.network, in.sight);
   write_diagnostics(h, r);
   write_timings(h, r);
   h += "</main>\n</body>\n</html>\n";

@@ -1,11 +1,13 @@
 #include "relief/pipeline/build.h"
 
+#include <chrono>
 #include <cstdlib>
 #include <ctime>
 #include <iomanip>
 #include <sstream>
 
 #include "pipeline/mesh_stage.h"
+#include "pipeline/sight_stage.h"
 #include "pipeline/stages.h"
 #include "pipeline/sumo_stage.h"
 #include "relief/core/atomic_file.h"
@@ -104,6 +106,7 @@ std::optional<Output> parse_output(std::string_view text) {
   if (text == "xodr") return Output::xodr;
   if (text == "sumo") return Output::sumo;
   if (text == "mesh") return Output::mesh;
+  if (text == "sight") return Output::sight;
   return std::nullopt;
 }
 
@@ -121,6 +124,8 @@ std::string_view to_string(Output output) {
       return "sumo";
     case Output::mesh:
       return "mesh";
+    case Output::sight:
+      return "sight";
   }
   return "unknown";
 }
@@ -268,8 +273,8 @@ BuildResult build(const BuildOptions& options, Diagnostics& diagnostics, const P
   OutputSet files;
   const auto path_of = [&](const std::string& suffix) { return options.out_dir / (report.name + suffix); };
   std::optional<RoadModelBuild> built;
-  if (options.outputs.contains(Output::xodr) || options.outputs.contains(Output::sumo) ||
-      options.outputs.contains(Output::mesh)) {
+  const bool scene_needed = options.outputs.contains(Output::mesh) || options.outputs.contains(Output::sight);
+  if (options.outputs.contains(Output::xodr) || options.outputs.contains(Output::sumo) || scene_needed) {
     built = timer.run("build road model", [&] {
       // The junction planes of relief's fit tilt the lanes at junctions onto them; the other
       // methods have none and keep every cross-section level.
@@ -361,9 +366,28 @@ BuildResult build(const BuildOptions& options, Diagnostics& diagnostics, const P
     report.outputs.push_back(report.name + ".xodr");
     result.written.push_back(path_of(".xodr"));
   }
-  if (options.outputs.contains(Output::mesh)) {
-    MeshStageInput in{options, network, built->model, dem, report.name, diagnostics};
-    report.mesh = write_mesh_outputs(in, files, timer, result.written, report.outputs);
+  std::optional<SightResult> sight_result;  // for report.html's map
+  if (scene_needed) {
+    const MeshStageInput in{options, network, built->model, dem, report.name, diagnostics};
+    const Scene scene = build_scene_stage(in, timer);
+    // The sight distances only read the scene: beside the scene's files.
+    const SightStageInput sight_in{options, network, built->model, scene.meshes, report.name};
+    std::optional<BackgroundStage<std::pair<SightResult, double>>> sight;
+    if (options.outputs.contains(Output::sight)) {
+      sight.emplace("sight distances (beside the scene files)", [&] {
+        const auto start = std::chrono::steady_clock::now();
+        SightResult r = compute_sight(sight_in);
+        return std::make_pair(
+            std::move(r), std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+      });
+    }
+    if (options.outputs.contains(Output::mesh))
+      report.mesh = write_mesh_outputs(in, scene, files, timer, result.written, report.outputs);
+    if (sight) {
+      auto [computed, seconds] = sight->take(timer);
+      report.sight = write_sight_outputs(sight_in, computed, seconds, files, result.written, report.outputs);
+      sight_result = std::move(computed);
+    }
   }
   if (sumo) report.sumo = finish_sumo(*sumo_in, *sumo, files, timer, result.written, report.outputs);
   if (xodr_check) report.opendrive = xodr_check->take(timer);
@@ -386,6 +410,7 @@ BuildResult build(const BuildOptions& options, Diagnostics& diagnostics, const P
       in.raw = &raw;
       in.paper = paper ? &paper->profiles : nullptr;
       in.fitted = fit ? &fit->profiles : nullptr;
+      in.sight = sight_result ? &*sight_result : nullptr;
       files.add(options.out_dir / "report.html", [&](std::ostream& out) { write_report_html(out, in); });
       return 0;
     });

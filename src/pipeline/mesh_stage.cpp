@@ -7,13 +7,16 @@
 
 namespace relief {
 
-MeshSummary write_mesh_outputs(const MeshStageInput& in, OutputSet& files, StageTimer& timer,
-                               std::vector<std::filesystem::path>& written, std::vector<std::string>& names) {
+Scene build_scene_stage(const MeshStageInput& in, StageTimer& timer) {
+  SceneOptions scene_options = in.options.scene;
+  scene_options.checks = false;  // run by write_mesh_outputs, beside the file writers
+  return build_scene(in.model, in.network, in.dem, scene_options, in.diagnostics, timer.stage_progress());
+}
+
+MeshSummary write_mesh_outputs(const MeshStageInput& in, const Scene& built, OutputSet& files,
+                               StageTimer& timer, std::vector<std::filesystem::path>& written,
+                               std::vector<std::string>& names) {
   const BuildOptions& options = in.options;
-  SceneOptions scene_options = options.scene;
-  scene_options.checks = false;  // run below, beside the file writers
-  const Scene built =
-      build_scene(in.model, in.network, in.dem, scene_options, in.diagnostics, timer.stage_progress());
   const MeshScene& scene = built.meshes;
   // The checks only read the scene, so they run beside the file writers.
   BackgroundStage<SceneChecks> check("check meshes (beside the files)", [&] { return check_scene(built); });

@@ -10,6 +10,7 @@
 #include "relief/core/atomic_file.h"
 #include "relief/export/report_writer.h"
 #include "relief/roads/road_model.h"
+#include "relief/scene/scene.h"
 #include "relief/terrain/dem_sampler.h"
 
 namespace relief {
@@ -23,10 +24,13 @@ struct MeshStageInput {
   Diagnostics& diagnostics;
 };
 
-/// Builds the meshes, writes the scene files and mesh_report.json into `files` and returns the
-/// summary for report.json; appends the paths written and their names.
-[[nodiscard]] MeshSummary write_mesh_outputs(const MeshStageInput& in, OutputSet& files, StageTimer& timer,
-                                             std::vector<std::filesystem::path>& written,
+/// Builds the meshes (without their checks, which write_mesh_outputs runs).
+[[nodiscard]] Scene build_scene_stage(const MeshStageInput& in, StageTimer& timer);
+
+/// Writes the scene files and mesh_report.json of `built` into `files` and returns the summary
+/// for report.json; appends the paths written and their names.
+[[nodiscard]] MeshSummary write_mesh_outputs(const MeshStageInput& in, const Scene& built, OutputSet& files,
+                                             StageTimer& timer, std::vector<std::filesystem::path>& written,
                                              std::vector<std::string>& names);
 
 }  // namespace relief

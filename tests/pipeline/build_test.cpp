@@ -58,9 +58,14 @@ TEST(Build, SyntheticPlaneHasExactGrades) {
   EXPECT_EQ(r.network.bridges, 1u);
   EXPECT_EQ(r.network.traffic_signals, 1u);
   // OpenDRIVE, GeoJSON, report.html, report.json; SUMO net + its nod/edg/con + lane mapping;
-  // the scene as .glb, .obj + .mtl, .fbx and mesh_report.json.
-  ASSERT_EQ(result.written.size(), 14u);
+  // the scene as .glb, .obj + .mtl, .fbx and mesh_report.json; the sight-distance layer.
+  ASSERT_EQ(result.written.size(), 15u);
   for (const auto& p : result.written) EXPECT_TRUE(std::filesystem::exists(p)) << p;
+  // On a plane nothing hides a lane ahead: every lane-km checked, none short.
+  ASSERT_TRUE(r.sight);
+  EXPECT_GT(r.sight->km_checked, 1.0);
+  EXPECT_EQ(r.sight->km_short, 0.0);
+  EXPECT_EQ(r.sight->stretches, 0u);
   // SUMO: the signalled crossing gets a light; lanes lie on the plane the OpenDRIVE describes.
   ASSERT_TRUE(r.sumo);
   EXPECT_EQ(r.sumo->traffic_lights, 1u);

@@ -79,7 +79,8 @@ Runner add_build_command(CLI::App& app) {
          "--outputs",
          [&o](const std::string& text) { parse_for("--outputs", [&] { o.outputs = parse_outputs(text); }); },
          "comma-separated outputs to write: xodr, sumo (NAME.net.xml and its plain XML, via netconvert), "
-         "mesh (3D scene NAME.glb/.obj/.fbx + mesh_report.json), geojson, report (report.json), html "
+         "mesh (3D scene NAME.glb/.obj/.fbx + mesh_report.json), sight (every lane's sight distance against "
+         "AASHTO's stopping sight distance: NAME.sight.geojson), geojson, report (report.json), html "
          "(report.html), or all")
       ->default_str(o.outputs == parse_outputs("all") ? "all" : list_text(o.outputs));
   cmd->add_flag("-q,--quiet", args->quiet, "print only errors and the summary");
@@ -158,6 +159,20 @@ Runner add_build_command(CLI::App& app) {
                   "3D scene: also write it cut into square tiles of this size, m, as NAME_Tile_X_Y "
                   "(CARLA large maps)")
       ->check(finite_positive());
+  cmd->add_option("--sight-step", o.sight.step_m,
+                  "sight: stations along every lane, and the object's steps ahead, every this many m")
+      ->capture_default_str()
+      ->check(finite_positive());
+  cmd->add_option("--sight-eye-height", o.sight.eye_height_m, "sight: the driver's eye above the lane, m")
+      ->capture_default_str()
+      ->check(finite_positive());
+  cmd->add_option("--sight-object-height", o.sight.object_height_m,
+                  "sight: the object's height on the lane, m")
+      ->capture_default_str()
+      ->check(finite_positive());
+  cmd->add_flag(
+      "--sight-measure", o.sight.measure_beyond_required,
+      "sight: measure every station's sight distance up to 300 m (default: only as far as it needs)");
   cmd->add_flag_callback(
       "--no-compare", [&o] { o.compare_methods = false; },
       "run only the chosen profile method (no comparison in the report)");

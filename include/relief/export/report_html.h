@@ -11,6 +11,7 @@
 #include "relief/export/report_writer.h"
 #include "relief/roads/elevation_sampling.h"
 #include "relief/roads/road_network.h"
+#include "relief/sight/sight_distance.h"
 
 namespace relief {
 
@@ -24,7 +25,8 @@ struct HtmlReportInput {
   /// Only roads on the ground at least this long compete for "steepest" (short stubs next to
   /// structures or DEM steps give meaningless 1 m grades).
   double steep_road_min_length_m = 20.0;
-  int max_structure_plots = 12;  ///< bridges and tunnels plotted, longest first
+  int max_structure_plots = 12;        ///< bridges and tunnels plotted, longest first
+  const SightResult* sight = nullptr;  ///< optional: the sight-distance map's stretches
 };
 
 /// Writes a self-contained HTML5 page that is also well-formed XML (every text from the data

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "relief/core/diagnostics.h"
+#include "relief/export/sight_writer.h"
 #include "relief/geometry/geo_frame.h"
 #include "relief/geometry/mesh_quality.h"
 #include "relief/roads/profile_fit.h"
@@ -205,6 +206,7 @@ struct RunReport {
   std::optional<ModelGrades> model_grades;  ///< the road model's elevation records vs the caps
   std::optional<SumoSummary> sumo;
   std::optional<MeshSummary> mesh;
+  std::optional<SightSummary> sight;
   std::vector<Gate> gates;
   std::vector<std::pair<std::string, double>> timings_s;  ///< stage -> seconds, in order
   double wall_s = 0.0;               ///< the whole run's wall time (stages may overlap); 0 when not measured

@@ -22,6 +22,7 @@
 #include "relief/roads/road_model_builder.h"
 #include "relief/roads/validation.h"
 #include "relief/scene/scene.h"
+#include "relief/sight/sight_distance.h"
 #include "relief/terrain/dem_sampler.h"
 
 namespace relief {
@@ -36,7 +37,7 @@ enum class ProfileMethod {
 [[nodiscard]] std::string_view to_string(ProfileMethod method);
 
 /// Outputs `build` can write into the output directory.
-enum class Output { geojson, report, html, xodr, sumo, mesh };
+enum class Output { geojson, report, html, xodr, sumo, mesh, sight };
 [[nodiscard]] std::optional<Output> parse_output(std::string_view text);
 [[nodiscard]] std::string_view to_string(Output output);
 
@@ -59,8 +60,8 @@ struct BuildOptions {
   int paper_max_iterations = 1000;
   /// Also run the other methods and put the comparison in the report.
   bool compare_methods = true;
-  std::set<Output> outputs = {Output::geojson, Output::report, Output::html,
-                              Output::xodr,    Output::sumo,   Output::mesh};
+  std::set<Output> outputs = {Output::geojson, Output::report, Output::html, Output::xodr,
+                              Output::sumo,    Output::mesh,   Output::sight};
   RoadModelOptions road_model;
   int opendrive_rev_minor = 7;  ///< OpenDRIVE 1.4, 1.7 or 1.8
   /// SUMO's options, used as given, except that `sumo.signalled_junctions` (OpenDRIVE junction
@@ -79,6 +80,8 @@ struct BuildOptions {
   /// Besides the whole scene, the scene cut into tiles of this size (m) in every format, as
   /// NAME_Tile_X_Y (see split_into_tiles); 0: no tiles.
   double mesh_tile_size_m = 0.0;
+  /// Output `sight`: every lane's sight distance on the scene (relief/sight/sight_distance.h).
+  SightOptions sight;
 };
 
 struct BuildResult {
