@@ -4,17 +4,14 @@
 
 #include <cmath>
 
+#include "export/sight_json.h"
+#include "relief/core/number_format.h"
 #include "relief/export/geojson_writer.h"
 
 namespace relief {
 namespace {
 
 using Json = nlohmann::ordered_json;
-
-// Rounds a figure for the report: millimetres, hundredths of a percent.
-double round_to(double value, double step) {
-  return std::round(value / step) * step;
-}
 
 Json error_json(const ErrorStats& e) {
   return {{"mae_m", round_to(e.mae_m, 1e-4)},
@@ -80,42 +77,6 @@ Json junctions_json(const JunctionGapStats& j) {
           {"over_bound", j.over_bound},
           {"bound_m", j.bound_m},
           {"checked", j.checked}};
-}
-
-Json sight_json(const SightSummary& s) {
-  Json by_class = Json::object();
-  for (const auto& [cls, f] : s.by_class)
-    by_class[cls] = {{"km_checked", round_to(f.km_checked, 1e-3)}, {"km_short", round_to(f.km_short, 1e-3)}};
-  Json worst = Json::array();
-  for (const SightPlace& p : s.worst)
-    worst.push_back({{"road", p.road},
-                     {"name", p.name},
-                     {"osm_way_ids", p.osm_way_ids},
-                     {"class", p.road_class},
-                     {"lane", p.lane},
-                     {"s_from", round_to(p.s_from, 0.01)},
-                     {"s_to", round_to(p.s_to, 0.01)},
-                     {"available_m", round_to(p.available_m, 0.01)},
-                     {"required_m", round_to(p.required_m, 0.01)},
-                     {"speed_kmh", round_to(p.speed_mps * 3.6, 0.1)},
-                     {"grade_percent", round_to(p.grade_percent, 0.01)},
-                     {"obstacle", p.obstacle},
-                     {"lonlat", {round_to(p.lon, 1e-7), round_to(p.lat, 1e-7)}}});
-  return {{"file", s.file},
-          {"eye_height_m", s.options.eye_height_m},
-          {"object_height_m", s.options.object_height_m},
-          {"reaction_s", s.options.reaction_s},
-          {"deceleration_mps2", s.options.deceleration_mps2},
-          {"step_m", s.options.step_m},
-          {"km_checked", round_to(s.km_checked, 1e-3)},
-          {"km_short", round_to(s.km_short, 1e-3)},
-          {"by_class", by_class},
-          {"stretches", s.stretches},
-          {"worst", worst},
-          {"stations", s.stations},
-          {"rays", s.rays},
-          {"obstacle_triangles", s.obstacle_triangles},
-          {"seconds", round_to(s.seconds, 1e-3)}};
 }
 
 Json method_json(const MethodReport& m) {

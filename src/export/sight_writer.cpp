@@ -1,10 +1,13 @@
 #include "relief/export/sight_writer.h"
 
+#include "export/sight_json.h"
+
 #include <algorithm>
 #include <iomanip>
 
 #include <nlohmann/json.hpp>
 
+#include "relief/core/number_format.h"
 #include "relief/geometry/crs_transform.h"
 
 namespace relief {
@@ -93,6 +96,47 @@ void write_sight_geojson(std::ostream& out, const SightResult& result, const Roa
     out << "]}}";
   }
   out << "\n]}\n";
+}
+
+nlohmann::ordered_json sight_json(const SightSummary& s) {
+  using Json = nlohmann::ordered_json;
+  Json by_class = Json::object();
+  for (const auto& [cls, f] : s.by_class)
+    by_class[cls] = {{"km_checked", round_to(f.km_checked, 1e-3)}, {"km_short", round_to(f.km_short, 1e-3)}};
+  Json worst = Json::array();
+  for (const SightPlace& p : s.worst)
+    worst.push_back({{"road", p.road},
+                     {"name", p.name},
+                     {"osm_way_ids", p.osm_way_ids},
+                     {"class", p.road_class},
+                     {"lane", p.lane},
+                     {"s_from", round_to(p.s_from, 0.01)},
+                     {"s_to", round_to(p.s_to, 0.01)},
+                     {"available_m", round_to(p.available_m, 0.01)},
+                     {"required_m", round_to(p.required_m, 0.01)},
+                     {"speed_kmh", round_to(p.speed_mps * 3.6, 0.1)},
+                     {"grade_percent", round_to(p.grade_percent, 0.01)},
+                     {"obstacle", p.obstacle},
+                     {"lonlat", {round_to(p.lon, 1e-7), round_to(p.lat, 1e-7)}}});
+  return {{"file", s.file},
+          {"eye_height_m", s.options.eye_height_m},
+          {"object_height_m", s.options.object_height_m},
+          {"reaction_s", s.options.reaction_s},
+          {"deceleration_mps2", s.options.deceleration_mps2},
+          {"step_m", s.options.step_m},
+          {"km_checked", round_to(s.km_checked, 1e-3)},
+          {"km_short", round_to(s.km_short, 1e-3)},
+          {"by_class", by_class},
+          {"stretches", s.stretches},
+          {"worst", worst},
+          {"stations", s.stations},
+          {"rays", s.rays},
+          {"obstacle_triangles", s.obstacle_triangles},
+          {"seconds", round_to(s.seconds, 1e-3)}};
+}
+
+std::string sight_summary_json(const SightSummary& s) {
+  return sight_json(s).dump(2) + "\n";
 }
 
 }  // namespace relief

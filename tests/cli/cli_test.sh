@@ -317,6 +317,23 @@ echo "not a mesh" > "$RELIEF_TMP/x.glb"
 check "mesh-report text as .glb" run 3 "" mesh-report "$RELIEF_TMP/x.glb"
 check "mesh-report text as .glb message" stderr_has "x.glb"
 
+# sight: the good build's sight distances from its files match the build's own (on the plane,
+# nothing hides a lane: every lane-km checked, none short); a missing scene is exit 3.
+check "sight" run 0 "" sight --xodr "$good/hill.xodr" --out "$RELIEF_TMP/sight"
+check "sight files" test -s "$RELIEF_TMP/sight/hill.sight.geojson" -a -s "$RELIEF_TMP/sight/sight.json"
+check "sight agrees with the build" python3 - "$RELIEF_TMP/sight/sight.json" "$good/report.json" "$good/hill.sight.geojson" <<'PY'
+import json, sys
+alone, built = json.load(open(sys.argv[1])), json.load(open(sys.argv[2]))["sight"]
+assert built["file"] == "hill.sight.geojson", built
+assert alone["km_checked"] == built["km_checked"] > 0.5, (alone, built)
+assert alone["km_short"] == built["km_short"] == 0.0, (alone, built)
+assert json.load(open(sys.argv[3]))["features"] == []
+PY
+check "sight without a scene" run 3 "" sight --xodr "$good/hill.xodr" --scene "$RELIEF_TMP/nope.glb" --out "$RELIEF_TMP/sight2"
+check "sight without a scene message" stderr_has "nope.glb"
+check "sight without a scene writes nothing" no_outputs "$RELIEF_TMP/sight2"
+check "sight bad step" run 2 "" sight --xodr "$good/hill.xodr" --out "$RELIEF_TMP/sight2" --step 0
+
 # info: describes without writing.
 check "info" run 0 "" info --osm "$fix/hill.osm" --dem "$fix/hill_dem.asc"
 check "info coverage" grep -q "100.00 % with height" "$RELIEF_TMP/stdout"

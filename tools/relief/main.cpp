@@ -21,6 +21,7 @@ int main(int argc, char** argv) {  // NOLINT(bugprone-exception-escape)
   const Runner mesh_report = add_mesh_report_command(app);
   const Runner cosim = add_cosim_command(app);
   const Runner demand = add_demand_command(app);
+  const Runner sight = add_sight_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::Success& e) {
@@ -34,5 +35,6 @@ int main(int argc, char** argv) {  // NOLINT(bugprone-exception-escape)
   if (app.got_subcommand("mesh-report")) return mesh_report();
   if (app.got_subcommand("cosim")) return cosim();
   if (app.got_subcommand("demand")) return demand();
+  if (app.got_subcommand("sight")) return sight();
   return kUsage;
 }

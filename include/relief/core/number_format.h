@@ -1,6 +1,7 @@
 #pragma once
 // Fast, locale-independent number formatting for the text outputs (GeoJSON, OpenDRIVE, ...).
 
+#include <cmath>
 #include <string>
 
 namespace relief {
@@ -14,5 +15,10 @@ void append_shortest(std::string& out, double value);
 
 /// Appends an integer.
 void append_int(std::string& out, long long value);
+
+/// `value` rounded to a multiple of `step` (report figures: millimetres, hundredths of a percent).
+[[nodiscard]] inline double round_to(double value, double step) {
+  return std::round(value / step) * step;
+}
 
 }  // namespace relief

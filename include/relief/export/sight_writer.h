@@ -54,4 +54,10 @@ struct SightSummary {
 void write_sight_geojson(std::ostream& out, const SightResult& result, const RoadModel& model,
                          const GeoFrame& frame);
 
+/// The summary as JSON: report.json's "sight" object (file, the AASHTO parameters, km_checked,
+/// km_short, by_class{class: {km_checked, km_short}}, stretches, worst[{road, name, osm_way_ids,
+/// class, lane, s_from, s_to, available_m, required_m, speed_kmh, grade_percent, obstacle,
+/// lonlat}], stations, rays, obstacle_triangles, seconds).
+[[nodiscard]] std::string sight_summary_json(const SightSummary& s);
+
 }  // namespace relief
