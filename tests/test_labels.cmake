@@ -19,7 +19,9 @@ set(relief_tools_tests
   # xmllint, python3 (xmlschema, the HTML parse), blender
   "^OpenDriveWriter\\.(ValidatesAgainstTheOpenDrive1[78]Schema|WritesOpenDrive14WithWholeSpeedsAndNoOffset)$"
   "^ReportHtml\\.(OpenDriveFiguresAppearWhenAFileWasWritten|ParsesAsXmlWithOnePlotPerProfileHistogramAndMaps)$"
-  "^MeshWriter\\.BlenderImportsFbxGlbAndObjInMetresZUp$")
+  "^MeshWriter\\.BlenderImportsFbxGlbAndObjInMetresZUp$"
+  # python3 with Open3D
+  "^Lidar\\.PointCloudsOpenInOpen3d$")
 set(relief_realdata_tests
   "^(DemSamplerRealData|InspectDemRealData|ProfileFitRealData)\\."
   "^(NetworkBuilder|OsmReader)\\.(PotreroRealData|NortheastRealData)$"

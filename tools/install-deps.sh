@@ -14,7 +14,7 @@ packages=(
   nlohmann-json3-dev libcli11-dev libpugixml-dev
   libxml2-utils sumo sumo-tools python3-xmlschema zip blender
   pybind11-dev python3-dev python3-pytest
-  libbullet-dev python3-numpy libembree-dev
+  libbullet-dev python3-numpy libembree-dev python3-open3d
 )
 
 missing=()

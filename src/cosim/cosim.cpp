@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "cosim/ego_drivers.h"
+#include "cosim/lidar_rig.h"
 #include "cosim/placement_measures.h"
 #include "cosim/trajectory_writer.h"
 #include "relief/core/atomic_file.h"
@@ -75,6 +76,34 @@ void write_cosim_json(const std::filesystem::path& path, const CosimInputs& inpu
   j["ego_steps_held_by_sumo"] = r.ego_steps_held;
   j["resync_log"] = r.resync_log;
   j["ego_speed_gap_mps"] = r.egos > 0 ? spread_json(r.ego_speed_gap_mps) : Json(nullptr);
+  if (options.lidars.empty()) {
+    j["lidar"] = nullptr;
+  } else {
+    const LidarFigures& l = r.lidar;
+    Json sensors = Json::array();
+    for (const LidarMount& m : options.lidars)
+      sensors.push_back(
+          {{"preset", m.preset}, {"ego", m.ego.empty() ? "(first ego)" : m.ego}, {"height_m", m.height_m}});
+    std::vector<float> crest = l.seen_after_crest_m;
+    j["lidar"] = {{"sensors", sensors},
+                  {"sweeps", l.sweeps},
+                  {"sweeps_written", l.sweeps_written},
+                  {"every_s", options.lidar_every_s},
+                  {"points", l.points},
+                  {"rays", l.rays},
+                  {"seconds", l.seconds},
+                  {"rays_per_s", l.seconds > 0.0 ? static_cast<double>(l.rays) / l.seconds : 0.0},
+                  {"min_returns", options.lidar_min_returns},
+                  {"vehicles_checked", l.checked},
+                  {"seen", l.seen},
+                  {"hidden_by",
+                   {{"road", l.hidden_by_road},
+                    {"terrain", l.hidden_by_terrain},
+                    {"vehicle", l.hidden_by_vehicle},
+                    {"too_few_returns", l.hidden_sparse}}},
+                  {"seen_after_crest_m", spread_json(detail::spread_of(crest))},
+                  {"files", l.written}};
+  }
   j["z_error_m"] = spread_json(r.z_error_m);
   j["z_error_on_roads_m"] = spread_json(r.z_error_on_roads_m);
   j["z_error_in_junctions_m"] = spread_json(r.z_error_in_junctions_m);
@@ -196,6 +225,8 @@ CosimResult run_cosim(const CosimInputs& inputs, const CosimOptions& options,
 
   SumoSession sumo(inputs.sumocfg, options.step_s, options.sumo_args, options.sumo);
   detail::EgoDrivers egos(scene, query, sumo, options);
+  detail::LidarRig lidars(scene, options, out_dir);
+  std::vector<detail::PlacedVehicle> placed;
   const double configured_end = sumo.end_time();
   const std::optional<double> end = options.end_s          ? options.end_s
                                     : configured_end > 0.0 ? std::optional<double>(configured_end)
@@ -225,6 +256,7 @@ CosimResult run_cosim(const CosimInputs& inputs, const CosimOptions& options,
       trajectories.begin_step(t);
     }
     const bool add_keys = replay.due(t);
+    placed.clear();
     for (const SumoVehicleState& v : vehicles) {
       measures.track_lane(v);
       // Where SUMO has the vehicle: its front's height and its slope.
@@ -240,6 +272,7 @@ CosimResult run_cosim(const CosimInputs& inputs, const CosimOptions& options,
         continue;
       }
       measures.add(v, *pose, t, result, !egos.is_ego(v.id));
+      if (lidars.active()) placed.push_back({&v, *pose, egos.is_ego(v.id)});
       if (add_keys) replay.add(v, *pose, t);
       if (write_rows) {
         const Vec2 centre = v.centre();
@@ -248,6 +281,7 @@ CosimResult run_cosim(const CosimInputs& inputs, const CosimOptions& options,
       }
     }
     if (write_rows) trajectories.end_step();
+    lidars.step(t, options.step_s, placed);
     const Clock::time_point physics = Clock::now();
     egos.drive(options.step_s);  // the egos' poses reach SUMO with its next step
     result.physics_s += seconds_since(physics);
@@ -259,6 +293,7 @@ CosimResult run_cosim(const CosimInputs& inputs, const CosimOptions& options,
   }
   measures.finish(result, diagnostics);
   egos.finish(result, diagnostics);
+  lidars.finish(result);
   OutputSet outputs;
   if (options.replay_period_s > 0.0) {
     const std::string bytes = encode_replay_glb(scene, replay.take_tracks());

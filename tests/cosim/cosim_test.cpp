@@ -307,6 +307,47 @@ TEST(Cosim, AnEgoOnAFlatStraightRoadKeepsWithinHalfAMetreOfSumoFor60Seconds) {
   EXPECT_EQ(j.at("resyncs").get<std::size_t>(), 0u);
 }
 
+// An HDL-32E on the ego for 5 s: one sweep a turn (10 Hz), a point cloud each simulated second
+// in both formats with the same points, every return on the flat road 1.9 m under the sensor
+// (or the terrain beside it), and the rays CARLA's model casts: round(695 000 x 0.05 / 32) per
+// channel and step.
+TEST(Cosim, ALidarOnTheEgoWritesItsSweeps) {
+  const StraightRoad road =
+      build_straight_road(test::scratch_dir("cosim_lidar"), 0.0, 80, "residential", "30");
+  const fs::path config = write_single_vehicle_config(
+      road.net, road.uphill_edge,
+      R"(<vType id="t" vClass="passenger" length="4.5" width="1.8" speedDev="0"/>)");
+  CosimOptions options;
+  options.end_s = 5.0;
+  options.egos = {"ego"};
+  options.lidars = {LidarMount{"hdl-32e", "", 1.9}};
+  Diagnostics d;
+  const fs::path out = config.parent_path() / "cosim_lidar";
+  const CosimResult r = run_cosim(find_cosim_inputs(config), options, out, d);
+  const LidarFigures& l = r.lidar;
+  EXPECT_EQ(l.sensors, 1u);
+  EXPECT_GE(l.sweeps, 48u);  // 100 steps, half a turn each, from the ego's first step
+  EXPECT_LE(l.sweeps, 50u);
+  EXPECT_EQ(l.rays, 2 * l.sweeps * 32u * 1086u);
+  EXPECT_EQ(l.checked, 0u);  // no other vehicle
+  EXPECT_GE(l.sweeps_written, 4u);
+  ASSERT_GE(l.written.size(), 2u);
+  const auto header_count = [](const fs::path& file, const std::string& key) {
+    std::ifstream in(file, std::ios::binary);
+    std::string line;
+    while (std::getline(in, line))
+      if (line.rfind(key, 0) == 0) return std::stoul(line.substr(key.size()));
+    return 0UL;
+  };
+  const unsigned long points = header_count(out / l.written[0], "POINTS ");
+  EXPECT_GT(points, 10000UL);
+  EXPECT_EQ(header_count(out / l.written[1], "element vertex "), points);
+  std::ifstream json(out / "cosim.json");
+  const nlohmann::json j = nlohmann::json::parse(json);
+  EXPECT_EQ(j.at("lidar").at("sweeps").get<std::size_t>(), l.sweeps);
+  EXPECT_EQ(j.at("lidar").at("files").at(0).get<std::string>(), "lidar/ego/0_hdl-32e/000001.pcd");
+}
+
 // A loaded truck as the ego up a long 15 % climb, SUMO wanting 50 km/h: it settles where its
 // power carries the climb (P = m g v (sin a + c_rr cos a) + drag, within 10 %), and SUMO has
 // it at that speed too.

@@ -9,6 +9,7 @@
 #include "console.h"
 #include "options.h"
 #include "relief/cosim/cosim.h"
+#include "relief/sight/lidar.h"
 
 namespace relief::cli {
 namespace {
@@ -24,6 +25,7 @@ struct CosimArgs {
   std::string out;
   CosimOptions options;
   double end_s = 0.0;
+  double lidar_height_m = 1.9;
   bool traci = false, gui = false;
 };
 
@@ -48,6 +50,16 @@ void print_result(const CosimResult& r, const std::string& out) {
                                  " m, max " + fixed(r.sync_error_m.max, 3) + " m, " +
                                  std::to_string(r.resyncs) + " resyncs\n"
                            : std::string())
+            << (r.lidar.sensors > 0
+                    ? "lidar      " + std::to_string(r.lidar.sensors) + " sensor(s), " +
+                          std::to_string(r.lidar.sweeps) + " sweeps (" +
+                          std::to_string(r.lidar.sweeps_written) + " written), " +
+                          std::to_string(r.lidar.points) + " points; vehicles in range seen " +
+                          std::to_string(r.lidar.seen) + " of " + std::to_string(r.lidar.checked) +
+                          ", hidden by road " + std::to_string(r.lidar.hidden_by_road) + ", terrain " +
+                          std::to_string(r.lidar.hidden_by_terrain) + ", vehicles " +
+                          std::to_string(r.lidar.hidden_by_vehicle) + "\n"
+                    : std::string())
             << "time       " << fixed(r.wall_s, 2) << " s wall (setup " << fixed(r.setup_s, 2) << " s, SUMO "
             << fixed(r.sumo_s, 2) << " s, relief " << fixed(r.relief_s, 2) << " s), "
             << fixed(r.real_time_factor(), 1) << "x real time\n"
@@ -92,6 +104,28 @@ Runner add_cosim_command(CLI::App& app) {
                   "Set an ego back onto SUMO's lane when the two lie this many metres apart after a step")
       ->check(finite_positive())
       ->capture_default_str();
+  cmd->add_option_function<std::vector<std::string>>(
+         "--lidar",
+         [args](const std::vector<std::string>& items) {
+           for (const std::string& item : items) {
+             LidarMount m;
+             const std::size_t at = item.find('@');
+             m.preset = item.substr(0, at);
+             if (at != std::string::npos) m.ego = item.substr(at + 1);
+             parse_for("--lidar", [&] { (void)lidar_preset(m.preset); });
+             args->options.lidars.push_back(m);
+           }
+         },
+         "A LiDAR on an ego, PRESET[@EGO] (carla-default, hdl-32e, hdl-64e, os1-64; default: the first ego); "
+         "repeatable. Point clouds in OUT/lidar/EGO/, occlusion figures in cosim.json")
+      ->type_name("PRESET[@EGO]");
+  cmd->add_option("--lidar-every", args->options.lidar_every_s,
+                  "Write a LiDAR's point cloud (PCD and PLY, one turn) every this many simulated seconds")
+      ->check(finite_non_negative())
+      ->capture_default_str();
+  cmd->add_option("--lidar-height", args->lidar_height_m, "LiDARs' height over the ground under the ego, m")
+      ->check(finite_positive())
+      ->capture_default_str();
   cmd->add_option("--mesh-tolerance", args->options.mesh_tolerance_m,
                   "Chord tolerance in metres of the road surface the vehicles are set on")
       ->check(finite_positive())
@@ -115,6 +149,7 @@ Runner add_cosim_command(CLI::App& app) {
   return [args, cmd] {
     return run_reporting_errors([&] {
       if (cmd->count("--end") > 0) args->options.end_s = args->end_s;
+      for (LidarMount& m : args->options.lidars) m.height_m = args->lidar_height_m;
       SumoEndpoint& sumo = args->options.sumo;
       if (args->traci || args->gui) {
         sumo.mode = SumoEndpoint::Mode::launch;

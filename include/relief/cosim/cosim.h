@@ -41,6 +41,33 @@ struct CosimInputs {
 /// not XML or names no net-file (the messages name the file).
 [[nodiscard]] CosimInputs find_cosim_inputs(const std::filesystem::path& sumocfg);
 
+/// A LiDAR on an ego (relief/sight/lidar.h): a preset, on the named ego or else the first ego,
+/// at this height over the ground under the ego's centre.
+struct LidarMount {
+  std::string preset = "hdl-64e";
+  std::string ego;  ///< empty: the first ego
+  double height_m = 1.9;
+};
+
+/// What the egos' LiDARs saw: per completed sweep (one turn), every other vehicle within range
+/// counted as seen (at least `lidar_min_returns` returns on it) or hidden, and by what: the line
+/// from the sensor to the vehicle's centre meets the road (a crest), the terrain, another
+/// vehicle, or nothing (too few returns: beyond the sensor's resolution, or outside its fields
+/// of view).
+struct LidarFigures {
+  std::size_t sensors = 0;
+  std::size_t sweeps = 0;
+  std::size_t sweeps_written = 0;  ///< point clouds written (PCD and PLY each)
+  std::size_t points = 0;
+  std::size_t rays = 0;
+  double seconds = 0.0;  ///< of relief_s: the LiDARs' rays and files
+  std::size_t checked = 0, seen = 0;
+  std::size_t hidden_by_road = 0, hidden_by_terrain = 0, hidden_by_vehicle = 0, hidden_sparse = 0;
+  /// Distance from the sensor at which a vehicle the road hid in the sweep before was first seen.
+  std::vector<float> seen_after_crest_m;
+  std::vector<std::string> written;  ///< the first point-cloud files, relative to out_dir
+};
+
 struct CosimOptions {
   double step_s = 0.05;               ///< lockstep step (SUMO's --step-length)
   std::optional<double> end_s;        ///< stop at this simulated time; default: the configuration's end,
@@ -65,6 +92,11 @@ struct CosimOptions {
   /// position and heading, keeping its speed), SUMO keeps its route and its traffic.
   double resync_m = 0.5;
   EgoDriverOptions driver;
+  /// LiDARs on the egos; their point clouds (PCD and PLY, one per turn) every lidar_every_s into
+  /// out_dir/lidar/EGO/K_PRESET/NNNNNN.{pcd,ply} (K the sensor's index, NNNNNN its sweep).
+  std::vector<LidarMount> lidars;
+  double lidar_every_s = 1.0;
+  std::size_t lidar_min_returns = 3;
   /// Called about once per simulated 10 s: (simulated time, vehicles now).
   std::function<void(double, std::size_t)> progress;
   /// Polled every step; true ends the run cleanly (what was simulated is written).
@@ -111,6 +143,7 @@ struct CosimResult {
   std::vector<std::string> resync_log;  ///< the first 100: vehicle, time, error, place
   Spread ego_speed_gap_mps;             ///< |SUMO's speed - the physics' speed| of an ego after a step
   double physics_s = 0.0;               ///< of relief_s: the egos' physics and driving
+  LidarFigures lidar;
   [[nodiscard]] double real_time_factor() const { return wall_s > 0.0 ? simulated_s / wall_s : 0.0; }
 };
 

@@ -1,0 +1,163 @@
+#include "cosim/lidar_rig.h"
+
+#include <chrono>
+#include <cmath>
+#include <fstream>
+#include <iomanip>
+#include <sstream>
+
+#include <Eigen/Geometry>
+
+#include "relief/core/atomic_file.h"
+#include "relief/core/errors.h"
+
+namespace relief::detail {
+namespace {
+
+constexpr std::size_t kListed = 20;  // point-cloud files listed in cosim.json
+
+const MeshScene kNoScene;
+
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+LidarBox box_of(const PlacedVehicle& v, int id) {
+  LidarBox b;
+  b.id = id;
+  const Vec2 c = v.state->centre();
+  const double height = v.state->height_m > 0.0 ? v.state->height_m : 1.5;
+  b.yaw = v.state->heading();
+  b.pitch = v.pose.pitch_rad;
+  b.roll = v.pose.roll_rad;
+  b.half = Vec3(0.5 * v.state->length_m, 0.5 * v.state->width_m, 0.5 * height);
+  // The box stands on the body plane: its centre half its height over it along the body's up.
+  const Vec3 up = (Eigen::AngleAxisd(b.yaw, Vec3::UnitZ()) * Eigen::AngleAxisd(-b.pitch, Vec3::UnitY()) *
+                   Eigen::AngleAxisd(b.roll, Vec3::UnitX())) *
+                  Vec3::UnitZ();
+  b.centre = Vec3(c.x(), c.y(), v.pose.z_m) + (0.5 * height + 0.05) * up;
+  return b;
+}
+
+}  // namespace
+
+LidarRig::LidarRig(const MeshScene& scene, const CosimOptions& options, std::filesystem::path out_dir)
+    : scene_(options.lidars.empty() ? kNoScene : scene), options_(options), out_dir_(std::move(out_dir)) {
+  if (!(std::isfinite(options.lidar_every_s) && options.lidar_every_s >= 0.0))
+    throw InvalidInput("the LiDAR files' period must be a finite number >= 0");
+  for (const LidarMount& m : options.lidars) {
+    if (!(std::isfinite(m.height_m) && m.height_m > 0.0))
+      throw InvalidInput("a LiDAR's mounting height must be a finite number > 0");
+    Sensor s;
+    s.mount = m;
+    s.spec = lidar_preset(m.preset);
+    s.ego = m.ego;
+    sensors_.push_back(std::move(s));
+  }
+  figures_.sensors = sensors_.size();
+}
+
+void LidarRig::step(double t, double dt, const std::vector<PlacedVehicle>& placed) {
+  if (sensors_.empty()) return;
+  const auto t0 = std::chrono::steady_clock::now();
+  for (Sensor& s : sensors_) {
+    const PlacedVehicle* ego = nullptr;
+    for (const PlacedVehicle& v : placed)
+      if (v.ego && (s.ego.empty() || v.state->id == s.ego)) {
+        ego = &v;
+        break;
+      }
+    if (ego == nullptr) continue;
+    if (s.ego.empty()) s.ego = ego->state->id;
+    const Vec2 c = ego->state->centre();
+    s.pose.position = Vec3(c.x(), c.y(), ego->pose.z_m + s.mount.height_m);
+    s.pose.yaw = ego->state->heading();
+    s.pose.pitch = ego->pose.pitch_rad;
+    s.pose.roll = ego->pose.roll_rad;
+    s.boxes.clear();
+    s.box_ids.clear();
+    for (const PlacedVehicle& v : placed) {
+      if (&v == ego) continue;
+      s.boxes.push_back(box_of(v, static_cast<int>(s.boxes.size())));
+      s.box_ids.push_back(v.state->id);
+    }
+    std::vector<LidarPoint> points = scene_.scan(s.spec, s.pose, s.azimuth, dt, s.boxes, seed_++);
+    // Returns on a vehicle name it by its index in this step's boxes: keep the SUMO id's index.
+    s.sweep.insert(s.sweep.end(), points.begin(), points.end());
+    const double turn = s.spec.rotation_hz * s.spec.horizontal_fov_deg * dt;
+    s.azimuth = std::fmod(s.azimuth + turn, s.spec.horizontal_fov_deg);
+    s.turned += turn;
+    if (s.turned >= s.spec.horizontal_fov_deg - 1e-9) {
+      close_sweep(s, t);
+      s.turned = 0.0;
+    }
+  }
+  seconds_ += seconds_since(t0);
+}
+
+void LidarRig::close_sweep(Sensor& s, double t) {
+  ++figures_.sweeps;
+  ++s.frames;
+  figures_.points += s.sweep.size();
+  // Returns per vehicle of the sweep's last step (the boxes move little within a turn).
+  std::vector<std::size_t> returns(s.boxes.size(), 0);
+  for (const LidarPoint& p : s.sweep)
+    if (p.label == LidarLabel::vehicle && p.object >= 0 &&
+        static_cast<std::size_t>(p.object) < returns.size())
+      ++returns[static_cast<std::size_t>(p.object)];
+  for (std::size_t k = 0; k < s.boxes.size(); ++k) {
+    const LidarBox& b = s.boxes[k];
+    const double distance = (b.centre - s.pose.position).norm();
+    if (distance > s.spec.range_m) continue;
+    ++figures_.checked;
+    std::uint8_t state = 0;
+    if (returns[k] >= options_.lidar_min_returns) {
+      ++figures_.seen;
+    } else {
+      state = scene_.blocked_by(s.pose.position, b.centre);
+      if (state == static_cast<std::uint8_t>(LidarLabel::road)) {
+        ++figures_.hidden_by_road;
+      } else if (state == static_cast<std::uint8_t>(LidarLabel::terrain)) {
+        ++figures_.hidden_by_terrain;
+      } else {
+        const Vec3 d = b.centre - s.pose.position;
+        bool vehicle = false;
+        for (std::size_t j = 0; j < s.boxes.size() && !vehicle; ++j)
+          vehicle = j != k && ray_box(s.pose.position, d.normalized(), s.boxes[j], d.norm()).has_value();
+        state = vehicle ? static_cast<std::uint8_t>(LidarLabel::vehicle) : 255;
+        ++(vehicle ? figures_.hidden_by_vehicle : figures_.hidden_sparse);
+      }
+    }
+    const std::string& id = s.box_ids[k];
+    const auto last = s.last.find(id);
+    if (state == 0 && last != s.last.end() && last->second == static_cast<std::uint8_t>(LidarLabel::road))
+      figures_.seen_after_crest_m.push_back(static_cast<float>(distance));
+    s.last[id] = state;
+  }
+  if (t >= s.next_write - 1e-9) {
+    s.next_write = t + options_.lidar_every_s;
+    std::ostringstream base;
+    // One folder per sensor: EGO/K_PRESET (K its place among the --lidar options).
+    const std::string folder =
+        "lidar/" + s.ego + "/" + std::to_string(&s - sensors_.data()) + "_" + s.mount.preset;
+    base << folder << "/" << std::setw(6) << std::setfill('0') << s.frames;
+    const std::filesystem::path dir = out_dir_ / folder;
+    std::filesystem::create_directories(dir);
+    for (const char* ext : {".pcd", ".ply"}) {
+      std::ostringstream text;
+      (std::string(ext) == ".pcd" ? write_pcd : write_ply)(text, s.sweep);
+      write_file_atomically(out_dir_ / (base.str() + ext), text.str());
+      if (figures_.written.size() < kListed) figures_.written.push_back(base.str() + ext);
+    }
+    ++figures_.sweeps_written;
+  }
+  s.sweep.clear();
+}
+
+void LidarRig::finish(CosimResult& result) const {
+  result.lidar = figures_;
+  result.lidar.rays = scene_.rays();
+  result.lidar.seconds = seconds_;
+}
+
+}  // namespace relief::detail
