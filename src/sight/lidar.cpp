@@ -107,9 +107,48 @@ void check_lidar_spec(const LidarSpec& s) {
         "[0, 1] (intensity limit > 0); noise and attenuation >= 0");
 }
 
+namespace {
+
+/// A box with its rotation worked out once (into the box's frame), for many rays.
+struct PreparedBox {
+  const LidarBox* box;
+  Eigen::Matrix3d to_box;
+  double radius;  ///< of its bounding sphere
+};
+
+std::optional<double> ray_prepared(const Vec3& origin, const Vec3& dir, const PreparedBox& p, double max_m) {
+  // The bounding sphere first: most rays pass far from most boxes.
+  const Vec3 oc = p.box->centre - origin;
+  const double along = oc.dot(dir);
+  if (along + p.radius < 0.0 || along - p.radius > max_m ||
+      (oc - along * dir).squaredNorm() > p.radius * p.radius)
+    return std::nullopt;
+  const Vec3 o = p.to_box * (origin - p.box->centre), d = p.to_box * dir;
+  const Vec3& half = p.box->half;
+  double t0 = 0.0, t1 = max_m;
+  for (int k = 0; k < 3; ++k) {
+    if (std::abs(d[k]) < 1e-12) {
+      if (std::abs(o[k]) > half[k]) return std::nullopt;
+      continue;
+    }
+    double a = (-half[k] - o[k]) / d[k], b = (half[k] - o[k]) / d[k];
+    if (a > b) std::swap(a, b);
+    t0 = std::max(t0, a);
+    t1 = std::min(t1, b);
+    if (t0 > t1) return std::nullopt;
+  }
+  return t0;
+}
+
+PreparedBox prepare(const LidarBox& box) {
+  return {&box, rotation(box.yaw, box.pitch, box.roll).transpose(), box.half.norm()};
+}
+
+}  // namespace
+
 std::optional<double> ray_box(const Vec3& origin, const Vec3& dir, const LidarBox& box, double max_m) {
-  const Eigen::Matrix3d r = rotation(box.yaw, box.pitch, box.roll);
-  const Vec3 o = r.transpose() * (origin - box.centre), d = r.transpose() * dir;
+  const PreparedBox p = prepare(box);
+  const Vec3 o = p.to_box * (origin - box.centre), d = p.to_box * dir;
   double t0 = 0.0, t1 = max_m;
   for (int k = 0; k < 3; ++k) {
     if (std::abs(d[k]) < 1e-12) {
@@ -155,9 +194,9 @@ std::vector<LidarPoint> LidarScene::scan(const LidarSpec& spec, const LidarPose&
   if (!(std::isfinite(dt) && dt > 0.0)) throw InvalidInput("LiDAR: a step of " + std::to_string(dt) + " s");
   const Eigen::Matrix3d to_world = rotation(pose.yaw, pose.pitch, pose.roll);
   // The boxes the range can reach.
-  std::vector<const LidarBox*> near;
+  std::vector<PreparedBox> near;
   for (const LidarBox& b : vehicles)
-    if ((b.centre - pose.position).norm() <= spec.range_m + b.half.norm()) near.push_back(&b);
+    if ((b.centre - pose.position).norm() <= spec.range_m + b.half.norm()) near.push_back(prepare(b));
   const auto per_channel =
       static_cast<long>(std::lround(spec.points_per_second * dt / static_cast<double>(spec.channels)));
   const double sweep = spec.rotation_hz * spec.horizontal_fov_deg * dt;
@@ -170,58 +209,71 @@ std::vector<LidarPoint> LidarScene::scan(const LidarSpec& spec, const LidarPose&
   std::vector<LidarPoint> points;
   points.reserve(static_cast<std::size_t>(std::max(0L, per_channel)) *
                  static_cast<std::size_t>(spec.channels));
-  std::size_t cast = 0;
+  // The rays of this step (those the general drop-off keeps), cast as packets from the sensor.
+  struct Ray {
+    Vec3 local;
+    double azimuth;
+    int channel;
+  };
+  std::vector<Ray> rays;
+  rays.reserve(points.capacity());
+  std::vector<double> cos_el(static_cast<std::size_t>(spec.channels)), sin_el(cos_el.size());
+  for (std::size_t c = 0; c < cos_el.size(); ++c) {
+    const double elevation = (spec.upper_fov_deg - static_cast<double>(c) * spread) * kDeg;
+    cos_el[c] = std::cos(elevation);
+    sin_el[c] = std::sin(elevation);
+  }
   for (long i = 0; i < per_channel; ++i) {
     // Within the horizontal field of view, centred on the sensor's x axis (CARLA's convention).
     const double azimuth =
         std::fmod(start_azimuth_deg + step * static_cast<double>(i), spec.horizontal_fov_deg) -
         (spec.horizontal_fov_deg < 360.0 ? 0.5 * spec.horizontal_fov_deg : 0.0);
+    const double ca = std::cos(azimuth * kDeg), sa = std::sin(azimuth * kDeg);
     for (int c = 0; c < spec.channels; ++c) {
       if (spec.dropoff_general_rate > 0.0 && uniform(random) < spec.dropoff_general_rate) continue;
-      const double elevation = (spec.upper_fov_deg - c * spread) * kDeg;
-      const Vec3 local(std::cos(elevation) * std::cos(azimuth * kDeg),
-                       std::cos(elevation) * std::sin(azimuth * kDeg), std::sin(elevation));
-      const Vec3 dir = to_world * local;
-      ++cast;
-      double t = spec.range_m;
-      LidarLabel label = LidarLabel::road;
-      std::int32_t object = -1;
-      bool hit = false;
-      if (const std::optional<detail::RayHit> h =
-              impl_->rays.first_hit(pose.position, pose.position + spec.range_m * dir)) {
-        t = h->fraction * spec.range_m;
-        label = h->kind == SurfaceKind::terrain ? LidarLabel::terrain : LidarLabel::road;
-        hit = true;
-      }
-      for (const LidarBox* b : near) {
-        if (const std::optional<double> tb = ray_box(pose.position, dir, *b, t)) {
-          if (*tb < t || !hit) {
-            t = *tb;
-            label = LidarLabel::vehicle;
-            object = b->id;
-            hit = true;
-          }
-        }
-      }
-      if (!hit || t <= 0.0) continue;
-      const double intensity = std::exp(-spec.atmosphere_attenuation_rate * t);
-      if (intensity <= spec.dropoff_intensity_limit && spec.dropoff_zero_intensity > 0.0 &&
-          uniform(random) >=
-              1.0 - spec.dropoff_zero_intensity * (1.0 - intensity / spec.dropoff_intensity_limit))
-        continue;
-      const double measured = spec.noise_stddev_m > 0.0 ? t + noise(random) : t;
-      LidarPoint p;
-      p.xyz = measured * local;
-      p.intensity = static_cast<float>(intensity);
-      const double az = std::fmod(azimuth + 360.0, 360.0);
-      p.azimuth_deg = static_cast<float>(az);
-      p.distance_m = static_cast<float>(measured);
-      p.ring = static_cast<std::uint16_t>(c);
-      p.label = label;
-      p.object = object;
-      points.push_back(p);
+      const auto k = static_cast<std::size_t>(c);
+      rays.push_back({Vec3(cos_el[k] * ca, cos_el[k] * sa, sin_el[k]), azimuth, c});
     }
   }
+  std::vector<Vec3> dirs(rays.size());
+  for (std::size_t k = 0; k < rays.size(); ++k) dirs[k] = to_world * rays[k].local;
+  std::vector<double> hits(rays.size());
+  std::vector<SurfaceKind> kinds(rays.size(), SurfaceKind::road);
+  impl_->rays.first_hits(pose.position, dirs.data(), dirs.size(), spec.range_m, hits.data(), kinds.data());
+  for (std::size_t k = 0; k < rays.size(); ++k) {
+    const Vec3& dir = dirs[k];
+    double t = std::min(hits[k], spec.range_m);
+    bool hit = std::isfinite(hits[k]);
+    LidarLabel label = kinds[k] == SurfaceKind::terrain ? LidarLabel::terrain : LidarLabel::road;
+    std::int32_t object = -1;
+    for (const PreparedBox& b : near) {
+      if (const std::optional<double> tb = ray_prepared(pose.position, dir, b, t)) {
+        if (*tb < t || !hit) {
+          t = *tb;
+          label = LidarLabel::vehicle;
+          object = b.box->id;
+          hit = true;
+        }
+      }
+    }
+    if (!hit || t <= 0.0) continue;
+    const double intensity = std::exp(-spec.atmosphere_attenuation_rate * t);
+    if (intensity <= spec.dropoff_intensity_limit && spec.dropoff_zero_intensity > 0.0 &&
+        uniform(random) >=
+            1.0 - spec.dropoff_zero_intensity * (1.0 - intensity / spec.dropoff_intensity_limit))
+      continue;
+    const double measured = spec.noise_stddev_m > 0.0 ? t + noise(random) : t;
+    LidarPoint p;
+    p.xyz = measured * rays[k].local;
+    p.intensity = static_cast<float>(intensity);
+    p.azimuth_deg = static_cast<float>(std::fmod(rays[k].azimuth + 360.0, 360.0));
+    p.distance_m = static_cast<float>(measured);
+    p.ring = static_cast<std::uint16_t>(rays[k].channel);
+    p.label = label;
+    p.object = object;
+    points.push_back(p);
+  }
+  const std::size_t cast = rays.size();
   impl_->cast += cast;
   return points;
 }

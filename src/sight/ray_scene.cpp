@@ -2,6 +2,7 @@
 
 #include <embree3/rtcore.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -127,6 +128,44 @@ std::optional<RayHit> RayScene::first_hit(const Vec3& a, const Vec3& b) const {
   hit.triangle = rh.hit.primID;
   hit.kind = g.kind;
   return hit;
+}
+
+void RayScene::first_hits(const Vec3& origin, const Vec3* dirs, std::size_t n, double length, double* hits,
+                          SurfaceKind* kinds) const {
+  constexpr std::size_t kPacket = 16;
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+  const Vec3 o = origin - impl_->origin;
+  for (std::size_t start = 0; start < n; start += kPacket) {
+    alignas(64) RTCRayHit16 rh{};
+    alignas(64) int valid[kPacket];
+    const std::size_t count = std::min(kPacket, n - start);
+    for (std::size_t i = 0; i < kPacket; ++i) {
+      valid[i] = i < count ? -1 : 0;
+      const Vec3& d = dirs[start + std::min(i, count - 1)];
+      rh.ray.org_x[i] = static_cast<float>(o.x());
+      rh.ray.org_y[i] = static_cast<float>(o.y());
+      rh.ray.org_z[i] = static_cast<float>(o.z());
+      rh.ray.dir_x[i] = static_cast<float>(d.x());
+      rh.ray.dir_y[i] = static_cast<float>(d.y());
+      rh.ray.dir_z[i] = static_cast<float>(d.z());
+      rh.ray.tnear[i] = 0.0F;
+      rh.ray.tfar[i] = static_cast<float>(length);
+      rh.ray.mask[i] = std::numeric_limits<unsigned>::max();
+      rh.hit.geomID[i] = RTC_INVALID_GEOMETRY_ID;
+      rh.hit.instID[0][i] = RTC_INVALID_GEOMETRY_ID;
+    }
+    rtcIntersect16(valid, impl_->scene, &context, &rh);
+    for (std::size_t i = 0; i < count; ++i) {
+      if (rh.hit.geomID[i] == RTC_INVALID_GEOMETRY_ID) {
+        hits[start + i] = std::numeric_limits<double>::infinity();
+        continue;
+      }
+      hits[start + i] = rh.ray.tfar[i];
+      kinds[start + i] = impl_->geometries[rh.hit.geomID[i]].kind;
+    }
+  }
 }
 
 }  // namespace relief::detail

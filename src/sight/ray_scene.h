@@ -41,6 +41,11 @@ class RayScene {
   [[nodiscard]] bool blocked(const Vec3& a, const Vec3& b) const;
   /// The first triangle the segment from a to b meets, if any.
   [[nodiscard]] std::optional<RayHit> first_hit(const Vec3& a, const Vec3& b) const;
+  /// The first triangles `n` rays from one `origin` along unit `dirs` meet within `length`:
+  /// hits[i] is its distance along the ray, or infinity; kinds[i] what it met. Cast 16 at a time
+  /// (Embree's packets: rays from one point share the traversal).
+  void first_hits(const Vec3& origin, const Vec3* dirs, std::size_t n, double length, double* hits,
+                  SurfaceKind* kinds) const;
   [[nodiscard]] std::size_t triangles() const;
 
  private:
