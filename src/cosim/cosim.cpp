@@ -11,6 +11,7 @@
 #include <unordered_map>
 #include <vector>
 
+#include "cosim/cosim_report.h"
 #include "cosim/ego_drivers.h"
 #include "cosim/lidar_rig.h"
 #include "cosim/placement_measures.h"
@@ -41,6 +42,22 @@ double seconds_since(Clock::time_point start) {
 
 Json spread_json(const Spread& s) {
   return Json{{"p50", s.p50}, {"p99", s.p99}, {"max", s.max}, {"count", s.count}};
+}
+
+// The 20 crests that hid most, with where and how far away their vehicles were first seen.
+Json crests_json(const std::vector<LidarFigures::Crest>& crests) {
+  Json out = Json::array();
+  for (std::size_t k = 0; k < std::min<std::size_t>(20, crests.size()); ++k) {
+    const LidarFigures::Crest& c = crests[k];
+    std::vector<float> seen = c.first_seen_m;
+    out.push_back({{"x", c.point.x()},
+                   {"y", c.point.y()},
+                   {"z", c.point.z()},
+                   {"lonlat", {c.lon, c.lat}},
+                   {"hidden_sweeps", c.hidden},
+                   {"first_seen_m", spread_json(detail::spread_of(seen))}});
+  }
+  return out;
 }
 
 void write_cosim_json(const std::filesystem::path& path, const CosimInputs& inputs,
@@ -102,6 +119,7 @@ void write_cosim_json(const std::filesystem::path& path, const CosimInputs& inpu
                     {"vehicle", l.hidden_by_vehicle},
                     {"too_few_returns", l.hidden_sparse}}},
                   {"seen_after_crest_m", spread_json(detail::spread_of(crest))},
+                  {"crests", crests_json(l.crests)},
                   {"files", l.written}};
   }
   j["z_error_m"] = spread_json(r.z_error_m);
@@ -225,7 +243,7 @@ CosimResult run_cosim(const CosimInputs& inputs, const CosimOptions& options,
 
   SumoSession sumo(inputs.sumocfg, options.step_s, options.sumo_args, options.sumo);
   detail::EgoDrivers egos(scene, query, sumo, options);
-  detail::LidarRig lidars(scene, options, out_dir);
+  detail::LidarRig lidars(scene, options, out_dir, model.frame);
   std::vector<detail::PlacedVehicle> placed;
   const double configured_end = sumo.end_time();
   const std::optional<double> end = options.end_s          ? options.end_s
@@ -303,6 +321,7 @@ CosimResult run_cosim(const CosimInputs& inputs, const CosimOptions& options,
   outputs.commit();
   result.wall_s = seconds_since(start);
   write_cosim_json(out_dir / kCosimReportFile, inputs, options, result);
+  write_file_atomically(out_dir / "cosim.html", detail::cosim_html(inputs, options, result));
   return result;
 }
 

@@ -1,5 +1,6 @@
 #include "cosim/lidar_rig.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <fstream>
@@ -10,6 +11,7 @@
 
 #include "relief/core/atomic_file.h"
 #include "relief/core/errors.h"
+#include "relief/geometry/crs_transform.h"
 
 namespace relief::detail {
 namespace {
@@ -41,8 +43,12 @@ LidarBox box_of(const PlacedVehicle& v, int id) {
 
 }  // namespace
 
-LidarRig::LidarRig(const MeshScene& scene, const CosimOptions& options, std::filesystem::path out_dir)
-    : scene_(options.lidars.empty() ? kNoScene : scene), options_(options), out_dir_(std::move(out_dir)) {
+LidarRig::LidarRig(const MeshScene& scene, const CosimOptions& options, std::filesystem::path out_dir,
+                   GeoFrame frame)
+    : scene_(options.lidars.empty() ? kNoScene : scene),
+      options_(options),
+      out_dir_(std::move(out_dir)),
+      frame_(std::move(frame)) {
   if (!(std::isfinite(options.lidar_every_s) && options.lidar_every_s >= 0.0))
     throw InvalidInput("the LiDAR files' period must be a finite number >= 0");
   for (const LidarMount& m : options.lidars) {
@@ -105,20 +111,39 @@ void LidarRig::close_sweep(Sensor& s, double t) {
     if (p.label == LidarLabel::vehicle && p.object >= 0 &&
         static_cast<std::size_t>(p.object) < returns.size())
       ++returns[static_cast<std::size_t>(p.object)];
+  LidarFigures::Tick tick;
+  tick.t = t;
   for (std::size_t k = 0; k < s.boxes.size(); ++k) {
     const LidarBox& b = s.boxes[k];
     const double distance = (b.centre - s.pose.position).norm();
     if (distance > s.spec.range_m) continue;
     ++figures_.checked;
     std::uint8_t state = 0;
+    const std::string& id = s.box_ids[k];
     if (returns[k] >= options_.lidar_min_returns) {
       ++figures_.seen;
+      ++tick.seen;
     } else {
-      state = scene_.blocked_by(s.pose.position, b.centre);
+      const auto obstacle = scene_.first_obstacle(s.pose.position, b.centre);
+      state = obstacle ? static_cast<std::uint8_t>(obstacle->first) : 0;
       if (state == static_cast<std::uint8_t>(LidarLabel::road)) {
         ++figures_.hidden_by_road;
+        ++tick.road;
+        // The crest: the 25 m cell where the line of sight met the road.
+        const Vec3& p = obstacle->second;
+        const auto cell =
+            (static_cast<std::uint64_t>(static_cast<std::int64_t>(std::floor(p.x() / 25.0))) << 32) ^
+            static_cast<std::uint64_t>(static_cast<std::int64_t>(std::floor(p.y() / 25.0)) & 0xffffffff);
+        auto [it, added] = crest_index_.try_emplace(cell, figures_.crests.size());
+        if (added) figures_.crests.emplace_back();
+        LidarFigures::Crest& crest = figures_.crests[it->second];
+        crest.point =
+            (crest.point * static_cast<double>(crest.hidden) + p) / static_cast<double>(crest.hidden + 1);
+        ++crest.hidden;
+        s.crest_of[id] = cell;
       } else if (state == static_cast<std::uint8_t>(LidarLabel::terrain)) {
         ++figures_.hidden_by_terrain;
+        ++tick.terrain;
       } else {
         const Vec3 d = b.centre - s.pose.position;
         bool vehicle = false;
@@ -126,14 +151,18 @@ void LidarRig::close_sweep(Sensor& s, double t) {
           vehicle = j != k && ray_box(s.pose.position, d.normalized(), s.boxes[j], d.norm()).has_value();
         state = vehicle ? static_cast<std::uint8_t>(LidarLabel::vehicle) : 255;
         ++(vehicle ? figures_.hidden_by_vehicle : figures_.hidden_sparse);
+        ++(vehicle ? tick.vehicle : tick.sparse);
       }
     }
-    const std::string& id = s.box_ids[k];
     const auto last = s.last.find(id);
-    if (state == 0 && last != s.last.end() && last->second == static_cast<std::uint8_t>(LidarLabel::road))
+    if (state == 0 && last != s.last.end() && last->second == static_cast<std::uint8_t>(LidarLabel::road)) {
       figures_.seen_after_crest_m.push_back(static_cast<float>(distance));
+      figures_.crests[crest_index_.at(s.crest_of.at(id))].first_seen_m.push_back(
+          static_cast<float>(distance));
+    }
     s.last[id] = state;
   }
+  figures_.timeline.push_back(tick);
   if (t >= s.next_write - 1e-9) {
     s.next_write = t + options_.lidar_every_s;
     std::ostringstream base;
@@ -156,6 +185,20 @@ void LidarRig::close_sweep(Sensor& s, double t) {
 
 void LidarRig::finish(CosimResult& result) const {
   result.lidar = figures_;
+  std::vector<LidarFigures::Crest>& crests = result.lidar.crests;
+  std::stable_sort(
+      crests.begin(), crests.end(),
+      [](const LidarFigures::Crest& a, const LidarFigures::Crest& b) { return a.hidden > b.hidden; });
+  if (!crests.empty() && !frame_.crs().empty()) {
+    const CrsTransform to_wgs84(frame_.crs(), "EPSG:4326");
+    std::vector<Vec2> lonlat;
+    for (const LidarFigures::Crest& c : crests) lonlat.emplace_back(c.point.head<2>() + frame_.origin());
+    to_wgs84.apply(lonlat);
+    for (std::size_t k = 0; k < crests.size(); ++k) {
+      crests[k].lon = lonlat[k].x();
+      crests[k].lat = lonlat[k].y();
+    }
+  }
   result.lidar.rays = scene_.rays();
   result.lidar.seconds = seconds_;
 }

@@ -12,6 +12,7 @@
 #include "relief/cosim/cosim.h"
 #include "relief/cosim/sumo_session.h"
 #include "relief/cosim/vehicle_pose.h"
+#include "relief/geometry/geo_frame.h"
 #include "relief/sight/lidar.h"
 
 namespace relief::detail {
@@ -26,7 +27,8 @@ struct PlacedVehicle {
 class LidarRig {
  public:
   /// `scene`: the co-simulation's surface (kept by reference). Nothing runs without sensors.
-  LidarRig(const MeshScene& scene, const CosimOptions& options, std::filesystem::path out_dir);
+  LidarRig(const MeshScene& scene, const CosimOptions& options, std::filesystem::path out_dir,
+           GeoFrame frame);
 
   [[nodiscard]] bool active() const { return !options_.lidars.empty(); }
 
@@ -49,6 +51,7 @@ class LidarRig {
     std::vector<std::string> box_ids;  ///< parallel to boxes
     LidarPose pose;
     std::map<std::string, std::uint8_t> last;  ///< vehicle -> last sweep's state (0 seen, else hidden by)
+    std::map<std::string, std::uint64_t> crest_of;  ///< vehicle -> the crest cell that hid it last
     std::size_t frames = 0;
     double next_write = 0.0;
   };
@@ -59,6 +62,8 @@ class LidarRig {
   std::filesystem::path out_dir_;
   std::vector<Sensor> sensors_;
   LidarFigures figures_;
+  GeoFrame frame_;
+  std::map<std::uint64_t, std::size_t> crest_index_;  ///< 25 m cell -> index into figures_.crests
   double seconds_ = 0.0;
   std::uint64_t seed_ = 1;
 };

@@ -37,7 +37,7 @@ SightSummary summarize_sight(const SightResult& result, const RoadModel& model, 
   s.km_short = result.km_short;
   s.by_class = result.by_class;
   s.stretches = result.stretches.size();
-  s.stations = result.stations.size();
+  s.stations = result.station_count;
   s.rays = result.rays;
   s.obstacle_triangles = result.obstacle_triangles;
   const CrsTransform to_wgs84(frame.crs(), "EPSG:4326");

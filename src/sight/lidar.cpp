@@ -180,11 +180,16 @@ std::size_t LidarScene::rays() const {
   return impl_->cast.load();
 }
 
-std::uint8_t LidarScene::blocked_by(const Vec3& a, const Vec3& b) const {
+std::optional<std::pair<LidarLabel, Vec3>> LidarScene::first_obstacle(const Vec3& a, const Vec3& b) const {
   const std::optional<detail::RayHit> hit = impl_->rays.first_hit(a, b);
-  if (!hit) return 0;
-  return static_cast<std::uint8_t>(hit->kind == SurfaceKind::terrain ? LidarLabel::terrain
-                                                                     : LidarLabel::road);
+  if (!hit) return std::nullopt;
+  return std::make_pair(hit->kind == SurfaceKind::terrain ? LidarLabel::terrain : LidarLabel::road,
+                        hit->point);
+}
+
+std::uint8_t LidarScene::blocked_by(const Vec3& a, const Vec3& b) const {
+  const auto obstacle = first_obstacle(a, b);
+  return obstacle ? static_cast<std::uint8_t>(obstacle->first) : 0;
 }
 
 std::vector<LidarPoint> LidarScene::scan(const LidarSpec& spec, const LidarPose& pose,

@@ -68,7 +68,8 @@ RayScene::RayScene(const MeshScene& scene, bool (*use)(SurfaceKind)) : impl_(std
   s.device = rtcNewDevice(nullptr);
   if (s.device == nullptr) throw std::runtime_error("Embree: could not create a device");
   s.scene = rtcNewScene(s.device);
-  rtcSetSceneBuildQuality(s.scene, RTC_BUILD_QUALITY_HIGH);
+  // Compact nodes: a city's million triangles in less memory, for a few per cent of speed.
+  rtcSetSceneFlags(s.scene, RTC_SCENE_FLAG_COMPACT);
   for (const std::size_t m : meshes) {
     const TriangleMesh& mesh = scene.meshes[m];
     RTCGeometry g = rtcNewGeometry(s.device, RTC_GEOMETRY_TYPE_TRIANGLE);

@@ -214,7 +214,10 @@ SightResult sight_distances(const RoadModel& model, const MeshScene& obstacles, 
         s.obstacle_point = st.obstacle_point;
       }
     }
-    result.stations.insert(result.stations.end(), lane.stations.begin(), lane.stations.end());
+    result.station_count += lane.stations.size();
+    if (options.keep_stations)
+      result.stations.insert(result.stations.end(), lane.stations.begin(), lane.stations.end());
+    lane.stations = {};
   }
   std::stable_sort(result.stretches.begin(), result.stretches.end(),
                    [](const SightStretch& a, const SightStretch& b) {

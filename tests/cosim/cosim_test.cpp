@@ -346,6 +346,12 @@ TEST(Cosim, ALidarOnTheEgoWritesItsSweeps) {
   const nlohmann::json j = nlohmann::json::parse(json);
   EXPECT_EQ(j.at("lidar").at("sweeps").get<std::size_t>(), l.sweeps);
   EXPECT_EQ(j.at("lidar").at("files").at(0).get<std::string>(), "lidar/ego/0_hdl-32e/000001.pcd");
+  EXPECT_EQ(j.at("lidar").at("crests").size(), 0u);
+  // cosim.html: the figures and the LiDAR section (no plot: no vehicle in range).
+  std::ifstream html(out / "cosim.html");
+  const std::string page((std::istreambuf_iterator<char>(html)), std::istreambuf_iterator<char>());
+  EXPECT_NE(page.find("<h2>LiDAR</h2>"), std::string::npos);
+  EXPECT_NE(page.find("sweeps"), std::string::npos);
 }
 
 // A loaded truck as the ego up a long 15 % climb, SUMO wanting 50 km/h: it settles where its

@@ -64,6 +64,7 @@ TEST(SightDistance, AFlatStraightRoadIsSeenToItsEnd) {
   scene.meshes.push_back(strip(model.roads[0], -3.5, 3.0, 1.0));
   SightOptions o;
   o.measure_beyond_required = true;
+  o.keep_stations = true;
   const SightResult r = sight_distances(model, scene, o);
   const std::vector<SightStation> ahead = stations_of(r, -1), back = stations_of(r, 1);
   ASSERT_EQ(ahead.size(), 101u);  // every 2 m, both ends
@@ -93,6 +94,7 @@ TEST(SightDistance, ACrestVerticalCurveGivesTheTextbookDistance) {
   scene.meshes.push_back(strip(road, -3.5, 3.0, 0.5));
   SightOptions o;
   o.measure_beyond_required = true;
+  o.keep_stations = true;
   const SightResult r = sight_distances(model, scene, o);
   const double h = std::sqrt(o.eye_height_m) + std::sqrt(o.object_height_m);
   const double expected = std::sqrt(200.0 * 200.0 * h * h / 8.0);
@@ -140,6 +142,7 @@ TEST(SightDistance, ACuttingOnAHorizontalCurveLimitsItAsTheGeometrySays) {
   scene.meshes.push_back(wall);
   SightOptions o;
   o.measure_beyond_required = true;
+  o.keep_stations = true;
   const SightResult r = sight_distances(model, scene, o);
   const double lane = 101.75;
   const double expected = 2.0 * lane * std::acos(face / lane);

@@ -65,6 +65,22 @@ struct LidarFigures {
   std::size_t hidden_by_road = 0, hidden_by_terrain = 0, hidden_by_vehicle = 0, hidden_sparse = 0;
   /// Distance from the sensor at which a vehicle the road hid in the sweep before was first seen.
   std::vector<float> seen_after_crest_m;
+  /// The places where the road hid a vehicle (crests), grouped in 25 m cells: where the hidden
+  /// lines of sight met the road (their mean), how many sweeps it hid one, and the distances at
+  /// which the vehicles it hid were first seen.
+  struct Crest {
+    Vec3 point = Vec3::Zero();
+    double lon = 0.0, lat = 0.0;
+    std::size_t hidden = 0;
+    std::vector<float> first_seen_m;
+  };
+  std::vector<Crest> crests;  ///< most hidden first
+  /// Per sweep: its time and the vehicles in range seen and hidden (road, terrain, vehicle, too few returns).
+  struct Tick {
+    double t = 0.0;
+    std::size_t seen = 0, road = 0, terrain = 0, vehicle = 0, sparse = 0;
+  };
+  std::vector<Tick> timeline;
   std::vector<std::string> written;  ///< the first point-cloud files, relative to out_dir
 };
 

@@ -18,6 +18,7 @@
 #include <ostream>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "relief/geometry/triangle_mesh.h"
@@ -99,6 +100,8 @@ class LidarScene {
   /// Whether the open segment from a to b meets the static scene, and what: road, terrain, or
   /// nothing (then the label is 0).
   [[nodiscard]] std::uint8_t blocked_by(const Vec3& a, const Vec3& b) const;
+  /// Where the open segment from a to b first meets the static scene (road or terrain), if it does.
+  [[nodiscard]] std::optional<std::pair<LidarLabel, Vec3>> first_obstacle(const Vec3& a, const Vec3& b) const;
   /// Rays cast so far by scan() (all threads), for throughput figures.
   [[nodiscard]] std::size_t rays() const;
 

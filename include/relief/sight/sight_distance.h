@@ -36,6 +36,8 @@ struct SightOptions {
   bool measure_beyond_required = false;
   /// Roads inside junctions get stations too (their lanes overlap; off: only approaches).
   bool junction_roads = false;
+  /// Keep every station in SightResult::stations (Portland: 0.7 million; off: only the stretches).
+  bool keep_stations = false;
 };
 
 /// AASHTO's stopping sight distance (m) at `speed_mps` on `grade` (rise over run, positive
@@ -90,7 +92,8 @@ struct SightResult {
   double km_short = 0.0;
   std::map<std::string, SightClassFigures> by_class;
   std::vector<SightStretch> stretches;  ///< short stretches, worst (smallest available / required) first
-  std::vector<SightStation> stations;   ///< every station, by road, lane and s
+  std::vector<SightStation> stations;   ///< every station, by road, lane and s (keep_stations)
+  std::size_t station_count = 0;
   std::size_t rays = 0;
   std::size_t obstacle_triangles = 0;
 };
