@@ -321,7 +321,7 @@ CosimResult run_cosim(const CosimInputs& inputs, const CosimOptions& options,
   outputs.commit();
   result.wall_s = seconds_since(start);
   write_cosim_json(out_dir / kCosimReportFile, inputs, options, result);
-  write_file_atomically(out_dir / "cosim.html", detail::cosim_html(inputs, options, result));
+  write_file_atomically(out_dir / kCosimHtmlFile, detail::cosim_html(inputs, options, result));
   return result;
 }
 

@@ -28,6 +28,9 @@ namespace relief {
 inline constexpr const char* kCosimReportFile = "cosim.json";
 /// The replay: the scene and every vehicle as an animated box (export/mesh_writer.h).
 inline constexpr const char* kCosimReplayFile = "cosim.glb";
+/// The co-simulation's figures for a person (and, with LiDARs, their occlusion plot), in the output
+/// directory.
+inline constexpr const char* kCosimHtmlFile = "cosim.html";
 
 struct CosimInputs {
   std::filesystem::path sumocfg;
