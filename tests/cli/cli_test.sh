@@ -334,6 +334,23 @@ check "sight without a scene message" stderr_has "nope.glb"
 check "sight without a scene writes nothing" no_outputs "$RELIEF_TMP/sight2"
 check "sight bad step" run 2 "" sight --xodr "$good/hill.xodr" --out "$RELIEF_TMP/sight2" --step 0
 
+# lidar: one HDL-32E turn from 2 m over the good build's plane: every return within 0.05 m (its
+# noise) of the plane's height under it, Open3D reads both files with every point; a point off
+# the scene is exit 3.
+check "lidar" run 0 "" lidar --scene "$good/hill.glb" --at 100,100 --height 2 --preset hdl-32e --out "$RELIEF_TMP/lidar"
+check "lidar files open in Open3D" /usr/bin/python3 - "$RELIEF_TMP/lidar" <<'PY'
+import sys, open3d as o3d
+d = sys.argv[1]
+header = open(d + "/lidar.pcd", "rb").read(400).decode("ascii", "replace")
+n = int(header.split("POINTS ")[1].split()[0])
+assert n > 10000, n
+for f in ("lidar.pcd", "lidar.ply"):
+    pc = o3d.io.read_point_cloud(d + "/" + f)
+    assert len(pc.points) == n, (f, len(pc.points), n)
+PY
+check "lidar off the scene" run 3 "" lidar --scene "$good/hill.glb" --at 1e6,1e6 --out "$RELIEF_TMP/lidar2"
+check "lidar off the scene message" stderr_has "--at X,Y,Z"
+
 # info: describes without writing.
 check "info" run 0 "" info --osm "$fix/hill.osm" --dem "$fix/hill_dem.asc"
 check "info coverage" grep -q "100.00 % with height" "$RELIEF_TMP/stdout"

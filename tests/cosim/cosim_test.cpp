@@ -342,6 +342,13 @@ TEST(Cosim, ALidarOnTheEgoWritesItsSweeps) {
   const unsigned long points = header_count(out / l.written[0], "POINTS ");
   EXPECT_GT(points, 10000UL);
   EXPECT_EQ(header_count(out / l.written[1], "element vertex "), points);
+  // An independent reader: Open3D (Debian's python3-open3d) reads both with that many points.
+  const std::string script =
+      "import open3d as o3d\nfor f in ('" + (out / l.written[0]).string() + "', '" +
+      (out / l.written[1]).string() +
+      "'):\n    assert len(o3d.io.read_point_cloud(f).points) == " + std::to_string(points) + ", f\n";
+  std::ofstream(out / "open3d_check.py") << script;
+  EXPECT_EQ(std::system(("/usr/bin/python3 " + (out / "open3d_check.py").string()).c_str()), 0);
   std::ifstream json(out / "cosim.json");
   const nlohmann::json j = nlohmann::json::parse(json);
   EXPECT_EQ(j.at("lidar").at("sweeps").get<std::size_t>(), l.sweeps);

@@ -20,5 +20,6 @@ Runner add_mesh_report_command(CLI::App& app);
 Runner add_cosim_command(CLI::App& app);
 Runner add_demand_command(CLI::App& app);
 Runner add_sight_command(CLI::App& app);
+Runner add_lidar_command(CLI::App& app);
 
 }  // namespace relief::cli

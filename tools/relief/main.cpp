@@ -22,6 +22,7 @@ int main(int argc, char** argv) {  // NOLINT(bugprone-exception-escape)
   const Runner cosim = add_cosim_command(app);
   const Runner demand = add_demand_command(app);
   const Runner sight = add_sight_command(app);
+  const Runner lidar = add_lidar_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::Success& e) {
@@ -36,5 +37,6 @@ int main(int argc, char** argv) {  // NOLINT(bugprone-exception-escape)
   if (app.got_subcommand("cosim")) return cosim();
   if (app.got_subcommand("demand")) return demand();
   if (app.got_subcommand("sight")) return sight();
+  if (app.got_subcommand("lidar")) return lidar();
   return kUsage;
 }
