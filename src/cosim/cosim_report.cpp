@@ -1,5 +1,7 @@
 #include "cosim/cosim_report.h"
 
+#include "relief/core/xml_writer.h"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -17,24 +19,7 @@ std::string num(double v, int decimals) {
 
 std::string esc(const std::string& text) {
   std::string out;
-  for (const char c : text) {
-    switch (c) {
-      case '<':
-        out += "&lt;";
-        break;
-      case '>':
-        out += "&gt;";
-        break;
-      case '&':
-        out += "&amp;";
-        break;
-      case '"':
-        out += "&quot;";
-        break;
-      default:
-        out += c;
-    }
-  }
+  append_xml_escaped(out, text);
   return out;
 }
 

@@ -192,6 +192,7 @@ void LidarRig::finish(CosimResult& result) const {
   if (!crests.empty() && !frame_.crs().empty()) {
     const CrsTransform to_wgs84(frame_.crs(), "EPSG:4326");
     std::vector<Vec2> lonlat;
+    lonlat.reserve(crests.size());
     for (const LidarFigures::Crest& c : crests) lonlat.emplace_back(c.point.head<2>() + frame_.origin());
     to_wgs84.apply(lonlat);
     for (std::size_t k = 0; k < crests.size(); ++k) {

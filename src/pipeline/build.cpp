@@ -378,7 +378,7 @@ BuildResult build(const BuildOptions& options, Diagnostics& diagnostics, const P
     // The sight distances only read the scene: after its files (their buffers freed: Portland's
     // peak stayed 200 MB lower than beside them), beside the end of the SUMO chain.
     if (options.outputs.contains(Output::sight)) {
-      sight_in.emplace(options, network, built->model, scene->meshes, report.name);
+      sight_in.emplace(SightStageInput{options, network, built->model, scene->meshes, report.name});
       sight.emplace("sight distances (beside the SUMO chain)", [&] {
         const auto start = std::chrono::steady_clock::now();
         SightResult r = compute_sight(*sight_in);

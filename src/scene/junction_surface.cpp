@@ -351,9 +351,9 @@ std::string build_junction_surface(const RoadModel& model, const JunctionModel& 
   std::vector<Vec3> interior = junction_interior(model, connecting_roads);
   std::vector<Vec2> extent;
   for (const JunctionEnd& e : sorted)
-    for (const std::uint32_t v : e.vertices) extent.push_back(vertices[v].head<2>());
+    for (const std::uint32_t v : e.vertices) extent.emplace_back(vertices[v].head<2>());
   for (const OutlineGap& gap : gaps)
-    for (const Vec3& p : gap.points) extent.push_back(p.head<2>());
+    for (const Vec3& p : gap.points) extent.emplace_back(p.head<2>());
   const std::vector<Vec3> grid = surface_grid(extent, interior, surface);
   interior.insert(interior.end(), grid.begin(), grid.end());
   std::string failed = triangulate_junction(sorted, gaps, junction.id, mesh, interior, &surface);

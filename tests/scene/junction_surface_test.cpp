@@ -144,8 +144,12 @@ TEST(JunctionSurface, InteriorPointsFollowTheConnectingRoadsLanesAndMergeWhereTh
   for (const Vec3& p : points) {
     const bool lane_x = std::abs(p.y() - 1.5) < 1e-9 || std::abs(p.y() + 1.75) < 1e-9;
     const bool lane_y = std::abs(p.x() + 1.5) < 1e-9 || std::abs(p.x() - 1.75) < 1e-9;
-    if (lane_x) EXPECT_DOUBLE_EQ(p.z(), 1.0) << p.transpose();
-    if (lane_y) EXPECT_DOUBLE_EQ(p.z(), 2.0) << p.transpose();
+    if (lane_x) {
+      EXPECT_DOUBLE_EQ(p.z(), 1.0) << p.transpose();
+    }
+    if (lane_y) {
+      EXPECT_DOUBLE_EQ(p.z(), 2.0) << p.transpose();
+    }
     if (!lane_x && !lane_y) {
       // A merged point: its mean height, near a crossing.
       ++merged;
