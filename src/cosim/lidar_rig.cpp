@@ -5,6 +5,7 @@
 #include <cmath>
 #include <fstream>
 #include <iomanip>
+#include <numbers>
 #include <sstream>
 
 #include <Eigen/Geometry>
@@ -101,6 +102,24 @@ void LidarRig::step(double t, double dt, const std::vector<PlacedVehicle>& place
   seconds_ += seconds_since(t0);
 }
 
+bool LidarRig::in_view(const Sensor& s, const LidarBox& b, double distance) {
+  // The box's centre in the sensor's frame; the box counts while any of it lies within the
+  // fields of view (its angular half size from its bounding sphere).
+  const Vec3 local =
+      (Eigen::AngleAxisd(s.pose.yaw, Vec3::UnitZ()) * Eigen::AngleAxisd(-s.pose.pitch, Vec3::UnitY()) *
+       Eigen::AngleAxisd(s.pose.roll, Vec3::UnitX()))
+          .toRotationMatrix()
+          .transpose() *
+      (b.centre - s.pose.position);
+  const double half =
+      distance > b.half.norm() ? std::asin(b.half.norm() / distance) * 180.0 / std::numbers::pi : 90.0;
+  const double elevation = std::atan2(local.z(), local.head<2>().norm()) * 180.0 / std::numbers::pi;
+  if (elevation + half < s.spec.lower_fov_deg || elevation - half > s.spec.upper_fov_deg) return false;
+  if (s.spec.horizontal_fov_deg >= 360.0) return true;
+  const double azimuth = std::atan2(local.y(), local.x()) * 180.0 / std::numbers::pi;
+  return std::abs(azimuth) - half <= 0.5 * s.spec.horizontal_fov_deg;
+}
+
 void LidarRig::close_sweep(Sensor& s, double t) {
   ++figures_.sweeps;
   ++s.frames;
@@ -116,7 +135,7 @@ void LidarRig::close_sweep(Sensor& s, double t) {
   for (std::size_t k = 0; k < s.boxes.size(); ++k) {
     const LidarBox& b = s.boxes[k];
     const double distance = (b.centre - s.pose.position).norm();
-    if (distance > s.spec.range_m) continue;
+    if (distance > s.spec.range_m || !in_view(s, b, distance)) continue;
     ++figures_.checked;
     std::uint8_t state = 0;
     const std::string& id = s.box_ids[k];

@@ -56,6 +56,8 @@ class LidarRig {
     double next_write = 0.0;
   };
   void close_sweep(Sensor& s, double t);
+  /// Whether any of the box lies within the sensor's fields of view.
+  [[nodiscard]] static bool in_view(const Sensor& s, const LidarBox& b, double distance);
 
   LidarScene scene_;
   const CosimOptions& options_;

@@ -119,6 +119,11 @@ Runner add_cosim_command(CLI::App& app) {
          "A LiDAR on an ego, PRESET[@EGO] (carla-default, hdl-32e, hdl-64e, os1-64; default: the first ego); "
          "repeatable. Point clouds in OUT/lidar/EGO/, occlusion figures in cosim.json")
       ->type_name("PRESET[@EGO]");
+  cmd->add_option(
+         "--lidar-min-returns", args->options.lidar_min_returns,
+         "A vehicle in a LiDAR's range and view counts as seen with at least this many returns on it")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
   cmd->add_option("--lidar-every", args->options.lidar_every_s,
                   "Write a LiDAR's point cloud (PCD and PLY, one turn) every this many simulated seconds")
       ->check(finite_non_negative())

@@ -53,10 +53,10 @@ struct LidarMount {
 };
 
 /// What the egos' LiDARs saw: per completed sweep (one turn), every other vehicle within range
-/// counted as seen (at least `lidar_min_returns` returns on it) or hidden, and by what: the line
-/// from the sensor to the vehicle's centre meets the road (a crest), the terrain, another
-/// vehicle, or nothing (too few returns: beyond the sensor's resolution, or outside its fields
-/// of view).
+/// and any of it within the fields of view counted as seen (at least `lidar_min_returns` returns on it) or
+/// hidden, and by what: the line from the sensor to the vehicle's centre meets the road (a crest), the
+/// terrain, another vehicle, or nothing (too few returns: beyond the sensor's resolution, or outside its
+/// fields of view).
 struct LidarFigures {
   std::size_t sensors = 0;
   std::size_t sweeps = 0;
