@@ -7,7 +7,9 @@
 //
 //   SSD = v t + v^2 / (2 (a + g G)),  t = 2.5 s reaction, a = 3.4 m/s2, G the grade (+ up)
 //
-// (AASHTO eq. 3-3 in SI units). The lane is followed ahead through its links: to the next
+// (AASHTO eq. 3-3 in SI units; a downgrade steeper than a / (2 g), -17 % at 3.4 m/s2, counts as
+// that: on SF's -31 % streets the formula would ask 9 times the level distance). The lane is
+// followed ahead through its links: to the next
 // road, or through a junction on its straightest connecting road. Lines of sight are exact
 // segment-triangle tests (Embree). Every lane-station needs only the distance it requires
 // unless SightOptions::measure_beyond_required: a station whose lane is visible that far is
