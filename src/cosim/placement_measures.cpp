@@ -57,8 +57,14 @@ std::optional<double> PlacementMeasures::odr_body_z(const SumoVehicleState& v, c
   double sum = 0.0;
   for (const double along : {0.5 * wheels.wheelbase_m, -0.5 * wheels.wheelbase_m}) {
     for (const double across : {0.5 * wheels.track_m, -0.5 * wheels.track_m}) {
-      const std::optional<LaneSurfacePoint> at =
-          odr_.at(lane, centre + along * forward + across * left, &near);
+      const Vec2 contact = centre + along * forward + across * left;
+      std::optional<LaneSurfacePoint> at = odr_.at(lane, contact, &near);
+      // A contact past the centre's road (the vehicle spans a road's end): on the road of
+      // another of its last lanes.
+      for (const std::string& other : recent_[v.id]) {
+        if ((at && at->on_road()) || other.empty()) break;
+        if (other != lane) at = odr_.at(other, contact);
+      }
       if (!at || !at->on_road()) return std::nullopt;
       sum += at->z_m;
     }
@@ -98,9 +104,11 @@ void PlacementMeasures::add(const SumoVehicleState& v, const SurfacePose& pose, 
     at_centre.reset();
   }
   // The nearby points start their projections at the centre's station (no search along the road).
+  // Within half a metre of its road's end the centre has no slope there: its height is still
+  // measured, its pitch not.
   const std::optional<double> slope =
       centre_lane ? odr_.slope(*centre_lane, centre, heading, 0.5, &*at_centre) : std::nullopt;
-  if (!at_centre || !slope) {
+  if (!at_centre) {
     if (result.unmapped++ == 0) {
       std::ostringstream where;
       where << "lane '" << v.lane << "' at t = " << t << " s";
@@ -112,7 +120,8 @@ void PlacementMeasures::add(const SumoVehicleState& v, const SurfacePose& pose, 
   z_errors_.push_back(static_cast<float>(z_error));
   (centre_lane->starts_with(':') ? z_errors_junction_ : z_errors_road_)
       .push_back(static_cast<float>(z_error));
-  pitch_errors_.push_back(static_cast<float>(std::abs(pose.pitch_rad - std::atan(*slope)) * kDegree));
+  if (slope)
+    pitch_errors_.push_back(static_cast<float>(std::abs(pose.pitch_rad - std::atan(*slope)) * kDegree));
   // The vehicle, time, lane and place of an error (the worst of its kind so far).
   const auto place = [&](double error) {
     std::ostringstream where;
