@@ -8,8 +8,6 @@
 #include <numbers>
 #include <sstream>
 
-#include <Eigen/Geometry>
-
 #include "relief/core/atomic_file.h"
 #include "relief/core/errors.h"
 #include "relief/geometry/crs_transform.h"
@@ -35,9 +33,7 @@ LidarBox box_of(const PlacedVehicle& v, int id) {
   b.roll = v.pose.roll_rad;
   b.half = Vec3(0.5 * v.state->length_m, 0.5 * v.state->width_m, 0.5 * height);
   // The box stands on the body plane: its centre half its height over it along the body's up.
-  const Vec3 up = (Eigen::AngleAxisd(b.yaw, Vec3::UnitZ()) * Eigen::AngleAxisd(-b.pitch, Vec3::UnitY()) *
-                   Eigen::AngleAxisd(b.roll, Vec3::UnitX())) *
-                  Vec3::UnitZ();
+  const Vec3 up = body_to_world(b.yaw, b.pitch, b.roll) * Vec3::UnitZ();
   b.centre = Vec3(c.x(), c.y(), v.pose.z_m) + (0.5 * height + 0.05) * up;
   return b;
 }
@@ -106,11 +102,7 @@ bool LidarRig::in_view(const Sensor& s, const LidarBox& b, double distance) {
   // The box's centre in the sensor's frame; the box counts while any of it lies within the
   // fields of view (its angular half size from its bounding sphere).
   const Vec3 local =
-      (Eigen::AngleAxisd(s.pose.yaw, Vec3::UnitZ()) * Eigen::AngleAxisd(-s.pose.pitch, Vec3::UnitY()) *
-       Eigen::AngleAxisd(s.pose.roll, Vec3::UnitX()))
-          .toRotationMatrix()
-          .transpose() *
-      (b.centre - s.pose.position);
+      body_to_world(s.pose.yaw, s.pose.pitch, s.pose.roll).transpose() * (b.centre - s.pose.position);
   const double half =
       distance > b.half.norm() ? std::asin(b.half.norm() / distance) * 180.0 / std::numbers::pi : 90.0;
   const double elevation = std::atan2(local.z(), local.head<2>().norm()) * 180.0 / std::numbers::pi;

@@ -18,13 +18,6 @@ namespace {
 
 constexpr double kDeg = std::numbers::pi / 180.0;
 
-Eigen::Matrix3d rotation(double yaw, double pitch, double roll) {
-  // Yaw about z, then pitch (nose up positive: a negative turn about y), then roll about x.
-  return (Eigen::AngleAxisd(yaw, Vec3::UnitZ()) * Eigen::AngleAxisd(-pitch, Vec3::UnitY()) *
-          Eigen::AngleAxisd(roll, Vec3::UnitX()))
-      .toRotationMatrix();
-}
-
 template <typename T>
 void put(std::string& out, T value) {
   char bytes[sizeof(T)];
@@ -141,27 +134,20 @@ std::optional<double> ray_prepared(const Vec3& origin, const Vec3& dir, const Pr
 }
 
 PreparedBox prepare(const LidarBox& box) {
-  return {&box, rotation(box.yaw, box.pitch, box.roll).transpose(), box.half.norm()};
+  return {&box, body_to_world(box.yaw, box.pitch, box.roll).transpose(), box.half.norm()};
 }
 
 }  // namespace
 
 std::optional<double> ray_box(const Vec3& origin, const Vec3& dir, const LidarBox& box, double max_m) {
-  const PreparedBox p = prepare(box);
-  const Vec3 o = p.to_box * (origin - box.centre), d = p.to_box * dir;
-  double t0 = 0.0, t1 = max_m;
-  for (int k = 0; k < 3; ++k) {
-    if (std::abs(d[k]) < 1e-12) {
-      if (std::abs(o[k]) > box.half[k]) return std::nullopt;
-      continue;
-    }
-    double a = (-box.half[k] - o[k]) / d[k], b = (box.half[k] - o[k]) / d[k];
-    if (a > b) std::swap(a, b);
-    t0 = std::max(t0, a);
-    t1 = std::min(t1, b);
-    if (t0 > t1) return std::nullopt;
-  }
-  return t0;
+  return ray_prepared(origin, dir, prepare(box), max_m);
+}
+
+Eigen::Matrix3d body_to_world(double yaw, double pitch, double roll) {
+  // Yaw about z, then pitch (nose up positive: a negative turn about y), then roll about x.
+  return (Eigen::AngleAxisd(yaw, Vec3::UnitZ()) * Eigen::AngleAxisd(-pitch, Vec3::UnitY()) *
+          Eigen::AngleAxisd(roll, Vec3::UnitX()))
+      .toRotationMatrix();
 }
 
 struct LidarScene::Impl {
@@ -197,7 +183,7 @@ std::vector<LidarPoint> LidarScene::scan(const LidarSpec& spec, const LidarPose&
                                          const std::vector<LidarBox>& vehicles, std::uint64_t seed) const {
   check_lidar_spec(spec);
   if (!(std::isfinite(dt) && dt > 0.0)) throw InvalidInput("LiDAR: a step of " + std::to_string(dt) + " s");
-  const Eigen::Matrix3d to_world = rotation(pose.yaw, pose.pitch, pose.roll);
+  const Eigen::Matrix3d to_world = body_to_world(pose.yaw, pose.pitch, pose.roll);
   // The boxes the range can reach.
   std::vector<PreparedBox> near;
   for (const LidarBox& b : vehicles)

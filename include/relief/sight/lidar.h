@@ -21,7 +21,9 @@
 #include <utility>
 #include <vector>
 
+#include <Eigen/Geometry>
 #include "relief/geometry/triangle_mesh.h"
+
 #include "relief/geometry/types.h"
 
 namespace relief {
@@ -114,6 +116,10 @@ class LidarScene {
 /// `max_m` (the slab test in the box's frame).
 [[nodiscard]] std::optional<double> ray_box(const Vec3& origin, const Vec3& dir, const LidarBox& box,
                                             double max_m);
+
+/// The rotation from a sensor's or a box's own frame (x forward, y left, z up) to the world's,
+/// for a yaw counter-clockwise from east, a pitch nose up and a roll right side down (rad).
+[[nodiscard]] Eigen::Matrix3d body_to_world(double yaw, double pitch, double roll);
 
 /// PCD 0.7 (binary): fields x y z intensity ring azimuth distance label object.
 void write_pcd(std::ostream& out, const std::vector<LidarPoint>& points);
