@@ -15,18 +15,29 @@ packages=(
   libxml2-utils sumo sumo-tools python3-xmlschema zip blender
   pybind11-dev python3-dev python3-pytest
   libbullet-dev python3-numpy libembree-dev python3-open3d
+  nodejs chromium
 )
+# npm: Debian's own package when Node.js is Debian's (a Node.js with its own npm has it already).
+command -v npm >/dev/null || packages+=(npm)
 
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
 done
-[ ${#missing[@]} -eq 0 ] && exit 0
+if [ ${#missing[@]} -gt 0 ]; then
+  sudo=""
+  [ "$(id -u)" -ne 0 ] && sudo="sudo"
+  apt_opts=(-o DPkg::Lock::Timeout=600 -y -q)
+  export DEBIAN_FRONTEND=noninteractive
+  echo "install-deps: installing ${missing[*]}" >&2
+  $sudo apt-get "${apt_opts[@]}" update >/dev/null
+  $sudo apt-get "${apt_opts[@]}" install --no-install-recommends "${missing[@]}" >/dev/null
+fi
 
-sudo=""
-[ "$(id -u)" -ne 0 ] && sudo="sudo"
-apt_opts=(-o DPkg::Lock::Timeout=600 -y -q)
-export DEBIAN_FRONTEND=noninteractive
-echo "install-deps: installing ${missing[*]}" >&2
-$sudo apt-get "${apt_opts[@]}" update >/dev/null
-$sudo apt-get "${apt_opts[@]}" install --no-install-recommends "${missing[@]}" >/dev/null
+# The viewer's npm packages (three.js, esbuild; puppeteer-core for its browser test), exactly as
+# package-lock.json pins them, from the npm registry; again only when the lock file changed.
+web="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)/src/viewer/web"
+if [ ! -f "$web/node_modules/.package-lock.json" ] || [ "$web/package-lock.json" -nt "$web/node_modules/.package-lock.json" ]; then
+  echo "install-deps: npm ci in src/viewer/web" >&2
+  npm ci --prefix "$web" --no-audit --no-fund --loglevel=error >/dev/null
+fi

@@ -835,6 +835,10 @@ void write_report_html(std::ostream& out, const HtmlReportInput& in) {
   h += sight_css();
   h += "</style>\n</head>\n<body>\n<main>\n";
   write_header(h, r);
+  if (!in.view_page.empty())
+    h += "<p class=\"view\"><a href=\"" + esc(in.view_page) +
+         "\">Open the interactive 3D view</a> (roads by grade "
+         "or height over the DEM, profiles on click, the findings marked).</p>\n";
   write_gates(h, r);
   write_cards(h, r);
   write_comparison(h, r);

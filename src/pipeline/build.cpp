@@ -10,6 +10,7 @@
 #include "pipeline/sight_stage.h"
 #include "pipeline/stages.h"
 #include "pipeline/sumo_stage.h"
+#include "pipeline/view_stage.h"
 #include "relief/core/atomic_file.h"
 #include "relief/core/diagnostic_codes.h"
 #include "relief/core/errors.h"
@@ -107,6 +108,7 @@ std::optional<Output> parse_output(std::string_view text) {
   if (text == "sumo") return Output::sumo;
   if (text == "mesh") return Output::mesh;
   if (text == "sight") return Output::sight;
+  if (text == "view") return Output::view;
   return std::nullopt;
 }
 
@@ -126,6 +128,8 @@ std::string_view to_string(Output output) {
       return "mesh";
     case Output::sight:
       return "sight";
+    case Output::view:
+      return "view";
   }
   return "unknown";
 }
@@ -273,7 +277,8 @@ BuildResult build(const BuildOptions& options, Diagnostics& diagnostics, const P
   OutputSet files;
   const auto path_of = [&](const std::string& suffix) { return options.out_dir / (report.name + suffix); };
   std::optional<RoadModelBuild> built;
-  const bool scene_needed = options.outputs.contains(Output::mesh) || options.outputs.contains(Output::sight);
+  const bool scene_needed = options.outputs.contains(Output::mesh) ||
+                            options.outputs.contains(Output::sight) || options.outputs.contains(Output::view);
   if (options.outputs.contains(Output::xodr) || options.outputs.contains(Output::sumo) || scene_needed) {
     built = timer.run("build road model", [&] {
       // The junction planes of relief's fit tilt the lanes at junctions onto them; the other
@@ -370,11 +375,14 @@ BuildResult build(const BuildOptions& options, Diagnostics& diagnostics, const P
   std::optional<Scene> scene;
   std::optional<SightStageInput> sight_in;
   std::optional<BackgroundStage<std::pair<SightResult, double>>> sight;
+  std::optional<ViewStage> view;
   if (scene_needed) {
     const MeshStageInput in{options, network, built->model, dem, report.name, diagnostics};
     scene.emplace(build_scene_stage(in, timer));
     if (options.outputs.contains(Output::mesh))
       report.mesh = write_mesh_outputs(in, *scene, files, timer, result.written, report.outputs);
+    if (options.outputs.contains(Output::view))
+      view = write_view_tiles(in, *scene, files, timer, result.written);
     // The sight distances only read the scene: after its files (their buffers freed: Portland's
     // peak stayed 200 MB lower than beside them), beside the end of the SUMO chain.
     if (options.outputs.contains(Output::sight)) {
@@ -402,6 +410,17 @@ BuildResult build(const BuildOptions& options, Diagnostics& diagnostics, const P
                        "quality gate " + g.name + " failed: " + std::to_string(g.value) + " against " +
                            std::to_string(g.threshold) + (g.where.empty() ? "" : ", " + g.where));
   }
+  if (view) {
+    ViewIndexInput in;
+    in.report = &report;
+    in.model = &built->model;
+    in.network = &network;
+    in.raw = &raw;
+    in.paper = paper ? &paper->profiles : nullptr;
+    in.fitted = fit ? &fit->profiles : nullptr;
+    in.sight = sight_result ? &*sight_result : nullptr;
+    write_view_page(options, *view, in, files, timer, result.written, report.outputs);
+  }
   if (options.outputs.contains(Output::html)) {
     report.outputs.emplace_back("report.html");
     result.written.push_back(options.out_dir / "report.html");
@@ -415,6 +434,7 @@ BuildResult build(const BuildOptions& options, Diagnostics& diagnostics, const P
       in.paper = paper ? &paper->profiles : nullptr;
       in.fitted = fit ? &fit->profiles : nullptr;
       in.sight = sight_result ? &*sight_result : nullptr;
+      in.view_page = view ? "view.html" : "";
       files.add(options.out_dir / "report.html", [&](std::ostream& out) { write_report_html(out, in); });
       return 0;
     });

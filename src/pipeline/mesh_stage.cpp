@@ -71,6 +71,8 @@ MeshSummary write_mesh_outputs(const MeshStageInput& in, const Scene& built, Out
     summary.ground_holes = checked.ground_holes;
     summary.ground_portals = checked.ground_portals;
     summary.structure_terrain_intersecting_pairs = checked.structure_terrain_pairs;
+    summary.structure_terrain_sites = checked.structure_terrain_sites;
+    if (checked.ground_holes > 0 && !quality.empty()) summary.ground_hole_sites = quality.back().hole_sites;
     summary.ground_components = checked.ground_components;
     summary.seam_road_terrain_m = checked.seam_road_terrain_m;
   }

@@ -30,7 +30,7 @@ std::vector<std::string> split_list(std::string_view text, char separator) {
 std::set<Output> parse_outputs(std::string_view text) {
   if (text == "all") {
     return {Output::geojson, Output::report, Output::html, Output::xodr,
-            Output::sumo,    Output::mesh,   Output::sight};
+            Output::sumo,    Output::mesh,   Output::sight,  Output::view};
   }
   std::set<Output> outputs;
   for (const std::string& item : split_list(text)) {

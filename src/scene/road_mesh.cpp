@@ -293,6 +293,7 @@ RoadMeshes build_road_meshes(const RoadModel& model, const RoadMeshOptions& opti
       std::snprintf(at, sizeof at, " at (%.1f, %.1f, %.2f)", centre.x(), centre.y(), centre.z());
       const std::string place = "junction " + std::to_string(junction.id) + (corners > 0 ? at : "");
       if (out.first_failed_junction.empty()) out.first_failed_junction = place;
+      if (corners > 0) out.failed_junctions.push_back({junction.id, centre});
       diagnostics.report(Severity::warning, codes::kMeshJunctionFailed,
                          place + ": " + problem + "; its area is left open");
     }

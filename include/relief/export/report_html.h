@@ -27,6 +27,7 @@ struct HtmlReportInput {
   double steep_road_min_length_m = 20.0;
   int max_structure_plots = 12;        ///< bridges and tunnels plotted, longest first
   const SightResult* sight = nullptr;  ///< optional: the sight-distance map's stretches
+  std::string view_page;               ///< the interactive view beside the report ("view.html"), if any
 };
 
 /// Writes a self-contained HTML5 page that is also well-formed XML (every text from the data

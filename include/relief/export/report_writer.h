@@ -162,6 +162,10 @@ struct MeshSummary {
   std::size_t deck_triangles_on_ground = 0, tunnel_triangles_open = 0;
   /// Road triangles off the ground (decks, tunnels, under other roads) x Terrain, intersecting pairs.
   std::size_t structure_terrain_intersecting_pairs = 0;
+  std::vector<Vec3> structure_terrain_sites;  ///< the first of those pairs' places
+  /// Boundary loops of the ground (when ground_holes > 0): its holes and its tunnel mouths, which
+  /// the ground's loops do not tell apart; empty when the ground has no hole.
+  std::vector<Vec3> ground_hole_sites;
   /// Road triangles on the ground left out of the ground because another road lies over them
   /// in plan (plan_overlaps); the terrain closes the step between the two.
   std::size_t ground_triangles_under_roads = 0;

@@ -37,7 +37,7 @@ enum class ProfileMethod {
 [[nodiscard]] std::string_view to_string(ProfileMethod method);
 
 /// Outputs `build` can write into the output directory.
-enum class Output { geojson, report, html, xodr, sumo, mesh, sight };
+enum class Output { geojson, report, html, xodr, sumo, mesh, sight, view };
 [[nodiscard]] std::optional<Output> parse_output(std::string_view text);
 [[nodiscard]] std::string_view to_string(Output output);
 
@@ -60,8 +60,8 @@ struct BuildOptions {
   int paper_max_iterations = 1000;
   /// Also run the other methods and put the comparison in the report.
   bool compare_methods = true;
-  std::set<Output> outputs = {Output::geojson, Output::report, Output::html, Output::xodr,
-                              Output::sumo,    Output::mesh,   Output::sight};
+  std::set<Output> outputs = {Output::geojson, Output::report, Output::html,  Output::xodr,
+                              Output::sumo,    Output::mesh,   Output::sight, Output::view};
   RoadModelOptions road_model;
   int opendrive_rev_minor = 7;  ///< OpenDRIVE 1.4, 1.7 or 1.8
   /// SUMO's options, used as given, except that `sumo.signalled_junctions` (OpenDRIVE junction

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <set>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "relief/core/diagnostics.h"
@@ -31,8 +32,10 @@ struct RoadMeshes {
   /// Per triangle of `road`: the OpenDRIVE road id it belongs to, or -1 - junction id.
   std::vector<int> road_triangle_owner;
   std::size_t junctions_meshed = 0;
-  std::size_t junctions_failed = 0;      ///< reported as "mesh.junction_failed"; their area is left open
-  std::string first_failed_junction;     ///< "junction J at (x, y, z)" of the first failed; empty if none
+  std::size_t junctions_failed = 0;   ///< reported as "mesh.junction_failed"; their area is left open
+  std::string first_failed_junction;  ///< "junction J at (x, y, z)" of the first failed; empty if none
+  /// Every failed junction with a place: its id and the mean of its road ends' edge vertices.
+  std::vector<std::pair<int, Vec3>> failed_junctions;
   double max_surface_deviation_m = 0.0;  ///< largest measured mesh-to-S(road, s, t) distance on roads
 };
 

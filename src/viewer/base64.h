@@ -1,0 +1,13 @@
+#pragma once
+// Base64 (RFC 4648, with padding) of raw bytes: the view's typed arrays travel inside <script>
+// files, which a browser loads from file:// where fetch() of a binary file is refused.
+
+#include <string>
+#include <string_view>
+
+namespace relief::detail {
+
+/// Appends the base64 text of `bytes` to `out`.
+void append_base64(std::string& out, std::string_view bytes);
+
+}  // namespace relief::detail

@@ -1,0 +1,45 @@
+// view.html: the page template with its style and script (embedded at compile time) filled in.
+#include <string>
+
+#include "relief/viewer/view_writer.h"
+#include "viewer/view_assets.h"
+
+namespace relief {
+namespace {
+
+std::string escaped_text(const std::string& text) {
+  std::string out;
+  for (const char c : text) {
+    if (c == '<')
+      out += "&lt;";
+    else if (c == '>')
+      out += "&gt;";
+    else if (c == '&')
+      out += "&amp;";
+    else if (c == '"')
+      out += "&quot;";
+    else
+      out += c;
+  }
+  return out;
+}
+
+void replace_all(std::string& text, std::string_view key, std::string_view value) {
+  for (std::size_t at = text.find(key); at != std::string::npos; at = text.find(key, at + value.size()))
+    text.replace(at, key.size(), value);
+}
+
+}  // namespace
+
+std::string view_page(const std::string& title) {
+  std::string page(detail::kViewPageTemplate);
+  // The title first: the style and the script may hold any text, {{TITLE}} included.
+  replace_all(page, "{{TITLE}}", escaped_text(title));
+  const std::size_t style = page.find("{{STYLE}}");
+  page.replace(style, 9, detail::kViewStyle);
+  const std::size_t script = page.find("{{SCRIPT}}", style + detail::kViewStyle.size());
+  page.replace(script, 10, detail::kViewScript);
+  return page;
+}
+
+}  // namespace relief
