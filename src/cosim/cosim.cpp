@@ -26,6 +26,7 @@
 #include "relief/roads/opendrive_reader.h"
 #include "relief/scene/road_mesh.h"
 #include "relief/scene/surface_query.h"
+#include "relief/viewer/view_writer.h"
 
 namespace relief {
 namespace {
@@ -314,8 +315,24 @@ CosimResult run_cosim(const CosimInputs& inputs, const CosimOptions& options,
   lidars.finish(result);
   OutputSet outputs;
   if (options.replay_period_s > 0.0) {
-    const std::string bytes = encode_replay_glb(scene, replay.take_tracks());
+    const std::vector<ReplayTrack> tracks = replay.take_tracks();
+    const std::string bytes = encode_replay_glb(scene, tracks);
     outputs.add(out_dir / kCosimReplayFile, [&](std::ostream& out) { out << bytes; });
+    // The build's view with the traffic on it, when the build wrote one.
+    const std::filesystem::path view_dir = inputs.net.parent_path() / "view";
+    if (std::filesystem::is_regular_file(view_dir / "index.js")) {
+      ViewPageOptions page;
+      page.data_dir =
+          std::filesystem::relative(std::filesystem::absolute(view_dir), std::filesystem::absolute(out_dir))
+              .generic_string();
+      page.report = kCosimHtmlFile;
+      page.scripts = {kCosimViewReplayFile};
+      const std::string script = view_replay_script(tracks);
+      outputs.add(out_dir / kCosimViewReplayFile, [&](std::ostream& out) { out << script; });
+      outputs.add(out_dir / kCosimViewFile, [&](std::ostream& out) {
+        out << view_page(name + " - relief co-simulation replay", page);
+      });
+    }
   }
   trajectories.commit();
   outputs.commit();

@@ -1,6 +1,8 @@
 // view.html: the page template with its style and script (embedded at compile time) filled in.
 #include <string>
 
+#include "relief/core/errors.h"
+
 #include "relief/viewer/view_writer.h"
 #include "viewer/view_assets.h"
 
@@ -31,10 +33,21 @@ void replace_all(std::string& text, std::string_view key, std::string_view value
 
 }  // namespace
 
-std::string view_page(const std::string& title) {
+std::string view_page(const std::string& title, const ViewPageOptions& options) {
+  std::vector<std::string> paths = options.scripts;
+  paths.push_back(options.data_dir);
+  paths.push_back(options.report);
+  for (const std::string& path : paths)
+    if (path.find_first_of("\"'<>\\") != std::string::npos)
+      throw InvalidInput("view page: the path '" + path + "' has a quote, '<', '>' or a backslash");
+  std::string extra;
+  for (const std::string& script : options.scripts) extra += "<script src=\"" + script + "\"></script>\n";
   std::string page(detail::kViewPageTemplate);
-  // The title first: the style and the script may hold any text, {{TITLE}} included.
+  // The short fields first: the style and the script may hold any text, {{TITLE}} included.
   replace_all(page, "{{TITLE}}", escaped_text(title));
+  replace_all(page, "{{DATA}}", options.data_dir);
+  replace_all(page, "{{REPORT}}", options.report);
+  replace_all(page, "{{EXTRA}}", extra);
   const std::size_t style = page.find("{{STYLE}}");
   page.replace(style, 9, detail::kViewStyle);
   const std::size_t script = page.find("{{SCRIPT}}", style + detail::kViewStyle.size());

@@ -297,5 +297,46 @@ TEST(ViewPage, CarriesTheBundleAndEscapesTheTitle) {
   EXPECT_GT(page.size(), 300000u);
 }
 
+TEST(ViewPage, DataFolderScriptsAndReportLinkAreTheCallers) {
+  ViewPageOptions o;
+  o.data_dir = "../build/view";
+  o.report = "cosim.html";
+  o.scripts = {"replay.js"};
+  const std::string page = view_page("replay", o);
+  EXPECT_NE(page.find("window.RELIEF_VIEW_BASE = \"../build/view\";"), std::string::npos);
+  EXPECT_NE(
+      page.find("<script src=\"../build/view/index.js\"></script>\n<script src=\"replay.js\"></script>"),
+      std::string::npos);
+  EXPECT_NE(page.find("<a href=\"cosim.html\">report</a>"), std::string::npos);
+  for (const char* bad : {"a\"b", "a<b", "a\\b", "a'b"}) {
+    ViewPageOptions b;
+    b.data_dir = bad;
+    EXPECT_THROW((void)view_page("x", b), InvalidInput) << bad;
+  }
+}
+
+TEST(ViewReplay, KeysTravelAsFloat32InTheirOrder) {
+  ReplayTrack car;
+  car.name = "car.0";
+  car.length_m = 4.5;
+  car.width_m = 1.8;
+  car.height_m = 1.5;
+  car.keys = {{1.0, Vec3(10, 20, 30), 0.5, 0.1, -0.05}, {1.5, Vec3(11, 20.5, 30.25), 0.6, 0.1, 0.0}};
+  car.hide_after_s = 2.0;
+  ReplayTrack empty;
+  empty.name = "never";
+  const Json j = json_in(view_replay_script({car, empty}), "window.RELIEF_REPLAY = ", ";\n");
+  EXPECT_EQ(j.at("end_s"), 2.0);
+  ASSERT_EQ(j.at("vehicles").size(), 1u);
+  const Json& v = j.at("vehicles")[0];
+  EXPECT_EQ(v.at("id"), "car.0");
+  EXPECT_EQ(v.at("size"), Json::array({4.5, 1.8, 1.5}));
+  EXPECT_EQ(v.at("hide_s"), 2.0);
+  const auto keys = array_of<float>(v, "keys");
+  const std::vector<float> expected = {1.0f, 10.0f, 20.0f, 30.0f,  0.5f, 0.1f, -0.05f,
+                                       1.5f, 11.0f, 20.5f, 30.25f, 0.6f, 0.1f, 0.0f};
+  EXPECT_EQ(keys, expected);
+}
+
 }  // namespace
 }  // namespace relief

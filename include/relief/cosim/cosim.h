@@ -31,6 +31,10 @@ inline constexpr const char* kCosimReplayFile = "cosim.glb";
 /// The co-simulation's figures for a person (and, with LiDARs, their occlusion plot), in the output
 /// directory.
 inline constexpr const char* kCosimHtmlFile = "cosim.html";
+/// The replay in the build's 3D view (when the build wrote view.html): a view.html that loads the
+/// build's view/ tiles and replay.js, the vehicles' keys.
+inline constexpr const char* kCosimViewFile = "view.html";
+inline constexpr const char* kCosimViewReplayFile = "replay.js";
 
 struct CosimInputs {
   std::filesystem::path sumocfg;

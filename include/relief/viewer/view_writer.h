@@ -17,6 +17,7 @@
 #include <utility>
 #include <vector>
 
+#include "relief/export/mesh_writer.h"
 #include "relief/export/report_writer.h"
 #include "relief/roads/elevation_sampling.h"
 #include "relief/roads/road_model.h"
@@ -96,7 +97,20 @@ struct ViewFinding {
 [[nodiscard]] std::string view_index_script(const ViewTiles& tiles, const ViewIndexInput& input,
                                             const ViewOptions& options = {});
 
-/// view.html: the page, with the viewer's bundle and style inlined; it loads view/index.js.
-[[nodiscard]] std::string view_page(const std::string& title);
+/// Where a page finds its data, and what it adds.
+struct ViewPageOptions {
+  std::string data_dir = "view";       ///< the folder of index.js and the tiles, relative to the page
+  std::string report = "report.html";  ///< the page the header links to
+  std::vector<std::string> scripts;    ///< more scripts loaded after index.js (e.g. "replay.js")
+};
+
+/// view.html: the page, with the viewer's bundle and style inlined; it loads DATA/index.js and
+/// the tiles from DATA. Throws InvalidInput for a path with a quote, '<', '>' or a backslash.
+[[nodiscard]] std::string view_page(const std::string& title, const ViewPageOptions& options = {});
+
+/// replay.js of a co-simulation: `window.RELIEF_REPLAY = {end_s, vehicles: [{id, size: [length,
+/// width, height], hide_s, keys}]}`, keys base64 float32 (t, x, y, z, heading, pitch, roll) per
+/// key, local frame, radians. Tracks without keys are left out.
+[[nodiscard]] std::string view_replay_script(const std::vector<ReplayTrack>& tracks);
 
 }  // namespace relief

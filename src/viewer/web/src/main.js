@@ -6,6 +6,7 @@ import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
 import { TileSet } from './tiles.js';
 import { colourLayer, colourTerrain, legendHtml } from './colors.js';
 import { profileSvg, escape } from './profile.js';
+import { Replay } from './replay.js';
 
 const KIND_COLOURS = {
   gate: '#aa0000',
@@ -252,7 +253,51 @@ function main() {
   new ResizeObserver(resize).observe(stage);
   controls.addEventListener('change', requestRender);
 
+  // The co-simulation's replay, when this page is a cosim's (replay.js loaded before the bundle).
+  let replay = null;
+  if (window.RELIEF_REPLAY) {
+    replay = new Replay(window.RELIEF_REPLAY, scene);
+    const panel = document.getElementById('replay');
+    const button = document.getElementById('play');
+    const slider = document.getElementById('time');
+    const clock = document.getElementById('clock');
+    panel.hidden = false;
+    slider.max = String(replay.end);
+    let playing = false, last = 0;
+    const show = () => {
+      slider.value = String(replay.time);
+      clock.textContent = `${replay.time.toFixed(1)} s, ${replay.shown} vehicles`;
+      requestRender();
+    };
+    const tick = (now) => {
+      if (!playing) return;
+      replay.setTime(replay.time + (now - last) / 1000);
+      last = now;
+      show();
+      if (replay.time >= replay.end) setPlaying(false);
+      else requestAnimationFrame(tick);
+    };
+    const setPlaying = (on) => {
+      playing = on;
+      button.textContent = on ? 'pause' : 'play';
+      if (on) {
+        if (replay.time >= replay.end) replay.setTime(0);
+        last = performance.now();
+        requestAnimationFrame(tick);
+      }
+    };
+    button.addEventListener('click', () => setPlaying(!playing));
+    slider.addEventListener('input', () => {
+      replay.setTime(Number(slider.value));
+      show();
+    });
+    replay.playing = () => playing;
+    replay.show = show;
+    show();
+  }
+
   const api = {
+    replay,
     ready: false,
     data,
     get tilesLoaded() {

@@ -7,6 +7,7 @@ import { decodeLayer } from './decode.js';
 export class TileSet {
   constructor(index, onTile, { budgetTriangles = 6e6, concurrent = 2 } = {}) {
     this.onTile = onTile;
+    this.base = window.RELIEF_VIEW_BASE || 'view';
     this.budget = budgetTriangles;
     this.concurrent = concurrent;
     this.loading = 0;
@@ -55,12 +56,12 @@ export class TileSet {
     tile.state = 'loading';
     this.loading++;
     const script = document.createElement('script');
-    script.src = `view/${tile.file}`;
+    script.src = `${this.base}/${tile.file}`;
     script.onerror = () => {
       tile.state = 'failed';
       this.loading--;
       this.failed.push(tile.file);
-      console.error(`relief view: cannot load view/${tile.file}`);
+      console.error(`relief view: cannot load ${this.base}/${tile.file}`);
       script.remove();
       this.onTile(null);
     };
