@@ -9,6 +9,7 @@
 #include <string>
 #include <string_view>
 
+#include "core/base64.h"
 #include "export/html_text.h"
 #include "export/report_html_sight.h"
 #include "export/svg_plot.h"
@@ -78,6 +79,8 @@ main{max-width:1240px;margin:0 auto;padding:20px 28px 60px}
 h1{font-size:26px;margin:8px 0 2px}h2{font-size:19px;margin:34px 0 10px;border-bottom:2px solid #d9dee7;padding-bottom:4px}
 h3{font-size:15px;margin:18px 0 6px}
 .sub{color:#5b6474}.attr{font-size:12px;color:#5b6474}
+figure.overview{margin:12px 0 4px}figure.overview img{max-width:100%;height:auto;border:1px solid #d9dee7;border-radius:6px}
+figure.overview figcaption{font-size:12px;color:#5b6474}
 table{border-collapse:collapse;background:#fff;margin:6px 0 12px;font-variant-numeric:tabular-nums}
 th,td{border:1px solid #dde2ea;padding:4px 9px;text-align:right;vertical-align:top}
 th{background:#eef1f5;font-weight:600}td.l,th.l{text-align:left}
@@ -131,6 +134,25 @@ std::string dem_description(const DemInfo& d) {
          std::to_string(d.spike_cells) + " one-cell spikes or pits";
   }
   return s;
+}
+
+/// The picture first (linked to the 3D view when there is one), then the link.
+void write_overview(std::string& h, const HtmlReportInput& in) {
+  if (!in.overview_png.empty()) {
+    h += "<figure class=\"overview\">";
+    if (!in.view_page.empty()) h += "<a href=\"" + esc(in.view_page) + "\">";
+    h += "<img alt=\"the scene from the south, roads coloured by grade\" src=\"data:image/png;base64,";
+    detail::append_base64(h, in.overview_png);
+    h += "\"/>";
+    if (!in.view_page.empty()) h += "</a>";
+    h += "<figcaption>The scene from the south, roads coloured by grade (0 % green, 10 % yellow, 20 % red, "
+         "30 % "
+         "and steeper purple).</figcaption></figure>\n";
+  }
+  if (!in.view_page.empty())
+    h += "<p class=\"view\"><a href=\"" + esc(in.view_page) +
+         "\">Open the interactive 3D view</a> (roads by grade or height over the DEM, profiles on click, the "
+         "findings marked).</p>\n";
 }
 
 void write_header(std::string& h, const RunReport& r) {
@@ -835,10 +857,7 @@ void write_report_html(std::ostream& out, const HtmlReportInput& in) {
   h += sight_css();
   h += "</style>\n</head>\n<body>\n<main>\n";
   write_header(h, r);
-  if (!in.view_page.empty())
-    h += "<p class=\"view\"><a href=\"" + esc(in.view_page) +
-         "\">Open the interactive 3D view</a> (roads by grade "
-         "or height over the DEM, profiles on click, the findings marked).</p>\n";
+  write_overview(h, in);
   write_gates(h, r);
   write_cards(h, r);
   write_comparison(h, r);

@@ -20,6 +20,7 @@
 #include "relief/export/report_html.h"
 #include "relief/roads/opendrive_reader.h"
 #include "relief/roads/road_model_checks.h"
+#include "relief/viewer/overview_image.h"
 
 namespace relief {
 namespace {
@@ -376,6 +377,7 @@ BuildResult build(const BuildOptions& options, Diagnostics& diagnostics, const P
   std::optional<SightStageInput> sight_in;
   std::optional<BackgroundStage<std::pair<SightResult, double>>> sight;
   std::optional<ViewStage> view;
+  std::string overview_png;  // report.html's picture
   if (scene_needed) {
     const MeshStageInput in{options, network, built->model, dem, report.name, diagnostics};
     scene.emplace(build_scene_stage(in, timer));
@@ -383,6 +385,8 @@ BuildResult build(const BuildOptions& options, Diagnostics& diagnostics, const P
       report.mesh = write_mesh_outputs(in, *scene, files, timer, result.written, report.outputs);
     if (options.outputs.contains(Output::view))
       view = write_view_tiles(in, *scene, files, timer, result.written);
+    if (options.outputs.contains(Output::html))
+      overview_png = timer.run("render the overview", [&] { return render_overview_png(scene->meshes); });
     // The sight distances only read the scene: after its files (their buffers freed: Portland's
     // peak stayed 200 MB lower than beside them), beside the end of the SUMO chain.
     if (options.outputs.contains(Output::sight)) {
@@ -435,6 +439,7 @@ BuildResult build(const BuildOptions& options, Diagnostics& diagnostics, const P
       in.fitted = fit ? &fit->profiles : nullptr;
       in.sight = sight_result ? &*sight_result : nullptr;
       in.view_page = view ? "view.html" : "";
+      in.overview_png = std::move(overview_png);
       files.add(options.out_dir / "report.html", [&](std::ostream& out) { write_report_html(out, in); });
       return 0;
     });

@@ -1,8 +1,8 @@
 // replay.js: a co-simulation's vehicles for the view (relief cosim writes it beside view.html).
 #include <nlohmann/json.hpp>
 
+#include "core/base64.h"
 #include "relief/viewer/view_writer.h"
-#include "viewer/base64.h"
 
 namespace relief {
 

@@ -11,9 +11,9 @@
 
 #include <Eigen/Geometry>
 
+#include "core/base64.h"
 #include "relief/core/errors.h"
 #include "relief/viewer/view_writer.h"
-#include "viewer/base64.h"
 
 namespace relief {
 namespace {

@@ -11,10 +11,10 @@
 #include <set>
 #include <string>
 
+#include "core/base64.h"
 #include "relief/core/errors.h"
 #include "scene/bridge_world.h"
 #include "support/synthetic.h"
-#include "viewer/base64.h"
 
 namespace relief {
 namespace {

@@ -28,6 +28,7 @@ struct HtmlReportInput {
   int max_structure_plots = 12;        ///< bridges and tunnels plotted, longest first
   const SightResult* sight = nullptr;  ///< optional: the sight-distance map's stretches
   std::string view_page;               ///< the interactive view beside the report ("view.html"), if any
+  std::string overview_png;            ///< the scene's picture (viewer/overview_image.h), shown first
 };
 
 /// Writes a self-contained HTML5 page that is also well-formed XML (every text from the data

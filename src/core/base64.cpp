@@ -1,4 +1,4 @@
-#include "viewer/base64.h"
+#include "core/base64.h"
 
 #include <cstdint>
 
