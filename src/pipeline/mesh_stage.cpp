@@ -1,5 +1,9 @@
 #include "pipeline/mesh_stage.h"
 
+#include <sstream>
+
+#include "relief/core/diagnostic_codes.h"
+#include "relief/export/carla_package.h"
 #include "relief/export/mesh_report.h"
 #include "relief/export/mesh_writer.h"
 #include "relief/geometry/mesh_tiles.h"
@@ -15,7 +19,7 @@ Scene build_scene_stage(const MeshStageInput& in, StageTimer& timer) {
 
 MeshSummary write_mesh_outputs(const MeshStageInput& in, const Scene& built, OutputSet& files,
                                StageTimer& timer, std::vector<std::filesystem::path>& written,
-                               std::vector<std::string>& names) {
+                               std::vector<std::string>& names, std::vector<EncodedFile>* carla_fbx) {
   const BuildOptions& options = in.options;
   const MeshScene& scene = built.meshes;
   // The checks only read the scene, so they run beside the file writers.
@@ -37,12 +41,23 @@ MeshSummary write_mesh_outputs(const MeshStageInput& in, const Scene& built, Out
     summary.terrain_max_fill_m = built.terrain->max_fill_m;
   }
 
-  // Files: every format asked for (then the tiles, then the report).
+  // Files: every format asked for (then the tiles, then the report). The FBX the CARLA package
+  // takes is kept as written (the tiles when there are tiles).
+  const bool tiles = options.mesh_tile_size_m > 0.0;
   const auto write_scene = [&](const MeshScene& s, MeshFormat format, const std::string& base,
-                               std::vector<std::string>& listed) {
+                               std::vector<std::string>& listed, bool is_tile) {
+    const bool keep = carla_fbx != nullptr && format == MeshFormat::fbx && is_tile == tiles;
     write_mesh_scene(s, format, base,
                      [&](const std::string& filename, const std::function<void(std::ostream&)>& write) {
-                       files.add(options.out_dir / filename, write);
+                       if (keep) {
+                         std::ostringstream bytes;
+                         write(bytes);
+                         carla_fbx->push_back(EncodedFile{filename, std::move(bytes).str()});
+                         const std::string& kept = carla_fbx->back().bytes;
+                         files.add(options.out_dir / filename, [&](std::ostream& out) { out << kept; });
+                       } else {
+                         files.add(options.out_dir / filename, write);
+                       }
                        written.push_back(options.out_dir / filename);
                        names.push_back(filename);
                        listed.push_back(filename);
@@ -50,7 +65,7 @@ MeshSummary write_mesh_outputs(const MeshStageInput& in, const Scene& built, Out
   };
   for (const MeshFormat format : options.mesh_formats) {
     timer.run("write " + std::string(to_string(format)), [&] {
-      write_scene(scene, format, in.name, summary.files);
+      write_scene(scene, format, in.name, summary.files, false);
       return 0;
     });
   }
@@ -60,7 +75,7 @@ MeshSummary write_mesh_outputs(const MeshStageInput& in, const Scene& built, Out
       for (const SceneTile& tile : split_into_tiles(scene, options.mesh_tile_size_m)) {
         const std::string base = in.name + "_Tile_" + std::to_string(tile.x) + "_" + std::to_string(tile.y);
         for (const MeshFormat format : options.mesh_formats)
-          write_scene(tile.scene, format, base, summary.tile_files);
+          write_scene(tile.scene, format, base, summary.tile_files, true);
       }
       return 0;
     });
@@ -89,6 +104,39 @@ MeshSummary write_mesh_outputs(const MeshStageInput& in, const Scene& built, Out
   written.push_back(options.out_dir / "mesh_report.json");
   names.emplace_back("mesh_report.json");
   return summary;
+}
+
+void write_carla_package_output(const MeshStageInput& in, std::string xodr, std::vector<EncodedFile> fbx,
+                                std::int64_t mtime_s, OutputSet& files, StageTimer& timer,
+                                MeshSummary& summary, std::vector<std::filesystem::path>& written,
+                                std::vector<std::string>& names) {
+  CarlaPackageInput package;
+  package.map_name = in.name;
+  package.xodr = std::move(xodr);
+  package.fbx_files = std::move(fbx);
+  package.tile_size_m = static_cast<int>(in.options.mesh_tile_size_m);  // whole metres (build() checks)
+  package.mtime_s = mtime_s;
+  const std::string filename = in.name + ".carla.tar.gz";
+  timer.run("write CARLA package", [&] {
+    const std::string bytes = encode_carla_package(package);
+    files.add(in.options.out_dir / filename, [&](std::ostream& out) { out << bytes; });
+    return 0;
+  });
+  summary.carla_package = filename;
+  summary.carla_package_entries = carla_package_entries(package);
+  summary.carla_tile_grid_gaps = carla_tile_grid_gaps(package);
+  if (!summary.carla_tile_grid_gaps.empty()) {
+    std::string listed;
+    for (std::size_t i = 0; i < summary.carla_tile_grid_gaps.size() && i < 10; ++i)
+      listed += (i == 0 ? "" : ", ") + summary.carla_tile_grid_gaps[i];
+    in.diagnostics.report(Severity::warning, codes::kCarlaTileGridGap,
+                          std::to_string(summary.carla_tile_grid_gaps.size()) + " tile(s) of the " +
+                              std::to_string(package.tile_size_m) + " m grid hold no triangles (X Y: " +
+                              listed + (summary.carla_tile_grid_gaps.size() > 10 ? ", ..." : "") +
+                              "); CARLA's cook stops a row at its first missing tile");
+  }
+  written.push_back(in.options.out_dir / filename);
+  names.push_back(filename);
 }
 
 }  // namespace relief
