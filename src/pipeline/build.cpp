@@ -408,7 +408,7 @@ BuildResult build(const BuildOptions& options, Diagnostics& diagnostics, const P
     const MeshStageInput in{options, network, built->model, dem, report.name, diagnostics};
     scene.emplace(build_scene_stage(in, timer));
     if (options.outputs.contains(Output::mesh)) {
-      std::vector<EncodedFile> carla_fbx;
+      CarlaFbx carla_fbx;
       report.mesh = write_mesh_outputs(in, *scene, files, timer, result.written, report.outputs,
                                        options.carla_package ? &carla_fbx : nullptr);
       if (options.carla_package) {

@@ -131,7 +131,7 @@ inline constexpr DiagnosticCode kCosimEgoMissing{"cosim.ego_missing",
 // The CARLA import package (export/carla_package.h).
 inline constexpr DiagnosticCode kCarlaTileGridGap{
     "carla.tile_grid_gap",
-    "a tile of a CARLA large map's grid holds no triangles; CARLA's cook skips the tiles after it"};
+    "a tile of a CARLA large map's grid holds no triangles; the package gives it a placeholder triangle"};
 
 // Quality gates (export/quality_gates.h).
 inline constexpr DiagnosticCode kGateFailed{"gate.failed", "a quality gate failed (the build exits with 4)"};
