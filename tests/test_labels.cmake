@@ -28,7 +28,8 @@ set(relief_realdata_tests
   "^OsmReader\\.(TruncatedRealGzipThrowsInvalidInput|PotreroAsPbfReadsLikeGzip)$"
   "^Build\\.(FailedRunLeavesNoOutputs|PotreroIdwDiffersFromBilinear)$"
   "^Info\\.DescribesPotreroWithoutWriting$"
-  "^MeshPipeline\\.PotreroTilesAddUpToTheScene$")
+  "^MeshPipeline\\.(PotreroTilesAddUpToTheScene|PotreroCarlaPackageHoldsTheFilesWritten)$"
+  "^MeshPipeline\\.PotreroCarlaLargeMapFillsTheTileGrid$")
 
 foreach(module IN LISTS relief_test_modules)
   foreach(test IN LISTS relief_${module}_tests_TESTS)

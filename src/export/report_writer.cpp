@@ -333,6 +333,11 @@ std::string report_json(const RunReport& r) {
                  {"terrain_max_vertical_error_m", round_to(m.terrain_max_vertical_error_m, 1e-4)},
                  {"terrain_max_cut_m", round_to(m.terrain_max_cut_m, 1e-3)},
                  {"terrain_max_fill_m", round_to(m.terrain_max_fill_m, 1e-3)}};
+    j["mesh"]["carla_package"] = m.carla_package.empty()
+                                     ? Json()
+                                     : Json{{"file", m.carla_package},
+                                            {"entries", m.carla_package_entries},
+                                            {"placeholder_tiles", m.carla_placeholder_tiles}};
   } else {
     j["mesh"] = nullptr;
   }

@@ -1,6 +1,7 @@
 #include "relief/pipeline/build.h"
 
 #include <chrono>
+#include <cmath>
 #include <cstdlib>
 #include <ctime>
 #include <iomanip>
@@ -14,6 +15,8 @@
 #include "relief/core/atomic_file.h"
 #include "relief/core/diagnostic_codes.h"
 #include "relief/core/errors.h"
+#include "relief/core/number_format.h"
+#include "relief/export/carla_package.h"
 #include "relief/export/geojson_writer.h"
 #include "relief/export/opendrive_writer.h"
 #include "relief/export/quality_gates.h"
@@ -27,7 +30,7 @@ namespace {
 
 // The build's time stamp: now, or SOURCE_DATE_EPOCH when set (reproducible-builds.org), so
 // that two builds of the same inputs can be byte-identical.
-std::string utc_now() {
+std::time_t build_time() {
   std::time_t now = std::time(nullptr);
   if (const char* epoch = std::getenv("SOURCE_DATE_EPOCH"); epoch != nullptr && *epoch != '\0') {
     char* end = nullptr;
@@ -37,11 +40,38 @@ std::string utc_now() {
     }
     now = static_cast<std::time_t>(seconds);
   }
+  return now;
+}
+
+std::string utc_text(std::time_t now) {
   std::tm tm{};
   gmtime_r(&now, &tm);
   std::ostringstream out;
   out << std::put_time(&tm, "%Y-%m-%dT%H:%M:%SZ");
   return out.str();
+}
+
+// The CARLA package takes the .xodr and the FBX, a name Unreal accepts and CARLA's tile sizes:
+// refused as bad usage before any work.
+void check_carla_package_options(const BuildOptions& options, const std::string& name) {
+  if (!options.carla_package) return;
+  if (!options.outputs.contains(Output::xodr) || !options.outputs.contains(Output::mesh) ||
+      !options.mesh_formats.contains(MeshFormat::fbx)) {
+    throw OptionError("--carla-package needs the xodr and mesh outputs and the fbx mesh format (--outputs " +
+                      std::string("...,xodr,mesh --mesh-formats ...,fbx)"));
+  }
+  if (!is_valid_carla_map_name(name)) {
+    throw OptionError("--carla-package: the name '" + name +
+                      "' is not a CARLA map name (letters, digits, '_' and '-', at most 64): set --name");
+  }
+  const double tile = options.mesh_tile_size_m;
+  if (tile > 0.0 && (tile != std::floor(tile) || tile > kCarlaMaxTileSizeM)) {
+    std::string size;
+    append_shortest(size, tile);
+    throw OptionError("--carla-package: --mesh-tile-size " + size +
+                      " is not a whole number of metres up to " + std::to_string(kCarlaMaxTileSizeM) +
+                      " (CARLA's largest tile)");
+  }
 }
 
 // The figures of one method's profiles.
@@ -151,7 +181,9 @@ BuildResult build(const BuildOptions& options, Diagnostics& diagnostics, const P
   BuildResult result;
   RunReport& report = result.report;
   report.name = options.name.empty() ? default_name(options.osm_path) : options.name;
-  report.created_utc = utc_now();
+  check_carla_package_options(options, report.name);
+  const std::time_t started = build_time();
+  report.created_utc = utc_text(started);
   report.osm_path = options.osm_path.string();
   report.interpolation = options.dem.interpolation;
   report.spacing_m = options.sampling.spacing_m;
@@ -324,6 +356,7 @@ BuildResult build(const BuildOptions& options, Diagnostics& diagnostics, const P
     result.written.push_back(path_of(".geojson"));
   }
   std::optional<BackgroundStage<OpenDriveSummary>> xodr_check;
+  std::string carla_xodr;  // the .xodr text again, for the CARLA package
   if (options.outputs.contains(Output::xodr)) {
     const RoadModel& model = built->model;
     std::string xodr = timer.run("write OpenDRIVE", [&] {
@@ -336,6 +369,7 @@ BuildResult build(const BuildOptions& options, Diagnostics& diagnostics, const P
       files.add(path_of(".xodr"), [&](std::ostream& out) { out << written; });
       return written;
     });
+    if (options.carla_package) carla_xodr = xodr;
     // The file read back is the model written; lane borders meet at every link. Only reads the
     // model and the text, so it runs beside the outputs that follow.
     xodr_check.emplace("check OpenDRIVE (beside the outputs)", [&, xodr = std::move(xodr)] {
@@ -381,8 +415,15 @@ BuildResult build(const BuildOptions& options, Diagnostics& diagnostics, const P
   if (scene_needed) {
     const MeshStageInput in{options, network, built->model, dem, report.name, diagnostics};
     scene.emplace(build_scene_stage(in, timer));
-    if (options.outputs.contains(Output::mesh))
-      report.mesh = write_mesh_outputs(in, *scene, files, timer, result.written, report.outputs);
+    if (options.outputs.contains(Output::mesh)) {
+      CarlaFbx carla_fbx;
+      report.mesh = write_mesh_outputs(in, *scene, files, timer, result.written, report.outputs,
+                                       options.carla_package ? &carla_fbx : nullptr);
+      if (options.carla_package) {
+        write_carla_package_output(in, std::move(carla_xodr), std::move(carla_fbx), started, files, timer,
+                                   *report.mesh, result.written, report.outputs);
+      }
+    }
     if (options.outputs.contains(Output::view))
       view = write_view_tiles(in, *scene, files, timer, result.written);
     if (options.outputs.contains(Output::html))

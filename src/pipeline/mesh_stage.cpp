@@ -1,11 +1,67 @@
 #include "pipeline/mesh_stage.h"
 
+#include <algorithm>
+#include <limits>
+#include <set>
+#include <sstream>
+#include <utility>
+
+#include "relief/core/diagnostic_codes.h"
+#include "relief/export/carla_package.h"
 #include "relief/export/mesh_report.h"
 #include "relief/export/mesh_writer.h"
 #include "relief/geometry/mesh_tiles.h"
 #include "relief/scene/scene.h"
 
 namespace relief {
+namespace {
+
+// CarlaFbx's placeholders for the tiles of the grid's rectangle (0, 0)..(max X, max Y) that
+// `tiles` lacks. Tile (X, Y) spans origin + size * [X, X + 1] x [Y, Y + 1], the origin being
+// the south-west corner of tile (0, 0) (mesh_tiles.h).
+void add_placeholder_tiles(const MeshScene& scene, const std::vector<SceneTile>& tiles, double size_m,
+                           const std::string& name, CarlaFbx& carla) {
+  if (tiles.empty()) return;
+  std::set<std::pair<int, int>> present;
+  int max_x = 0, max_y = 0;
+  for (const SceneTile& t : tiles) {
+    present.emplace(t.x, t.y);
+    max_x = std::max(max_x, t.x);
+    max_y = std::max(max_y, t.y);
+  }
+  const Vec2 origin = tiles.front().bounds.min - size_m * Vec2(tiles.front().x, tiles.front().y);
+  double z = std::numeric_limits<double>::infinity();
+  for (const TriangleMesh& m : scene.meshes)
+    for (const Vec3& v : m.vertices) z = std::min(z, v.z());
+  z -= 50.0;
+  constexpr double kHalfM = 0.05;
+  for (int y = 0; y <= max_y; ++y) {
+    for (int x = 0; x <= max_x; ++x) {
+      if (present.contains({x, y})) continue;
+      const Vec2 c = origin + size_m * Vec2(x + 0.5, y + 0.5);
+      MeshScene tile;
+      tile.frame = scene.frame;
+      tile.metadata = scene.metadata;
+      tile.metadata["relief:tile"] = std::to_string(x) + " " + std::to_string(y);
+      tile.metadata["relief:placeholder"] = "a tile without triangles, for CARLA's cook";
+      TriangleMesh m;
+      m.name = "Placeholder";
+      m.kind = SurfaceKind::terrain;
+      m.vertices = {{c.x() - kHalfM, c.y() - kHalfM, z},
+                    {c.x() + kHalfM, c.y() - kHalfM, z},
+                    {c.x(), c.y() + kHalfM, z}};
+      m.triangles = {{0, 1, 2}};
+      m.normals.assign(3, Vec3::UnitZ());
+      tile.meshes.push_back(std::move(m));
+      const std::string base = name + "_Tile_" + std::to_string(x) + "_" + std::to_string(y);
+      for (EncodedFile& f : encode_mesh_scene(tile, MeshFormat::fbx, base))
+        carla.files.push_back(std::move(f));
+      carla.placeholders.push_back(std::to_string(x) + " " + std::to_string(y));
+    }
+  }
+}
+
+}  // namespace
 
 Scene build_scene_stage(const MeshStageInput& in, StageTimer& timer) {
   SceneOptions scene_options = in.options.scene;
@@ -15,7 +71,7 @@ Scene build_scene_stage(const MeshStageInput& in, StageTimer& timer) {
 
 MeshSummary write_mesh_outputs(const MeshStageInput& in, const Scene& built, OutputSet& files,
                                StageTimer& timer, std::vector<std::filesystem::path>& written,
-                               std::vector<std::string>& names) {
+                               std::vector<std::string>& names, CarlaFbx* carla_fbx) {
   const BuildOptions& options = in.options;
   const MeshScene& scene = built.meshes;
   // The checks only read the scene, so they run beside the file writers.
@@ -37,12 +93,23 @@ MeshSummary write_mesh_outputs(const MeshStageInput& in, const Scene& built, Out
     summary.terrain_max_fill_m = built.terrain->max_fill_m;
   }
 
-  // Files: every format asked for (then the tiles, then the report).
+  // Files: every format asked for (then the tiles, then the report). The FBX the CARLA package
+  // takes is kept as written (the tiles when there are tiles).
+  const bool tiles = options.mesh_tile_size_m > 0.0;
   const auto write_scene = [&](const MeshScene& s, MeshFormat format, const std::string& base,
-                               std::vector<std::string>& listed) {
+                               std::vector<std::string>& listed, bool is_tile) {
+    const bool keep = carla_fbx != nullptr && format == MeshFormat::fbx && is_tile == tiles;
     write_mesh_scene(s, format, base,
                      [&](const std::string& filename, const std::function<void(std::ostream&)>& write) {
-                       files.add(options.out_dir / filename, write);
+                       if (keep) {
+                         std::ostringstream bytes;
+                         write(bytes);
+                         carla_fbx->files.push_back(EncodedFile{filename, std::move(bytes).str()});
+                         const std::string& kept = carla_fbx->files.back().bytes;
+                         files.add(options.out_dir / filename, [&](std::ostream& out) { out << kept; });
+                       } else {
+                         files.add(options.out_dir / filename, write);
+                       }
                        written.push_back(options.out_dir / filename);
                        names.push_back(filename);
                        listed.push_back(filename);
@@ -50,18 +117,21 @@ MeshSummary write_mesh_outputs(const MeshStageInput& in, const Scene& built, Out
   };
   for (const MeshFormat format : options.mesh_formats) {
     timer.run("write " + std::string(to_string(format)), [&] {
-      write_scene(scene, format, in.name, summary.files);
+      write_scene(scene, format, in.name, summary.files, false);
       return 0;
     });
   }
   if (options.mesh_tile_size_m > 0.0) {
     summary.tile_size_m = options.mesh_tile_size_m;
     timer.run("write tiles", [&] {
-      for (const SceneTile& tile : split_into_tiles(scene, options.mesh_tile_size_m)) {
+      const std::vector<SceneTile> tiles = split_into_tiles(scene, options.mesh_tile_size_m);
+      for (const SceneTile& tile : tiles) {
         const std::string base = in.name + "_Tile_" + std::to_string(tile.x) + "_" + std::to_string(tile.y);
         for (const MeshFormat format : options.mesh_formats)
-          write_scene(tile.scene, format, base, summary.tile_files);
+          write_scene(tile.scene, format, base, summary.tile_files, true);
       }
+      if (carla_fbx != nullptr)
+        add_placeholder_tiles(scene, tiles, options.mesh_tile_size_m, in.name, *carla_fbx);
       return 0;
     });
   }
@@ -91,6 +161,40 @@ MeshSummary write_mesh_outputs(const MeshStageInput& in, const Scene& built, Out
   written.push_back(options.out_dir / "mesh_report.json");
   names.emplace_back("mesh_report.json");
   return summary;
+}
+
+void write_carla_package_output(const MeshStageInput& in, std::string xodr, CarlaFbx fbx,
+                                std::int64_t mtime_s, OutputSet& files, StageTimer& timer,
+                                MeshSummary& summary, std::vector<std::filesystem::path>& written,
+                                std::vector<std::string>& names) {
+  CarlaPackageInput package;
+  package.map_name = in.name;
+  package.xodr = std::move(xodr);
+  package.fbx_files = std::move(fbx.files);
+  package.tile_size_m = static_cast<int>(in.options.mesh_tile_size_m);  // whole metres (build() checks)
+  package.mtime_s = mtime_s;
+  const std::string filename = in.name + ".carla.tar.gz";
+  timer.run("write CARLA package", [&] {
+    const std::string bytes = encode_carla_package(package);
+    files.add(in.options.out_dir / filename, [&](std::ostream& out) { out << bytes; });
+    return 0;
+  });
+  summary.carla_package = filename;
+  summary.carla_package_entries = carla_package_entries(package);
+  summary.carla_placeholder_tiles = std::move(fbx.placeholders);
+  const std::vector<std::string>& gaps = summary.carla_placeholder_tiles;
+  if (!gaps.empty()) {
+    std::string listed;
+    for (std::size_t i = 0; i < gaps.size() && i < 10; ++i) listed += (i == 0 ? "" : ", ") + gaps[i];
+    in.diagnostics.report(
+        Severity::warning, codes::kCarlaTileGridGap,
+        std::to_string(gaps.size()) + " tile(s) of the " + std::to_string(package.tile_size_m) +
+            " m grid hold no triangles (X Y: " + listed + (gaps.size() > 10 ? ", ..." : "") +
+            "): the CARLA package gives each a placeholder triangle 50 m under the scene, "
+            "since CARLA's cook stops a row at its first missing tile");
+  }
+  written.push_back(in.options.out_dir / filename);
+  names.push_back(filename);
 }
 
 }  // namespace relief

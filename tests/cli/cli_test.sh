@@ -288,6 +288,68 @@ check "mesh tile re-reads" run 0 "" mesh-report "${tile:-$out/none.glb}"
 check "bad --mesh-tile-size" run 2 "" build --osm "$fix/hill.osm" --dem "$fix/hill_dem.asc" --out "$RELIEF_TMP/x" \
   --mesh-tile-size 0
 
+# --carla-package: NAME.carla.tar.gz, the folder CARLA's `make import` ingests. GNU tar lists
+# and extracts it; python3 (tarfile, json) checks the JSON's keys and types as CARLA's
+# documentation and Import.py have them, every file it names, and the tiled form's whole grid.
+carla_check() {  # carla_check PACKAGE OUTDIR NAME TILE_SIZE(0: standard map)
+  python3 - "$@" <<'PY'
+import json, os, re, sys, tarfile
+package, out, name, tile_size = sys.argv[1], sys.argv[2], sys.argv[3], int(sys.argv[4])
+with tarfile.open(package, "r:gz") as t:
+    members = {m.name: m for m in t.getmembers()}
+    doc = json.load(t.extractfile(members[f"{name}/{name}.json"]))
+    data = {n: t.extractfile(m).read() for n, m in members.items() if m.isfile()}
+assert set(doc) == {"maps", "props"} and doc["props"] == [], doc
+assert len(doc["maps"]) == 1, doc
+m = doc["maps"][0]
+assert m["name"] == name and m["use_carla_materials"] is True, m
+root = name + "/"
+def member(path):
+    assert path.startswith("./"), path
+    assert root + path[2:] in data, (path, sorted(data))
+    return data[root + path[2:]]
+assert os.path.basename(m["xodr"]) == name + ".xodr", m
+assert member(m["xodr"]) == open(os.path.join(out, name + ".xodr"), "rb").read()
+if tile_size == 0:
+    assert set(m) == {"name", "source", "use_carla_materials", "xodr"}, m
+    assert os.path.basename(m["source"]) == name + ".fbx", m
+    assert member(m["source"]) == open(os.path.join(out, name + ".fbx"), "rb").read()
+    print("carla package: %d entries, %s" % (len(members), m["source"]))
+else:
+    assert set(m) == {"name", "xodr", "use_carla_materials", "tile_size", "tiles"}, m
+    assert m["tile_size"] == tile_size and isinstance(m["tile_size"], int), m
+    tiles = set()
+    for path in m["tiles"]:
+        x, y = map(int, re.fullmatch(r"\./" + re.escape(name) + r"_Tile_(\d+)_(\d+)\.fbx", path).groups())
+        tiles.add((x, y))
+        written = os.path.join(out, os.path.basename(path))
+        if os.path.exists(written):
+            assert member(path) == open(written, "rb").read(), path
+        else:
+            assert b"Placeholder" in member(path), path
+    nx, ny = max(x for x, _ in tiles) + 1, max(y for _, y in tiles) + 1
+    assert tiles == {(x, y) for x in range(nx) for y in range(ny)}, sorted(tiles)
+    print("carla large map: %d x %d tiles of %d m" % (nx, ny, tile_size))
+PY
+}
+out="$RELIEF_TMP/carla"
+check "carla package" run 0 "$out" build --osm "$fix/hill.osm" --dem "$fix/hill_dem.asc" --out "$out" --quiet \
+  --outputs xodr,mesh,report --mesh-formats fbx --carla-package
+check "carla package lists with tar" bash -c "tar -tzf '$out/hill.carla.tar.gz' >/dev/null"
+check "carla package extracts with tar" tar -xzf "$out/hill.carla.tar.gz" -C "$out"
+check "carla package extracted" cmp "$out/hill/hill/hill.fbx" "$out/hill.fbx"
+check "carla package checks" carla_check "$out/hill.carla.tar.gz" "$out" hill 0
+out="$RELIEF_TMP/carla_tiles"
+check "carla large map" run 0 "$out" build --osm "$fix/hill.osm" --dem "$fix/hill_dem.asc" --out "$out" --quiet \
+  --outputs xodr,mesh --mesh-formats fbx,glb --mesh-tile-size 50 --carla-package
+check "carla large map checks" carla_check "$out/hill.carla.tar.gz" "$out" hill 50
+check "carla package without fbx" run 2 "$RELIEF_TMP/carla_bad" build --osm "$fix/hill.osm" --dem "$fix/hill_dem.asc" \
+  --out "$RELIEF_TMP/carla_bad" --mesh-formats glb --carla-package
+check "carla package without fbx says why" stderr_has "needs the xodr and mesh outputs and the fbx mesh format"
+check "carla package without fbx no outputs" no_outputs "$RELIEF_TMP/carla_bad"
+check "carla tile over 2000 m" run 2 "" build --osm "$fix/hill.osm" --dem "$fix/hill_dem.asc" \
+  --out "$RELIEF_TMP/carla_bad" --mesh-tile-size 2500 --carla-package
+
 check "bad --vclass-max-grade" run 2 "" build --osm "$fix/hill.osm" --dem "$fix/hill_dem.asc" --out "$RELIEF_TMP/x" \
   --vclass-max-grade truck=abc
 
@@ -518,7 +580,8 @@ fi
 if [ -d "$potrero" ]; then
   for i in 1 2; do
     check "reproducible build $i" env SOURCE_DATE_EPOCH=1700000000 "$RELIEF" build --osm "$potrero/sf-potrero.osm.gz" \
-      --dem "$potrero/USGS_13_n38w123-subsection-small-potrero.tif" --out "$RELIEF_TMP/repro$i" --quiet
+      --dem "$potrero/USGS_13_n38w123-subsection-small-potrero.tif" --out "$RELIEF_TMP/repro$i" --quiet \
+      --carla-package
   done
   check "reproducible outputs" python3 - "$RELIEF_TMP/repro1" "$RELIEF_TMP/repro2" <<'PY'
 import filecmp, json, os, sys
@@ -526,6 +589,7 @@ a, b = sys.argv[1], sys.argv[2]
 names = sorted(os.listdir(a))
 assert names == sorted(os.listdir(b)), (names, os.listdir(b))
 assert any(n.endswith(".xodr") for n in names) and any(n.endswith(".glb") for n in names), names
+assert any(n.endswith(".carla.tar.gz") for n in names), names
 def untimed(x):
     if isinstance(x, dict):
         return {k: untimed(v) for k, v in x.items() if k not in ("seconds", "timings_s")}

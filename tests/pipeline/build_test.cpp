@@ -278,6 +278,47 @@ TEST(Build, FailedRunLeavesNoOutputs) {
   EXPECT_TRUE(std::filesystem::is_empty(o.out_dir));
 }
 
+// --carla-package takes NAME.xodr and NAME.fbx, a name Unreal accepts and CARLA's tile sizes:
+// anything else is refused before the inputs are read (a DEM that does not exist is never opened).
+TEST(Build, CarlaPackageWithoutWhatItTakesIsBadUsage) {
+  const std::filesystem::path dir = test::scratch_dir("build_carla_usage");
+  BuildOptions good;
+  good.osm_path = test::fixture("hill/hill.osm");
+  good.dem_paths = {(dir / "missing.tif").string()};
+  good.out_dir = dir / "out";
+  good.carla_package = true;
+  const auto refused = [&](BuildOptions o, const std::string& says) {
+    Diagnostics d;
+    try {
+      (void)build(o, d);
+      ADD_FAILURE() << "expected OptionError: " << says;
+    } catch (const OptionError& e) {
+      EXPECT_NE(std::string(e.what()).find(says), std::string::npos) << e.what();
+    }
+    EXPECT_FALSE(std::filesystem::exists(o.out_dir));
+  };
+  BuildOptions o = good;
+  o.mesh_formats = {MeshFormat::glb};
+  refused(o, "needs the xodr and mesh outputs and the fbx mesh format");
+  o = good;
+  o.outputs = {Output::mesh, Output::report};
+  refused(o, "needs the xodr and mesh outputs");
+  o = good;
+  o.name = "sf.potrero";
+  refused(o, "the name 'sf.potrero' is not a CARLA map name");
+  o = good;
+  o.mesh_tile_size_m = 2500.0;
+  refused(o, "--mesh-tile-size 2500 is not a whole number of metres up to 2000");
+  o = good;
+  o.mesh_tile_size_m = 12.5;
+  refused(o, "--mesh-tile-size 12.5 is not a whole number");
+  // The same options pass the check: the run goes on to the DEM, which does not exist.
+  o = good;
+  o.mesh_tile_size_m = 2000.0;
+  Diagnostics d;
+  EXPECT_THROW((void)build(o, d), IoError);
+}
+
 TEST(Build, SpacingThatWouldExhaustMemoryIsRefusedBeforeTheDemIsRead) {
   BuildOptions o;
   o.osm_path = test::fixture("hill/hill.osm");

@@ -4,12 +4,15 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <map>
 #include <optional>
 #include <regex>
+#include <set>
 #include <sstream>
 #include <stdexcept>
 #include <vector>
@@ -21,12 +24,18 @@
 #include "support/blender.h"
 #include "support/osm_sketch.h"
 #include "support/synthetic.h"
+#include "support/tar_reader.h"
 #include "support/test_data.h"
 
 namespace relief {
 namespace {
 
 // --- helpers ---------------------------------------------------------------------------------
+
+std::string read_bytes(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
 
 BuildOptions scene_options(BuildOptions o) {
   o.outputs = {Output::xodr, Output::mesh, Output::report};
@@ -344,6 +353,89 @@ TEST(MeshPipeline, PotreroTilesAddUpToTheScene) {
   }
   for (const TriangleMesh& mesh : whole.meshes)
     EXPECT_EQ(triangles[mesh.name], mesh.triangles.size()) << mesh.name;
+}
+
+// --carla-package on Potrero: NAME.carla.tar.gz holds the package folder, its JSON naming the
+// map and its files, and NAME.fbx and NAME.xodr byte for byte as the build wrote them beside it.
+TEST(MeshPipeline, PotreroCarlaPackageHoldsTheFilesWritten) {
+  RELIEF_REQUIRE_SHARED_DATA();
+  BuildOptions o = scene_options(test::potrero_options("mesh_potrero_carla"));
+  o.mesh_formats = {MeshFormat::fbx};
+  o.carla_package = true;
+  const SceneBuild b = build_scene(o);
+  const MeshSummary& m = summary(b);
+  const std::string name = b.result.report.name;
+  ASSERT_EQ(m.carla_package, name + ".carla.tar.gz");
+  EXPECT_TRUE(m.carla_placeholder_tiles.empty());
+  const auto entries = test::read_tar_gz(read_bytes(o.out_dir / m.carla_package));
+  std::vector<std::string> paths;
+  for (const auto& [path, e] : entries) paths.push_back(path);
+  std::vector<std::string> expected = m.carla_package_entries;
+  std::sort(expected.begin(), expected.end());
+  EXPECT_EQ(paths, expected);
+  const std::string root = name + "/";
+  const nlohmann::json j = nlohmann::json::parse(entries.at(root + name + ".json").bytes);
+  EXPECT_EQ(j["maps"][0]["name"], name);
+  EXPECT_EQ(j["maps"][0]["source"], "./" + name + "/" + name + ".fbx");
+  EXPECT_EQ(entries.at(root + name + "/" + name + ".fbx").bytes, read_bytes(o.out_dir / (name + ".fbx")));
+  EXPECT_EQ(entries.at(root + name + "/" + name + ".xodr").bytes, read_bytes(o.out_dir / (name + ".xodr")));
+  std::ifstream report(o.out_dir / "report.json");
+  const nlohmann::json r = nlohmann::json::parse(report);
+  EXPECT_EQ(r["mesh"]["carla_package"]["file"], name + ".carla.tar.gz");
+  EXPECT_EQ(r["mesh"]["carla_package"]["entries"].size(), 5u);
+}
+
+// With 250 m tiles: CARLA's large map of every FBX tile written, plus a placeholder for each
+// tile of the grid's rectangle without triangles (Potrero's DEM footprint leaves the south-west
+// and south-east corner tiles empty), so that CARLA's cook, which stops a row at its first
+// missing tile, imports every tile.
+TEST(MeshPipeline, PotreroCarlaLargeMapFillsTheTileGrid) {
+  RELIEF_REQUIRE_SHARED_DATA();
+  BuildOptions o = scene_options(test::potrero_options("mesh_potrero_carla_tiles"));
+  o.mesh_formats = {MeshFormat::fbx};
+  o.mesh_tile_size_m = 250.0;
+  o.carla_package = true;
+  const SceneBuild b = build_scene(o);
+  const MeshSummary& m = summary(b);
+  const std::string name = b.result.report.name;
+  EXPECT_EQ(m.carla_placeholder_tiles, (std::vector<std::string>{"0 0", "3 0"}));
+  EXPECT_EQ(b.diagnostics.count("carla.tile_grid_gap"), 1u);
+  const auto entries = test::read_tar_gz(read_bytes(o.out_dir / m.carla_package));
+  const nlohmann::json map = nlohmann::json::parse(entries.at(name + "/" + name + ".json").bytes)["maps"][0];
+  EXPECT_EQ(map["tile_size"], 250);
+  EXPECT_EQ(map["xodr"], "./" + name + ".xodr");
+  std::set<std::string> listed;
+  for (const auto& t : map["tiles"]) listed.insert(t.get<std::string>().substr(2));
+  // Every tile written is in the package as written; the grid 0..3 x 0..3 is whole.
+  for (const std::string& file : m.tile_files) {
+    EXPECT_TRUE(listed.contains(file)) << file;
+    EXPECT_EQ(entries.at(name + "/" + file).bytes, read_bytes(o.out_dir / file)) << file;
+  }
+  EXPECT_EQ(listed.size(), 16u);
+  EXPECT_EQ(listed.size(), m.tile_files.size() + 2);
+  const std::filesystem::path scratch = test::scratch_dir("mesh_potrero_carla_placeholder");
+  for (const char* gap : {"_Tile_0_0.fbx", "_Tile_3_0.fbx"}) {
+    const std::string file = name + gap;
+    ASSERT_TRUE(listed.contains(file));
+    EXPECT_FALSE(std::filesystem::exists(o.out_dir / file)) << "placeholders go into the package only";
+    const std::filesystem::path copy = scratch / file;
+    std::ofstream(copy, std::ios::binary) << entries.at(name + "/" + file).bytes;
+    const MeshScene tile = read_mesh_file(copy);
+    ASSERT_EQ(tile.meshes.size(), 1u);
+    EXPECT_EQ(tile.meshes[0].name, "Placeholder");
+    EXPECT_EQ(tile.meshes[0].triangles.size(), 1u);
+  }
+  // The placeholder of tile (0, 0) lies at its centre: the south-west corner of tile (1, 1), as
+  // its written file's bounds give it, minus one and a half tiles.
+  const MeshScene t11 = read_mesh_file(o.out_dir / (name + "_Tile_1_1.fbx"));
+  std::istringstream bounds(t11.metadata.at("relief:tile_bounds"));
+  double x0 = 0, y0 = 0;
+  bounds >> x0 >> y0;
+  const MeshScene p00 = read_mesh_file(scratch / (name + "_Tile_0_0.fbx"));
+  Vec3 c = Vec3::Zero();
+  for (const Vec3& v : p00.meshes[0].vertices) c += v / 3.0;
+  EXPECT_NEAR(c.x(), x0 - 125.0, 0.05);
+  EXPECT_NEAR(c.y(), y0 - 125.0, 0.05);
 }
 
 TEST(SfPotrero, MeshFbxImportsInBlender) {

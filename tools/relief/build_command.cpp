@@ -159,6 +159,10 @@ Runner add_build_command(CLI::App& app) {
                   "3D scene: also write it cut into square tiles of this size, m, as NAME_Tile_X_Y "
                   "(CARLA large maps)")
       ->check(finite_positive());
+  cmd->add_flag("--carla-package", o.carla_package,
+                "also write NAME.carla.tar.gz, the folder and JSON CARLA's `make import` ingests (NAME.fbx + "
+                "NAME.xodr; with --mesh-tile-size, the large map of NAME_Tile_X_Y.fbx tiles, whole metres "
+                "up to 2000)");
   cmd->add_option("--sight-step", o.sight.step_m,
                   "sight: stations along every lane, and the object's steps ahead, every this many m")
       ->capture_default_str()

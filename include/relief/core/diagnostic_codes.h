@@ -128,6 +128,11 @@ inline constexpr DiagnosticCode kDemandCountUnmatched{
 inline constexpr DiagnosticCode kCosimEgoMissing{"cosim.ego_missing",
                                                  "a vehicle named as an ego never ran in SUMO"};
 
+// The CARLA import package (export/carla_package.h).
+inline constexpr DiagnosticCode kCarlaTileGridGap{
+    "carla.tile_grid_gap",
+    "a tile of a CARLA large map's grid holds no triangles; the package gives it a placeholder triangle"};
+
 // Quality gates (export/quality_gates.h).
 inline constexpr DiagnosticCode kGateFailed{"gate.failed", "a quality gate failed (the build exits with 4)"};
 
@@ -164,6 +169,7 @@ inline constexpr std::array kAll{kDemDatumGridMissing,
                                  kMeshRoadSelfIntersections,
                                  kMeshRoadsOverlapInPlan,
                                  kMeshStructureTerrainIntersections,
+                                 kCarlaTileGridGap,
                                  kSumoLoopSkipped,
                                  kSumoSignalWithoutNode,
                                  kSumoSignalMidRoad,

@@ -147,6 +147,11 @@ struct MeshSummary {
   std::vector<std::string> files;  ///< the whole scene's
   double tile_size_m = 0.0;        ///< 0: no tiles written
   std::vector<std::string> tile_files;
+  /// NAME.carla.tar.gz when written (BuildOptions::carla_package), the paths inside it, and the
+  /// tiles ("X Y") of its large map's grid that hold no triangles and got a placeholder.
+  std::string carla_package;
+  std::vector<std::string> carla_package_entries;
+  std::vector<std::string> carla_placeholder_tiles;
   std::size_t junctions_meshed = 0, junctions_failed = 0;
   std::string first_failed_junction;         ///< "junction J at (x, y, z)"; empty if none failed
   double xodr_surface_max_distance_m = 0.0;  ///< road mesh vs the OpenDRIVE surface

@@ -80,6 +80,11 @@ struct BuildOptions {
   /// Besides the whole scene, the scene cut into tiles of this size (m) in every format, as
   /// NAME_Tile_X_Y (see split_into_tiles); 0: no tiles.
   double mesh_tile_size_m = 0.0;
+  /// Also NAME.carla.tar.gz: the package CARLA's `make import` ingests (export/carla_package.h),
+  /// of NAME.xodr and NAME.fbx, or of the FBX tiles when mesh_tile_size_m > 0 (CARLA's large
+  /// map). Needs the xodr and mesh outputs with the fbx format, a name CARLA takes and a tile
+  /// size of whole metres up to 2000: otherwise build() throws OptionError before any work.
+  bool carla_package = false;
   /// Output `sight`: every lane's sight distance on the scene (relief/sight/sight_distance.h).
   SightOptions sight;
 };
