@@ -29,14 +29,15 @@ std::vector<std::string> split_list(std::string_view text, char separator) {
 
 std::set<Output> parse_outputs(std::string_view text) {
   if (text == "all") {
-    return {Output::geojson, Output::report, Output::html, Output::xodr,
-            Output::sumo,    Output::mesh,   Output::sight,  Output::view};
+    return {Output::geojson, Output::report, Output::html,  Output::xodr,
+            Output::sumo,    Output::mesh,   Output::sight, Output::view};
   }
   std::set<Output> outputs;
   for (const std::string& item : split_list(text)) {
     const auto output = parse_output(item);
     if (!output)
-      throw OptionError("'" + item + "' is not one of xodr, sumo, mesh, sight, geojson, report, html, all");
+      throw OptionError("'" + item +
+                        "' is not one of xodr, sumo, mesh, sight, view, geojson, report, html, all");
     outputs.insert(*output);
   }
   return outputs;

@@ -15,9 +15,9 @@ ViewStage write_view_tiles(const MeshStageInput& in, const Scene& built, OutputS
   ViewStage stage;
   stage.failed_junctions = built.roads.failed_junctions;
   timer.run("write view tiles", [&] {
-    stage.tiles = view_tiles(built, in.dem, [&](const ViewTile& tile, const std::string& script) {
-      files.add(dir / tile.filename, [&](std::ostream& out) { out << script; });
-      written.push_back(dir / tile.filename);
+    stage.tiles = view_tiles(built, in.dem, [&](const std::string& filename, const std::string& script) {
+      files.add(dir / filename, [&](std::ostream& out) { out << script; });
+      written.push_back(dir / filename);
     });
     return 0;
   });

@@ -86,7 +86,14 @@ std::vector<ViewFinding> view_findings(const ViewIndexInput& in) {
         char text[160];
         std::snprintf(text, sizeof text, "gate %s failed: %g against %g", g.name.c_str(), g.value,
                       g.threshold);
-        out.push_back({"gate", text + (g.where.empty() ? std::string() : ", " + g.where), std::nullopt, 0});
+        // A gate's worst place, when its text ends with one: "... at (x, y, z)".
+        std::optional<Vec3> at;
+        const std::size_t open = g.where.rfind('(');
+        double x = 0, y = 0, z = 0;
+        if (open != std::string::npos &&
+            std::sscanf(g.where.c_str() + open, "(%lf, %lf, %lf)", &x, &y, &z) == 3)
+          at = Vec3(x, y, z);
+        out.push_back({"gate", text + (g.where.empty() ? std::string() : ", " + g.where), at, 0});
       }
   // Road_Road's and Terrain's own holes are the blocks between the roads and the paved area:
   // the ground (both welded) is what must have none.
@@ -146,7 +153,9 @@ std::string view_index_script(const ViewTiles& tiles, const ViewIndexInput& in, 
          {"bounds", Json::array({rounded(t.bounds.min.x(), 2), rounded(t.bounds.min.y(), 2),
                                  rounded(t.bounds.max.x(), 2), rounded(t.bounds.max.y(), 2)})},
          {"z", Json::array({rounded(t.z_min, 2), rounded(t.z_max, 2)})},
-         {"triangles", t.triangles}});
+         {"triangles", t.triangles},
+         {"marks_file", t.marks_filename},
+         {"marks_triangles", t.marks_triangles}});
   j["tiles"] = std::move(tile_list);
   j["owners"] = tiles.owners;
 

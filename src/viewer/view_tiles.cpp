@@ -192,19 +192,30 @@ ViewTiles view_tiles(const Scene& scene, const DemSampler& dem, const ViewTileSi
     tile.filename = "tile_" + std::to_string(b.x) + "_" + std::to_string(b.y) + ".js";
     tile.z_min = std::numeric_limits<double>::infinity();
     tile.z_max = -std::numeric_limits<double>::infinity();
-    std::string s =
-        "RELIEF_TILE({\"x\":" + std::to_string(b.x) + ",\"y\":" + std::to_string(b.y) + ",\"layers\":[";
-    for (std::size_t i = 0; i < b.parts.size(); ++i) {
-      const LayerPart& part = b.parts[i];
-      const bool paved = part.mesh->name == "Road_Road";
-      const bool attributes = paved || part.layer == "sidewalk";
-      if (i > 0) s += ',';
-      encode_part(part, paved && owner_index.size() == part.mesh->triangles.size() ? &owner_index : nullptr,
-                  dem, attributes, tile, s);
-      tile.triangles += part.triangles.size();
+    // The marks in a file of their own, loaded only near: afar they are under a pixel wide.
+    const auto encode_file = [&](bool marks, std::size_t& triangles) {
+      std::string s = "RELIEF_TILE({\"x\":" + std::to_string(b.x) + ",\"y\":" + std::to_string(b.y) +
+                      ",\"part\":\"" + (marks ? "marks" : "base") + "\",\"layers\":[";
+      bool first = true;
+      for (const LayerPart& part : b.parts) {
+        if ((part.layer == "marking") != marks) continue;
+        const bool paved = part.mesh->name == "Road_Road";
+        const bool attributes = paved || part.layer == "sidewalk";
+        if (!first) s += ',';
+        first = false;
+        encode_part(part, paved && owner_index.size() == part.mesh->triangles.size() ? &owner_index : nullptr,
+                    dem, attributes, tile, s);
+        triangles += part.triangles.size();
+      }
+      return s + "]});\n";
+    };
+    const std::string base = encode_file(false, tile.triangles);
+    write(tile.filename, base);
+    const std::string marks = encode_file(true, tile.marks_triangles);
+    if (tile.marks_triangles > 0) {
+      tile.marks_filename = "tile_" + std::to_string(b.x) + "_" + std::to_string(b.y) + "_marks.js";
+      write(tile.marks_filename, marks);
     }
-    s += "]});\n";
-    write(tile, s);
     out.tiles.push_back(std::move(tile));
   }
   return out;

@@ -594,6 +594,10 @@ def untimed(x):
     if isinstance(x, dict):
         return {k: untimed(v) for k, v in x.items() if k not in ("seconds", "timings_s")}
     return [untimed(v) for v in x] if isinstance(x, list) else x
+# The 3D view's folder: file by file.
+names = [n for n in names if n != "view"] + ["view/" + n for n in sorted(os.listdir(os.path.join(a, "view")))]
+assert sorted(os.listdir(os.path.join(a, "view"))) == sorted(os.listdir(os.path.join(b, "view")))
+assert "view/index.js" in names and "view.html" in names, names
 for n in names:
     if n == "report.html":
         continue  # holds the timings table

@@ -58,9 +58,19 @@ TEST(Build, SyntheticPlaneHasExactGrades) {
   EXPECT_EQ(r.network.bridges, 1u);
   EXPECT_EQ(r.network.traffic_signals, 1u);
   // OpenDRIVE, GeoJSON, report.html, report.json; SUMO net + its nod/edg/con + lane mapping;
-  // the scene as .glb, .obj + .mtl, .fbx and mesh_report.json; the sight-distance layer.
-  ASSERT_EQ(result.written.size(), 15u);
-  for (const auto& p : result.written) EXPECT_TRUE(std::filesystem::exists(p)) << p;
+  // the scene as .glb, .obj + .mtl, .fbx and mesh_report.json; the sight-distance layer; the
+  // 3D view: view.html, and in view/ its index and its tiles (each with its marks' file).
+  std::size_t in_view = 0, tiles = 0;
+  for (const auto& p : result.written) {
+    EXPECT_TRUE(std::filesystem::exists(p)) << p;
+    if (p.parent_path().filename() != "view") continue;
+    ++in_view;
+    if (p.filename().string().rfind("tile_", 0) == 0) ++tiles;
+  }
+  EXPECT_EQ(result.written.size() - in_view, 16u);
+  EXPECT_EQ(in_view, tiles + 1);  // + index.js
+  EXPECT_TRUE(std::filesystem::exists(o.out_dir / "view" / "index.js"));
+  EXPECT_GE(tiles, 2u);
   // On a plane nothing hides a lane ahead: every lane-km checked, none short.
   ASSERT_TRUE(r.sight);
   EXPECT_GT(r.sight->km_checked, 1.0);

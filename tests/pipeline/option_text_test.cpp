@@ -32,7 +32,7 @@ TEST(OptionText, Outputs) {
   try {
     (void)parse_outputs("xodr,pdf");
   } catch (const OptionError& e) {
-    EXPECT_STREQ(e.what(), "'pdf' is not one of xodr, sumo, mesh, sight, geojson, report, html, all");
+    EXPECT_STREQ(e.what(), "'pdf' is not one of xodr, sumo, mesh, sight, view, geojson, report, html, all");
   }
 }
 

@@ -102,7 +102,12 @@ RampScene ramp_scene() {
   terrain.kind = SurfaceKind::terrain;
   terrain.vertices = {{1, 1, 0.1}, {130, 1, 13}, {130, 50, 13}, {1, 50, 0.1}};
   terrain.triangles = {{0, 1, 2}, {0, 2, 3}};
-  scene.meshes.meshes = {road, terrain};
+  TriangleMesh marking;
+  marking.name = "Road_Marking";
+  marking.kind = SurfaceKind::marking;
+  marking.vertices = {{20, 9.9, 3.005}, {30, 9.9, 4.005}, {30, 10.1, 4.005}};
+  marking.triangles = {{0, 1, 2}};
+  scene.meshes.meshes = {road, terrain, marking};
   Aabb2 area;
   area.extend(Vec2(-60, -60));
   area.extend(Vec2(160, 60));
@@ -114,17 +119,24 @@ RampScene ramp_scene() {
 TEST(ViewTiles, GradeHeightOverTheDemAndOwnersOfARampAreExact) {
   const RampScene w = ramp_scene();
   std::map<std::string, Json> layers;
-  std::size_t files = 0;
-  const ViewTiles tiles = view_tiles(w.scene, w.dem, [&](const ViewTile& tile, const std::string& script) {
-    ++files;
-    EXPECT_EQ(tile.filename, "tile_0_0.js");
-    const Json j = json_in(script, "RELIEF_TILE(", ");\n");
-    for (const Json& layer : j.at("layers")) layers[layer.at("layer").get<std::string>()] = layer;
-  });
-  ASSERT_EQ(files, 1u);  // 22 triangles over 130 m: one automatic tile
-  EXPECT_EQ(tiles.triangles, 22u);
+  std::vector<std::string> files;
+  const ViewTiles tiles =
+      view_tiles(w.scene, w.dem, [&](const std::string& filename, const std::string& script) {
+        files.push_back(filename);
+        const Json j = json_in(script, "RELIEF_TILE(", ");\n");
+        EXPECT_EQ(j.at("part"), filename == "tile_0_0.js" ? "base" : "marks");
+        for (const Json& layer : j.at("layers")) layers[layer.at("layer").get<std::string>()] = layer;
+      });
+  // 23 triangles over 130 m: one automatic tile, its marks in a file of their own.
+  EXPECT_EQ(files, (std::vector<std::string>{"tile_0_0.js", "tile_0_0_marks.js"}));
+  ASSERT_EQ(tiles.tiles.size(), 1u);
+  EXPECT_EQ(tiles.tiles[0].triangles, 22u);
+  EXPECT_EQ(tiles.tiles[0].marks_triangles, 1u);
+  EXPECT_EQ(tiles.triangles, 23u);
   EXPECT_EQ(tiles.owners, (std::vector<int>{1, 2}));
-  ASSERT_EQ(layers.size(), 3u);
+  ASSERT_EQ(layers.size(), 4u);
+  EXPECT_EQ(layers.at("marking").at("triangles"), 1);
+  EXPECT_FALSE(layers.at("marking").contains("owner"));
   const Json& road = layers.at("road");
   const Json& structure = layers.at("structure");
   EXPECT_EQ(road.at("triangles"), 18);
@@ -164,11 +176,11 @@ TEST(ViewTiles, TrianglesGoToTheTileOfTheirCentroidAndAddUp) {
   std::set<std::string> names;
   const ViewTiles tiles = view_tiles(
       w.scene, w.dem,
-      [&](const ViewTile& tile, const std::string& script) {
-        names.insert(tile.filename);
+      [&](const std::string& filename, const std::string& script) {
+        names.insert(filename);
         const Json j = json_in(script, "RELIEF_TILE(", ");\n");
-        EXPECT_EQ(j.at("x"), tile.x);
-        EXPECT_EQ(j.at("y"), tile.y);
+        const int tile_x = j.at("x"), tile_y = j.at("y");
+        EXPECT_EQ(filename.rfind("tile_" + std::to_string(tile_x) + "_" + std::to_string(tile_y), 0), 0u);
         for (const Json& layer : j.at("layers")) {
           const auto positions = array_of<float>(layer, "positions");
           const auto indices = array_of<std::uint32_t>(layer, "indices");
@@ -180,22 +192,22 @@ TEST(ViewTiles, TrianglesGoToTheTileOfTheirCentroidAndAddUp) {
               cy -= positions[3 * indices[t + k] + 2] / 3.0;
             }
             // Grid lines at multiples of 40 m; column 0 holds x in [0, 40).
-            EXPECT_EQ(static_cast<int>(std::floor(cx / 40.0)), tile.x);
-            EXPECT_EQ(static_cast<int>(std::floor(cy / 40.0)), tile.y);
+            EXPECT_EQ(static_cast<int>(std::floor(cx / 40.0)), tile_x);
+            EXPECT_EQ(static_cast<int>(std::floor(cy / 40.0)), tile_y);
           }
         }
       },
       o);
   EXPECT_EQ(tiles.tile_size_m, 40.0);
-  EXPECT_EQ(triangles, 22u);
-  EXPECT_EQ(tiles.tiles.size(), names.size());
+  EXPECT_EQ(triangles, 23u);
   EXPECT_EQ(tiles.tiles.size(), 3u);  // columns 0, 1, 2 of row 0
+  EXPECT_EQ(names.size(), 4u);        // and the marks of column 0
   for (const ViewTile& t : tiles.tiles) EXPECT_LE(t.z_min, t.z_max);
 }
 
 TEST(ViewTiles, OptionsOutOfRangeThrow) {
   const RampScene w = ramp_scene();
-  const auto ignore = [](const ViewTile&, const std::string&) {};
+  const auto ignore = [](const std::string&, const std::string&) {};
   for (const double size : {-1.0, std::nan(""), std::numeric_limits<double>::infinity()}) {
     ViewOptions o;
     o.tile_size_m = size;
@@ -210,7 +222,7 @@ TEST(ViewIndex, RoadsProfilesFindingsAndGatesOfTheBridgeWorld) {
   Diagnostics d;
   const test::BridgeWorld w = test::make_bridge_world(d);
   const Scene scene = build_scene(w.built.model, w.network, w.dem, {}, d);
-  const ViewTiles tiles = view_tiles(scene, w.dem, [](const ViewTile&, const std::string&) {});
+  const ViewTiles tiles = view_tiles(scene, w.dem, [](const std::string&, const std::string&) {});
   const std::vector<RoadProfile> raw =
       test::drape(w.network, [](const Vec2&) { return test::kWorldGroundM; });
   std::vector<RoadProfile> fitted = raw;
@@ -220,7 +232,8 @@ TEST(ViewIndex, RoadsProfilesFindingsAndGatesOfTheBridgeWorld) {
   report.name = "bridge";
   report.frame = w.network.frame;
   report.gates = {{"road_self_intersections", 3, 0, false, "road 4 at (1, 2, 3)"},
-                  {"fit_converged", 1, 1, true, ""}};
+                  {"fit_converged", 1, 1, true, ""},
+                  {"sumo_lanes_without_z", 2, 0, false, "lane 7_0"}};
   report.mesh.emplace();
   report.mesh->ground_hole_sites = {Vec3(5, 6, 7)};
   ViewIndexInput in;
@@ -263,16 +276,19 @@ TEST(ViewIndex, RoadsProfilesFindingsAndGatesOfTheBridgeWorld) {
     for (std::size_t i = 0; i < p.at("s").size(); ++i)
       EXPECT_NEAR(p.at("fit")[i].get<double>() - p.at("raw")[i].get<double>(), 1.0, 0.011);
   }
-  // Findings: the failed gate (listed, no place), the ground's hole and the open junction.
+  // Findings: the failed gates (placed where their text names a point), the ground's hole and
+  // the open junction.
   const Json& f = j.at("findings");
-  ASSERT_EQ(f.size(), 3u);
+  ASSERT_EQ(f.size(), 4u);
   EXPECT_EQ(f[0].at("kind"), "gate");
-  EXPECT_TRUE(f[0].at("at").is_null());
+  EXPECT_EQ(f[0].at("at"), Json::array({1.0, 2.0, 3.0}));
   EXPECT_NE(f[0].at("text").get<std::string>().find("road 4 at (1, 2, 3)"), std::string::npos);
-  EXPECT_EQ(f[1].at("kind"), "hole");
-  EXPECT_EQ(f[1].at("at"), Json::array({5.0, 6.0, 7.0}));
-  EXPECT_EQ(f[2].at("kind"), "junction_open");
-  EXPECT_EQ(j.at("gates").size(), 2u);
+  EXPECT_EQ(f[1].at("kind"), "gate");
+  EXPECT_TRUE(f[1].at("at").is_null());
+  EXPECT_EQ(f[2].at("kind"), "hole");
+  EXPECT_EQ(f[2].at("at"), Json::array({5.0, 6.0, 7.0}));
+  EXPECT_EQ(f[3].at("kind"), "junction_open");
+  EXPECT_EQ(j.at("gates").size(), 3u);
   EXPECT_EQ(j.at("gates")[0].at("passed"), false);
 
   ViewIndexInput missing = in;

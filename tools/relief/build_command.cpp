@@ -80,8 +80,8 @@ Runner add_build_command(CLI::App& app) {
          [&o](const std::string& text) { parse_for("--outputs", [&] { o.outputs = parse_outputs(text); }); },
          "comma-separated outputs to write: xodr, sumo (NAME.net.xml and its plain XML, via netconvert), "
          "mesh (3D scene NAME.glb/.obj/.fbx + mesh_report.json), sight (every lane's sight distance against "
-         "AASHTO's stopping sight distance: NAME.sight.geojson), geojson, report (report.json), html "
-         "(report.html), or all")
+         "AASHTO's stopping sight distance: NAME.sight.geojson), view (the interactive 3D view: view.html "
+         "and view/), geojson, report (report.json), html (report.html), or all")
       ->default_str(o.outputs == parse_outputs("all") ? "all" : list_text(o.outputs));
   cmd->add_flag("-q,--quiet", args->quiet, "print only errors and the summary");
   cmd->add_option("--fit-trace", args->fit_trace,

@@ -39,18 +39,20 @@ struct ViewOptions {
 
 /// One tile file of the view.
 struct ViewTile {
-  int x = 0, y = 0;      ///< grid column (east) and row (north) from 0 at the south-west tile
-  std::string filename;  ///< "tile_X_Y.js"
-  Aabb2 bounds;          ///< plan bounds of its triangles, local frame
+  int x = 0, y = 0;            ///< grid column (east) and row (north) from 0 at the south-west tile
+  std::string filename;        ///< "tile_X_Y.js": every layer but the marks
+  std::string marks_filename;  ///< "tile_X_Y_marks.js", loaded only near; empty without marks
+  Aabb2 bounds;                ///< plan bounds of its triangles, local frame
   double z_min = 0.0, z_max = 0.0;
-  std::size_t triangles = 0;
+  std::size_t triangles = 0, marks_triangles = 0;
 };
 
-/// Receives each tile and its file's text as soon as it is encoded (a city's tiles are tens
-/// of MB; none is kept).
-using ViewTileSink = std::function<void(const ViewTile& tile, const std::string& script)>;
+/// Receives each file of a tile (its name and text) as soon as it is encoded (a city's tiles
+/// are tens of MB; none is kept).
+using ViewTileSink = std::function<void(const std::string& filename, const std::string& script)>;
 
-/// The scene cut into the view's tiles. Per layer and tile: positions, indices and per vertex
+/// The scene cut into the view's tiles, each in two files: the marks (near only) and the rest.
+/// Per layer and tile: positions, indices and per vertex
 /// the owner (road triangles: index into ViewTiles::owners), the surface grade in percent (the
 /// steepest slope of the owner's triangles around the vertex, area-weighted: on a lofted lane
 /// without superelevation this is the road's grade) and the height over the DEM in metres (NaN
@@ -86,7 +88,8 @@ struct ViewFinding {
   int road = 0;            ///< OpenDRIVE road id when known, else 0
 };
 
-/// Every finding of a build, located where the build knows the place: failed gates (listed),
+/// Every finding of a build, located where the build knows the place: failed gates (placed when
+/// their text ends with "(x, y, z)", as quality_gates.cpp writes a worst place),
 /// self-intersections and holes of Road_Road and Terrain (report->mesh), junctions left open,
 /// sight deficits (the middle of each short stretch).
 [[nodiscard]] std::vector<ViewFinding> view_findings(const ViewIndexInput& input);

@@ -90,9 +90,9 @@ function main() {
     colourLayer(layer, state.mode, state.selected === null ? -1 : data.owners.indexOf(state.selected), colours.array);
     colours.needsUpdate = true;
   };
-  const tiles = new TileSet(data, (tile) => {
-    if (tile) {
-      for (const layer of tile.layers) {
+  const tiles = new TileSet(data, (part, layers) => {
+    if (part) {
+      for (const layer of layers) {
         const g = new THREE.BufferGeometry();
         g.setAttribute('position', new THREE.BufferAttribute(layer.positions, 3));
         g.setIndex(new THREE.BufferAttribute(layer.indices, 1));
@@ -111,11 +111,11 @@ function main() {
         g.computeVertexNormals();
         g.computeBoundingSphere();
         const mesh = new THREE.Mesh(g, material);
-        mesh.name = `${layer.name} ${tile.key}`;
-        mesh.userData = { layer, tile: tile.key };
+        mesh.name = `${layer.name} ${part.tile.key}`;
+        mesh.userData = { layer, tile: part.tile.key };
         if (layer.owner) paint(mesh);
         (groups[layer.name] || groups.other).add(mesh);
-        tile.objects.push(mesh);
+        part.objects.push(mesh);
       }
     }
     requestRender();
