@@ -15,6 +15,7 @@
 
 #include "relief/core/errors.h"
 #include "relief/geometry/mesh_tiles.h"
+#include "support/mesh_grid.h"
 #include "support/tar_reader.h"
 #include "support/test_data.h"
 
@@ -27,15 +28,8 @@ TriangleMesh patch(const std::string& name, SurfaceKind kind, double x0, double 
   TriangleMesh m;
   m.name = name;
   m.kind = kind;
-  for (int j = 0; j <= 2; ++j)
-    for (int i = 0; i <= 2; ++i) m.vertices.emplace_back(x0 + 10.0 * i, y0 + 10.0 * j, 30.0 + i + 0.5 * j);
-  const auto at = [](int i, int j) { return static_cast<std::uint32_t>(3 * j + i); };
-  for (int j = 0; j < 2; ++j) {
-    for (int i = 0; i < 2; ++i) {
-      m.triangles.push_back({at(i, j), at(i + 1, j), at(i + 1, j + 1)});
-      m.triangles.push_back({at(i, j), at(i + 1, j + 1), at(i, j + 1)});
-    }
-  }
+  test::add_grid(m, 0.0, 0.0, 2, 2, 0.0);
+  for (Vec3& v : m.vertices) v = Vec3(x0 + 10.0 * v.x(), y0 + 10.0 * v.y(), 30.0 + v.x() + 0.5 * v.y());
   m.normals = vertex_normals(m);
   return m;
 }
