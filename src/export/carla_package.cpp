@@ -68,7 +68,7 @@ Layout check(const CarlaPackageInput& in) {
       throw InvalidInput("CARLA package: a standard map takes exactly one FBX named '" + in.map_name +
                          ".fbx'");
     }
-    layout.source = &in.fbx_files[0];
+    layout.source = in.fbx_files.data();
     return layout;
   }
   if (in.tile_size_m < 1 || in.tile_size_m > kCarlaMaxTileSizeM) {

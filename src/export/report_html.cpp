@@ -146,8 +146,7 @@ void write_overview(std::string& h, const HtmlReportInput& in) {
     h += "\"/>";
     if (!in.view_page.empty()) h += "</a>";
     h += "<figcaption>The scene from the south, roads coloured by grade (0 % green, 10 % yellow, 20 % red, "
-         "30 % "
-         "and steeper purple).</figcaption></figure>\n";
+         "30 % and steeper purple).</figcaption></figure>\n";
   }
   if (!in.view_page.empty())
     h += "<p class=\"view\"><a href=\"" + esc(in.view_page) +

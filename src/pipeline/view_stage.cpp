@@ -10,9 +10,10 @@ ViewStage write_view_tiles(const MeshStageInput& in, const Scene& built, OutputS
                            std::vector<std::filesystem::path>& written) {
   const std::filesystem::path dir = in.options.out_dir / "view";
   std::error_code error;
-  std::filesystem::create_directories(dir, error);
+  const bool created = std::filesystem::create_directories(dir, error);
   if (error) throw IoError("cannot create '" + dir.string() + "': " + error.message());
   ViewStage stage;
+  if (created) stage.folder = CreatedFolder(dir);
   stage.failed_junctions = built.roads.failed_junctions;
   timer.run("write view tiles", [&] {
     stage.tiles = view_tiles(built, in.dem, [&](const std::string& filename, const std::string& script) {

@@ -5,6 +5,8 @@
 
 #include <filesystem>
 #include <string>
+#include <system_error>
+#include <utility>
 #include <vector>
 
 #include "pipeline/mesh_stage.h"
@@ -14,11 +16,33 @@
 
 namespace relief {
 
+/// The folder this run created for the view, removed again if it is still empty when the
+/// stage ends (a failed run's temporaries are gone: nothing is left behind).
+class CreatedFolder {
+ public:
+  explicit CreatedFolder(std::filesystem::path path = {}) : path_(std::move(path)) {}
+  CreatedFolder(CreatedFolder&& other) noexcept : path_(std::exchange(other.path_, {})) {}
+  CreatedFolder& operator=(CreatedFolder&& other) noexcept {
+    std::swap(path_, other.path_);
+    return *this;
+  }
+  CreatedFolder(const CreatedFolder&) = delete;
+  CreatedFolder& operator=(const CreatedFolder&) = delete;
+  ~CreatedFolder() {
+    std::error_code ignored;
+    if (!path_.empty()) std::filesystem::remove(path_, ignored);  // only an empty folder goes
+  }
+
+ private:
+  std::filesystem::path path_;
+};
+
 /// The tiles of `built` into `files` (under out_dir/view, created here); what the index needs
 /// later is returned.
 struct ViewStage {
   ViewTiles tiles;
   std::vector<std::pair<int, Vec3>> failed_junctions;
+  CreatedFolder folder;
 };
 [[nodiscard]] ViewStage write_view_tiles(const MeshStageInput& in, const Scene& built, OutputSet& files,
                                          StageTimer& timer, std::vector<std::filesystem::path>& written);

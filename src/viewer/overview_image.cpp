@@ -49,7 +49,7 @@ std::string encode_png(const std::vector<std::uint8_t>& rgb, int width, int heig
   for (int y = 0; y < height; ++y) {
     raw.push_back(0);
     const auto row = rgb.begin() + static_cast<std::ptrdiff_t>(3 * static_cast<std::size_t>(width) * y);
-    raw.insert(raw.end(), row, row + 3 * width);
+    raw.insert(raw.end(), row, row + 3 * static_cast<std::ptrdiff_t>(width));
   }
   const std::unique_ptr<libdeflate_compressor, decltype(&libdeflate_free_compressor)> compressor(
       libdeflate_alloc_compressor(6), &libdeflate_free_compressor);
@@ -191,7 +191,9 @@ std::string render_overview_png(const MeshScene& scene, const OverviewImageOptio
         double sum = 0.0;
         for (int dy = 0; dy < ss; ++dy)
           for (int dx = 0; dx < ss; ++dx)
-            sum += colour[3 * ((static_cast<std::size_t>(y) * ss + dy) * W + x * ss + dx) + k];
+            sum += colour[3 * ((static_cast<std::size_t>(y) * ss + dy) * W +
+                               static_cast<std::size_t>(x) * ss + dx) +
+                          k];
         rgb[3 * (static_cast<std::size_t>(y) * options.width + x) + k] =
             static_cast<std::uint8_t>(std::clamp(std::lround(sum / (ss * ss)), 0L, 255L));
       }

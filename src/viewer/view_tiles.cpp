@@ -185,7 +185,8 @@ ViewTiles view_tiles(const Scene& scene, const DemSampler& dem, const ViewTileSi
   }
 
   out.tiles.reserve(builds.size());
-  for (auto& [key, b] : builds) {
+  for (auto& entry : builds) {
+    const TileBuild& b = entry.second;
     ViewTile tile;
     tile.x = b.x;
     tile.y = b.y;

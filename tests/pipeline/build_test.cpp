@@ -9,6 +9,7 @@
 #include <iostream>
 
 #include "pipeline/sf_options.h"
+#include "pipeline/view_stage.h"
 #include "relief/core/errors.h"
 #include "relief/pipeline/info.h"
 #include "relief/roads/opendrive_reader.h"
@@ -359,6 +360,30 @@ TEST(Info, DescribesPotreroWithoutWriting) {
   EXPECT_EQ(info.dems[0].crs, "EPSG:4269");
   EXPECT_GT(info.covered_percent, 95.0);
   EXPECT_TRUE(std::filesystem::is_empty(o.out_dir));
+}
+
+}  // namespace
+}  // namespace relief
+
+namespace relief {
+namespace {
+
+// The view's folder, created by a run: gone again when the run leaves it empty (a failed run's
+// temporaries are removed), kept with its files.
+TEST(ViewStage, CreatedFolderIsRemovedOnlyWhenEmpty) {
+  const std::filesystem::path dir = test::scratch_dir("view_folder");
+  {
+    std::filesystem::create_directories(dir / "empty");
+    const CreatedFolder folder(dir / "empty");
+  }
+  EXPECT_FALSE(std::filesystem::exists(dir / "empty"));
+  {
+    std::filesystem::create_directories(dir / "full");
+    std::ofstream(dir / "full" / "index.js") << "x";
+    CreatedFolder folder(dir / "full");
+    CreatedFolder moved(std::move(folder));
+  }
+  EXPECT_TRUE(std::filesystem::exists(dir / "full" / "index.js"));
 }
 
 }  // namespace
