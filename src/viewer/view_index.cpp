@@ -155,7 +155,9 @@ std::string view_index_script(const ViewTiles& tiles, const ViewIndexInput& in, 
          {"z", Json::array({rounded(t.z_min, 2), rounded(t.z_max, 2)})},
          {"triangles", t.triangles},
          {"marks_file", t.marks_filename},
-         {"marks_triangles", t.marks_triangles}});
+         {"marks_triangles", t.marks_triangles},
+         {"lod_file", t.lod_filename},
+         {"lod_triangles", t.lod_triangles}});
   j["tiles"] = std::move(tile_list);
   j["owners"] = tiles.owners;
 

@@ -1,11 +1,13 @@
 // The scene cut into the view's plan tiles, each encoded as a <script> file of typed arrays.
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <limits>
 #include <map>
+#include <numeric>
 #include <string_view>
 #include <unordered_map>
 
@@ -124,12 +126,69 @@ void encode_part(const LayerPart& part, const std::vector<int>* owner_of_triangl
   script += '}';
 }
 
+/// A coarse copy of a layer part for distant views (vertex clustering, Rossignac and Borrel
+/// 1993): corners in one plan cell of `cell_m` with the same owner become one vertex at their
+/// mean, triangles that collapse are dropped, and so are repeats. Linear in the triangles.
+struct Clustered {
+  TriangleMesh mesh;
+  std::vector<int> owner;  ///< per triangle, parallel to mesh.triangles (when owners are given)
+};
+Clustered cluster_part(const LayerPart& part, const std::vector<int>* owner_of_triangle, double cell_m) {
+  struct Cell {
+    Vec3 sum = Vec3::Zero();
+    int count = 0;
+  };
+  Clustered out;
+  out.mesh.name = part.mesh->name;
+  out.mesh.kind = part.mesh->kind;
+  std::unordered_map<std::uint64_t, std::uint32_t> index_of;
+  std::vector<Cell> cells;
+  std::unordered_map<std::uint64_t, char> seen;  // a triangle's three cells, to drop repeats
+  std::vector<std::uint32_t> corner_cell;
+  for (const std::uint32_t t : part.triangles) {
+    const auto& tri = part.mesh->triangles[t];
+    const int owner = owner_of_triangle ? (*owner_of_triangle)[t] : -1;
+    std::array<std::uint32_t, 3> c{};
+    for (int k = 0; k < 3; ++k) {
+      const Vec3& p = part.mesh->vertices[tri[k]];
+      // 21 bits of cell per axis (±1e6 cells) and the owner's index: one key.
+      const auto ix =
+          static_cast<std::uint64_t>(static_cast<std::int64_t>(std::floor(p.x() / cell_m)) & 0xfffff);
+      const auto iy =
+          static_cast<std::uint64_t>(static_cast<std::int64_t>(std::floor(p.y() / cell_m)) & 0xfffff);
+      const std::uint64_t key =
+          ix | iy << 20 | static_cast<std::uint64_t>(static_cast<std::uint32_t>(owner + 1)) << 40;
+      auto [it, inserted] = index_of.try_emplace(key, static_cast<std::uint32_t>(cells.size()));
+      if (inserted) cells.emplace_back();
+      cells[it->second].sum += p;
+      ++cells[it->second].count;
+      c[k] = it->second;
+    }
+    if (c[0] == c[1] || c[1] == c[2] || c[0] == c[2]) continue;
+    // The same three cells in either winding are one triangle.
+    std::array<std::uint32_t, 3> sorted = c;
+    std::sort(sorted.begin(), sorted.end());
+    const std::uint64_t id = (static_cast<std::uint64_t>(sorted[0]) * 0x9E3779B97F4A7C15ull) ^
+                             (static_cast<std::uint64_t>(sorted[1]) << 21) ^
+                             (static_cast<std::uint64_t>(sorted[2]) << 42);
+    if (!seen.try_emplace(id, 0).second) continue;
+    out.mesh.triangles.push_back(c);
+    if (owner_of_triangle) out.owner.push_back(owner);
+  }
+  out.mesh.vertices.reserve(cells.size());
+  for (const Cell& cell : cells) out.mesh.vertices.push_back(cell.sum / cell.count);
+  return out;
+}
+
 }  // namespace
 
 ViewTiles view_tiles(const Scene& scene, const DemSampler& dem, const ViewTileSink& write,
                      const ViewOptions& options) {
-  if (!(options.tile_size_m >= 0.0) || !std::isfinite(options.tile_size_m) || options.tile_triangles == 0)
-    throw InvalidInput("view: tile size must be finite and >= 0 (0: automatic), tile_triangles > 0");
+  if (!(options.tile_size_m >= 0.0) || !std::isfinite(options.tile_size_m) || options.tile_triangles == 0 ||
+      !(options.lod_cells_per_tile >= 1.0) || std::isnan(options.lod_min_tile_m))
+    throw InvalidInput(
+        "view: tile size must be finite and >= 0 (0: automatic), tile_triangles > 0, lod_cells_per_tile >= "
+        "1");
   ViewTiles out;
   Aabb2 extent;
   for (const TriangleMesh& mesh : scene.meshes.meshes) {
@@ -146,6 +205,8 @@ ViewTiles view_tiles(const Scene& scene, const DemSampler& dem, const ViewTileSi
     size = std::clamp(std::ceil(std::sqrt(per_tile) / 250.0) * 250.0, 250.0, 4000.0);
   }
   out.tile_size_m = size;
+  // A coarse copy of each tile for distant views, on tiles big enough to be seen from afar.
+  const double lod_cell_m = size >= options.lod_min_tile_m ? size / options.lod_cells_per_tile : 0.0;
   const int x0 = static_cast<int>(std::floor(extent.min.x() / size));
   const int y0 = static_cast<int>(std::floor(extent.min.y() / size));
 
@@ -212,6 +273,31 @@ ViewTiles view_tiles(const Scene& scene, const DemSampler& dem, const ViewTileSi
     };
     const std::string base = encode_file(false, tile.triangles);
     write(tile.filename, base);
+    // The distant view's copy of every layer but the marks.
+    if (lod_cell_m > 0.0) {
+      std::string lod = "RELIEF_TILE({\"x\":" + std::to_string(b.x) + ",\"y\":" + std::to_string(b.y) +
+                        ",\"part\":\"lod\",\"layers\":[";
+      bool first = true;
+      ViewTile ignored;  // the bounds are the full tile's
+      for (const LayerPart& part : b.parts) {
+        if (part.layer == "marking") continue;
+        const bool paved = part.mesh->name == "Road_Road";
+        const std::vector<int>* owners =
+            paved && owner_index.size() == part.mesh->triangles.size() ? &owner_index : nullptr;
+        const Clustered coarse = cluster_part(part, owners, lod_cell_m);
+        if (coarse.mesh.triangles.empty()) continue;
+        LayerPart whole{part.layer, &coarse.mesh, {}};
+        whole.triangles.resize(coarse.mesh.triangles.size());
+        std::iota(whole.triangles.begin(), whole.triangles.end(), 0u);
+        if (!first) lod += ',';
+        first = false;
+        encode_part(whole, owners ? &coarse.owner : nullptr, dem, paved || part.layer == "sidewalk", ignored,
+                    lod);
+        tile.lod_triangles += coarse.mesh.triangles.size();
+      }
+      tile.lod_filename = "tile_" + std::to_string(b.x) + "_" + std::to_string(b.y) + "_lod.js";
+      write(tile.lod_filename, lod + "]});\n");
+    }
     const std::string marks = encode_file(true, tile.marks_triangles);
     if (tile.marks_triangles > 0) {
       tile.marks_filename = "tile_" + std::to_string(b.x) + "_" + std::to_string(b.y) + "_marks.js";

@@ -118,17 +118,34 @@ RampScene ramp_scene() {
 
 TEST(ViewTiles, GradeHeightOverTheDemAndOwnersOfARampAreExact) {
   const RampScene w = ramp_scene();
-  std::map<std::string, Json> layers;
+  std::map<std::string, Json> layers, coarse;
   std::vector<std::string> files;
   const ViewTiles tiles =
       view_tiles(w.scene, w.dem, [&](const std::string& filename, const std::string& script) {
         files.push_back(filename);
         const Json j = json_in(script, "RELIEF_TILE(", ");\n");
-        EXPECT_EQ(j.at("part"), filename == "tile_0_0.js" ? "base" : "marks");
-        for (const Json& layer : j.at("layers")) layers[layer.at("layer").get<std::string>()] = layer;
+        const std::string part = j.at("part");
+        EXPECT_EQ(part, filename == "tile_0_0.js" ? "base" : filename == "tile_0_0_lod.js" ? "lod" : "marks");
+        for (const Json& layer : j.at("layers"))
+          (part == "lod" ? coarse : layers)[layer.at("layer").get<std::string>()] = layer;
       });
-  // 23 triangles over 130 m: one automatic tile, its marks in a file of their own.
-  EXPECT_EQ(files, (std::vector<std::string>{"tile_0_0.js", "tile_0_0_marks.js"}));
+  // 23 triangles over 130 m: one automatic tile (4 km, the largest), its coarse copy for afar,
+  // its marks in a file of their own.
+  EXPECT_EQ(files, (std::vector<std::string>{"tile_0_0.js", "tile_0_0_lod.js", "tile_0_0_marks.js"}));
+  EXPECT_EQ(tiles.tile_size_m, 4000.0);
+  // The coarse copy: 10 m cells; a mean of points on the ramp's plane is on it, so its grade
+  // and height over the DEM stay exact; no marks.
+  EXPECT_FALSE(coarse.contains("marking"));
+  ASSERT_TRUE(coarse.contains("road"));
+  EXPECT_LE(coarse.at("road").at("triangles").get<int>(), 18);
+  EXPECT_GT(coarse.at("road").at("triangles").get<int>(), 0);
+  std::size_t coarse_triangles = 0;
+  for (const auto& [name, layer] : coarse) coarse_triangles += layer.at("triangles").get<std::size_t>();
+  EXPECT_EQ(tiles.tiles.at(0).lod_triangles, coarse_triangles);
+  for (const float g : array_of<float>(coarse.at("road"), "grade")) EXPECT_NEAR(g, 10.0, 1e-3);
+  for (const float dz : array_of<float>(coarse.at("road"), "dz")) EXPECT_NEAR(dz, 2.0, 1e-3);
+  for (const std::int32_t o : array_of<std::int32_t>(coarse.at("road"), "owner"))
+    EXPECT_TRUE(o == 0 || o == 1);
   ASSERT_EQ(tiles.tiles.size(), 1u);
   EXPECT_EQ(tiles.tiles[0].triangles, 22u);
   EXPECT_EQ(tiles.tiles[0].marks_triangles, 1u);
@@ -215,6 +232,9 @@ TEST(ViewTiles, OptionsOutOfRangeThrow) {
   }
   ViewOptions o;
   o.tile_triangles = 0;
+  EXPECT_THROW((void)view_tiles(w.scene, w.dem, ignore, o), InvalidInput);
+  o = {};
+  o.lod_cells_per_tile = 0.5;
   EXPECT_THROW((void)view_tiles(w.scene, w.dem, ignore, o), InvalidInput);
 }
 

@@ -33,6 +33,10 @@ struct ViewOptions {
   /// (rounded to 250 m, 250 m to 4 km).
   double tile_size_m = 0.0;
   std::size_t tile_triangles = 60000;
+  /// Tiles at least this big also get a coarse copy for distant views (tile_X_Y_lod.js): the
+  /// tile's layers but the marks, vertex-clustered on cells of tile size / lod_cells_per_tile.
+  double lod_min_tile_m = 1000.0;
+  double lod_cells_per_tile = 400.0;
   /// Profile points kept per road and method (evenly spaced in s; the ends always kept).
   std::size_t profile_points = 400;
 };
@@ -42,16 +46,18 @@ struct ViewTile {
   int x = 0, y = 0;            ///< grid column (east) and row (north) from 0 at the south-west tile
   std::string filename;        ///< "tile_X_Y.js": every layer but the marks
   std::string marks_filename;  ///< "tile_X_Y_marks.js", loaded only near; empty without marks
+  std::string lod_filename;    ///< "tile_X_Y_lod.js", the coarse copy for afar; empty without one
   Aabb2 bounds;                ///< plan bounds of its triangles, local frame
   double z_min = 0.0, z_max = 0.0;
-  std::size_t triangles = 0, marks_triangles = 0;
+  std::size_t triangles = 0, marks_triangles = 0, lod_triangles = 0;
 };
 
 /// Receives each file of a tile (its name and text) as soon as it is encoded (a city's tiles
 /// are tens of MB; none is kept).
 using ViewTileSink = std::function<void(const std::string& filename, const std::string& script)>;
 
-/// The scene cut into the view's tiles, each in two files: the marks (near only) and the rest.
+/// The scene cut into the view's tiles, each in two files, the marks (near only) and the rest,
+/// and on big tiles a coarse copy of the rest for distant views.
 /// Per layer and tile: positions, indices and per vertex
 /// the owner (road triangles: index into ViewTiles::owners), the surface grade in percent (the
 /// steepest slope of the owner's triangles around the vertex, area-weighted: on a lofted lane

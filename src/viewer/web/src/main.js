@@ -207,7 +207,8 @@ function main() {
     raycaster.setFromCamera(ndc, camera);
     const targets = ['road', 'structure', 'sidewalk', 'terrain']
       .filter((n) => groups[n].visible)
-      .flatMap((n) => groups[n].children);
+      .flatMap((n) => groups[n].children)
+      .filter((o) => o.visible);  // a coarse copy hidden behind its full tile is not picked
     const hit = raycaster.intersectObjects(targets, false)[0];
     if (!hit) return null;
     const layer = hit.object.userData.layer;
@@ -342,6 +343,7 @@ function main() {
       const rect = canvas.getBoundingClientRect();
       for (const name of ['road', 'structure']) {
         for (const m of groups[name].children) {
+          if (!m.visible) continue;
           const l = m.userData.layer;
           for (let t = 0; t < l.triangles; t += 1) {
             const a = l.indices[3 * t];

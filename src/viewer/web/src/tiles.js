@@ -1,12 +1,15 @@
 // The scene's plan tiles: loaded as <script> files (view/tile_X_Y.js, which call RELIEF_TILE)
-// when they come into the camera's view, nearest first, two at a time. A tile's marks come in
-// a file of their own (tile_X_Y_marks.js), loaded only within MARKS_NEAR_M of the camera (afar
-// a mark is under a pixel wide) and dropped beyond twice that; past the triangle budget the
-// farthest tiles out of view are dropped.
+// when they come into the camera's view, nearest first, two at a time. Big tiles have a coarse
+// copy (tile_X_Y_lod.js) drawn while the camera is farther than FULL_NEAR tile sizes from them;
+// the full tile loads nearer, replaces the copy, and is dropped again beyond three times that.
+// A tile's marks come in a file of their own (tile_X_Y_marks.js), loaded only within
+// MARKS_NEAR_M of the camera (afar a mark is under a pixel wide) and dropped beyond twice that;
+// past the triangle budget the farthest tiles out of view are dropped.
 import * as THREE from 'three';
 import { decodeLayer } from './decode.js';
 
 const MARKS_NEAR_M = 600;
+const FULL_NEAR = 1.0;  // tile sizes
 
 export class TileSet {
   constructor(index, onPart, { budgetTriangles = 6e6, concurrent = 2 } = {}) {
@@ -14,6 +17,7 @@ export class TileSet {
     this.base = window.RELIEF_VIEW_BASE || 'view';
     this.budget = budgetTriangles;
     this.concurrent = concurrent;
+    this.fullNear = FULL_NEAR * (index.tile_size_m || 0);
     this.loading = 0;
     this.loadedTriangles = 0;
     this.failed = [];
@@ -28,6 +32,8 @@ export class TileSet {
         ),
       };
       tile.parts = { base: { tile, kind: 'base', file: t.file, triangles: t.triangles, state: 'absent', objects: [] } };
+      if (t.lod_file)
+        tile.parts.lod = { tile, kind: 'lod', file: t.lod_file, triangles: t.lod_triangles, state: 'absent', objects: [] };
       if (t.marks_file)
         tile.parts.marks = { tile, kind: 'marks', file: t.marks_file, triangles: t.marks_triangles, state: 'absent', objects: [] };
       return tile;
@@ -43,7 +49,10 @@ export class TileSet {
     for (const t of this.tiles) {
       if (!frustum.intersectsBox(t.box)) continue;
       const d = t.box.distanceToPoint(eye);
-      if (t.parts.base.state === 'absent') out.push({ part: t.parts.base, d });
+      const lod = t.parts.lod;
+      if (lod && d > this.fullNear) {
+        if (lod.state === 'absent' && t.parts.base.state !== 'loaded') out.push({ part: lod, d });
+      } else if (t.parts.base.state === 'absent') out.push({ part: t.parts.base, d });
       else if (t.parts.marks && t.parts.marks.state === 'absent' && t.parts.base.state === 'loaded' && d < MARKS_NEAR_M)
         out.push({ part: t.parts.marks, d: d + 1 });
     }
@@ -60,9 +69,14 @@ export class TileSet {
       if (this.loading >= this.concurrent) break;
       this.load(part);
     }
-    for (const t of this.tiles)
-      if (t.parts.marks && t.parts.marks.state === 'loaded' && t.box.distanceToPoint(camera.position) > 2 * MARKS_NEAR_M)
-        this.drop(t.parts.marks);
+    for (const t of this.tiles) {
+      const d = t.box.distanceToPoint(camera.position);
+      if (t.parts.marks && t.parts.marks.state === 'loaded' && d > 2 * MARKS_NEAR_M) this.drop(t.parts.marks);
+      const lod = t.parts.lod;
+      if (lod && lod.state === 'loaded' && t.parts.base.state === 'loaded' && d > 3 * this.fullNear) this.drop(t.parts.base);
+      // The coarse copy shows while its full tile is not there.
+      if (lod) for (const o of lod.objects) o.visible = t.parts.base.state !== 'loaded';
+    }
     if (this.loadedTriangles > this.budget) this.evict(camera, frustum);
     return wanted.length === 0 && this.loading === 0;
   }
@@ -107,7 +121,7 @@ export class TileSet {
   /// Drops the farthest loaded tiles outside the view until the budget holds.
   evict(camera, frustum) {
     const loaded = this.tiles
-      .filter((t) => t.parts.base.state === 'loaded' && !frustum.intersectsBox(t.box))
+      .filter((t) => !frustum.intersectsBox(t.box))
       .sort((a, b) => b.box.distanceToPoint(camera.position) - a.box.distanceToPoint(camera.position));
     for (const t of loaded) {
       if (this.loadedTriangles <= this.budget) break;
@@ -115,7 +129,8 @@ export class TileSet {
     }
   }
 
+  /// Tiles drawn, in full or as their coarse copy.
   loaded() {
-    return this.tiles.filter((t) => t.parts.base.state === 'loaded');
+    return this.tiles.filter((t) => t.parts.base.state === 'loaded' || (t.parts.lod && t.parts.lod.state === 'loaded'));
   }
 }
