@@ -123,6 +123,9 @@ try {
     }, findings.placed);
     check(moved < 0.01, `a click on a finding centres the view on it (${moved.toFixed(3)} m off)`);
     await page.waitForFunction(() => window.reliefView.ready, { timeout: 120000, polling: 200 });
+    // 80 m from the finding: the tile there is drawn in full, with its marks.
+    const near = await page.evaluate(() => ({ full: window.reliefView.fullTiles, marks: window.reliefView.marksTiles }));
+    check(near.full > 0 && near.marks > 0, `zoomed in, tiles in full: ${near.full}, with their marks: ${near.marks}`);
     await page.screenshot({ path: path.join(shots, 'finding.png') });
   }
   // A co-simulation's page: its replay plays.

@@ -156,6 +156,7 @@ function main() {
   });
 
   function focus(x, y, z, distance) {
+    api.ready = false;  // until the tiles of the new view are in
     const target = new THREE.Vector3(x, z, -y);
     const offset = camera.position.clone().sub(controls.target).setLength(distance);
     controls.target.copy(target);
@@ -307,6 +308,13 @@ function main() {
     get trianglesLoaded() {
       return tiles.loadedTriangles;
     },
+    /// Tiles drawn in full (not as their coarse copy), and those with their marks.
+    get fullTiles() {
+      return tiles.tiles.filter((t) => t.parts.base.state === 'loaded').length;
+    },
+    get marksTiles() {
+      return tiles.tiles.filter((t) => t.parts.marks && t.parts.marks.state === 'loaded').length;
+    },
     failedTiles: tiles.failed,
     selected: () => state.selected,
     mode: () => state.mode,
@@ -371,10 +379,8 @@ function main() {
     const done = tiles.update(camera);
     const loaded = tiles.loaded();
     status.textContent = `${loaded.length} of ${data.tiles.length} tiles, ${(tiles.loadedTriangles / 1e6).toFixed(2)} M triangles${done ? '' : ', loading…'}${tiles.failed.length ? `, ${tiles.failed.length} failed` : ''}`;
-    if (done && !wasReady) {
-      api.ready = true;
-      canvas.dispatchEvent(new Event('relief-ready'));
-    }
+    api.ready = done;
+    if (done && !wasReady) canvas.dispatchEvent(new Event('relief-ready'));
     wasReady = done;
   }
   resize();
