@@ -118,6 +118,9 @@ function main() {
         part.objects.push(mesh);
       }
     }
+    // Ask for the next tiles now, not after the next frame: in software rendering a frame of a
+    // city takes a second or more, and the loads would wait for each.
+    refreshTiles();
     requestRender();
   });
 
@@ -376,6 +379,7 @@ function main() {
 
   let wasReady = false;
   function refreshTiles() {
+    camera.updateMatrixWorld();
     const done = tiles.update(camera);
     const loaded = tiles.loaded();
     status.textContent = `${loaded.length} of ${data.tiles.length} tiles, ${(tiles.loadedTriangles / 1e6).toFixed(2)} M triangles${done ? '' : ', loading…'}${tiles.failed.length ? `, ${tiles.failed.length} failed` : ''}`;
