@@ -17,6 +17,13 @@ const DEM_STOPS = [
 ];
 const NO_VALUE = [150, 150, 150];
 
+// Vertex colours are in three.js's linear working space: the ramps are sRGB, converted here
+// (else they come out washed out through the sRGB output).
+const TO_LINEAR = Array.from({ length: 256 }, (_, i) => {
+  const v = i / 255;
+  return Math.round(255 * (v <= 0.04045 ? v / 12.92 : ((v + 0.055) / 1.055) ** 2.4));
+});
+
 function ramp(stops, v) {
   if (!Number.isFinite(v)) return NO_VALUE;
   if (v <= stops[0][0]) return stops[0][1];
@@ -41,9 +48,9 @@ export function colourLayer(layer, mode, selectedOwner, out) {
   const m = MODES[mode];
   for (let i = 0; i < layer.vertices; i++) {
     const c = layer.owner[i] === selectedOwner && selectedOwner >= 0 ? [0, 229, 255] : ramp(m.stops, m.value(layer, i));
-    out[3 * i] = c[0];
-    out[3 * i + 1] = c[1];
-    out[3 * i + 2] = c[2];
+    out[3 * i] = TO_LINEAR[c[0]];
+    out[3 * i + 1] = TO_LINEAR[c[1]];
+    out[3 * i + 2] = TO_LINEAR[c[2]];
   }
 }
 
@@ -54,7 +61,7 @@ export function colourTerrain(positions, zMin, zMax, out) {
   const span = Math.max(1, zMax - zMin);
   for (let i = 0, n = positions.length / 3; i < n; i++) {
     const f = Math.min(1, Math.max(0, (positions[3 * i + 1] - zMin) / span));
-    for (let k = 0; k < 3; k++) out[3 * i + k] = Math.round(low[k] + f * (high[k] - low[k]));
+    for (let k = 0; k < 3; k++) out[3 * i + k] = TO_LINEAR[Math.round(low[k] + f * (high[k] - low[k]))];
   }
 }
 

@@ -124,23 +124,23 @@ function main() {
     requestRender();
   });
 
-  // Findings: a marker of constant size at each placed one, and the list.
+  // Findings: a marker of constant size at each placed one (defects larger than the many sight
+  // deficits, drawn over them), and the list.
   const placed = data.findings.filter((f) => Array.isArray(f.at));
-  const markerGeometry = new THREE.BufferGeometry();
-  markerGeometry.setAttribute(
-    'position',
-    new THREE.Float32BufferAttribute(placed.flatMap((f) => [f.at[0], f.at[2] + 1.0, -f.at[1]]), 3),
-  );
-  markerGeometry.setAttribute(
-    'color',
-    new THREE.Float32BufferAttribute(placed.flatMap((f) => new THREE.Color(KIND_COLOURS[f.kind] || '#000').toArray()), 3),
-  );
-  const markers = new THREE.Points(
-    markerGeometry,
-    new THREE.PointsMaterial({ size: 11, sizeAttenuation: false, vertexColors: true, depthTest: false }),
-  );
-  markers.renderOrder = 10;
+  const markers = new THREE.Group();
   markers.name = 'findings';
+  for (const [sight, size] of [[true, 6], [false, 11]]) {
+    const some = placed.filter((f) => (f.kind === 'sight') === sight);
+    const g = new THREE.BufferGeometry();
+    g.setAttribute('position', new THREE.Float32BufferAttribute(some.flatMap((f) => [f.at[0], f.at[2] + 1.0, -f.at[1]]), 3));
+    g.setAttribute(
+      'color',
+      new THREE.Float32BufferAttribute(some.flatMap((f) => new THREE.Color(KIND_COLOURS[f.kind] || '#000').toArray()), 3),
+    );
+    const points = new THREE.Points(g, new THREE.PointsMaterial({ size, sizeAttenuation: false, vertexColors: true, depthTest: false }));
+    points.renderOrder = sight ? 10 : 11;
+    markers.add(points);
+  }
   scene.add(markers);
   const list = document.getElementById('finding-list');
   list.innerHTML = data.findings.length
