@@ -182,6 +182,20 @@ std::string view_index_script(const ViewTiles& tiles, const ViewIndexInput& in, 
       if (profiled.insert(r.source_road).second)
         profiles[std::to_string(r.source_road)] =
             profile_json(in, static_cast<std::size_t>(r.source_road), options.profile_points);
+      // Where along its OSM road this piece lies (trimmed at junctions, split at transitions):
+      // the stations nearest its two ends.
+      const RoadProfile& raw = (*in.raw)[static_cast<std::size_t>(r.source_road)];
+      if (!raw.xy.empty()) {
+        const auto station_near = [&](const Vec2& p) {
+          std::size_t best = 0;
+          for (std::size_t i = 1; i < raw.xy.size(); ++i)
+            if ((raw.xy[i] - p).squaredNorm() < (raw.xy[best] - p).squaredNorm()) best = i;
+          return raw.s[best];
+        };
+        const double a = station_near(r.plan.at(0.0).position),
+                     b = station_near(r.plan.at(r.length()).position);
+        road["profile_s"] = Json::array({rounded(std::min(a, b), 1), rounded(std::max(a, b), 1)});
+      }
     } else {
       road["class"] = "connecting road";
     }

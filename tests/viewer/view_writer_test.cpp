@@ -283,6 +283,12 @@ TEST(ViewIndex, RoadsProfilesFindingsAndGatesOfTheBridgeWorld) {
     }
     sources.insert(r.source_road);
     EXPECT_EQ(road.at("network_road"), r.source_road);
+    // The piece's place along its OSM road: as long as the piece (trimmed at junctions) within
+    // the stations' 1 m spacing, inside the OSM road.
+    const double s0 = road.at("profile_s")[0], s1 = road.at("profile_s")[1];
+    EXPECT_GE(s0, 0.0);
+    EXPECT_LE(s1, raw[static_cast<std::size_t>(r.source_road)].s.back() + 1e-9);
+    EXPECT_NEAR(s1 - s0, r.length(), 1.1) << r.id;
   }
   ASSERT_EQ(j.at("profiles").size(), sources.size());
   for (const int s : sources) {

@@ -199,7 +199,7 @@ function main() {
         `<h2>${escape(r.name || `road ${owner}`)}</h2><table>${rows
           .map(([k, v]) => `<tr><td>${k}</td><td>${k === 'OSM ways' ? v : escape(v)}</td></tr>`)
           .join('')}</table>` +
-        (profile ? `<h2>profile of the OSM road</h2><div id="profile">${profileSvg(profile)}</div>` : '<p class="hint">a connecting road inside a junction: its profile is the junction\'s</p>');
+        (profile ? `<h2>profile of the OSM road</h2><div id="profile">${profileSvg(profile, r.profile_s)}</div>` : '<p class="hint">a connecting road inside a junction: its profile is the junction\'s</p>');
     }
     requestRender();
   }

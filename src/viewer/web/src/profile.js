@@ -8,7 +8,8 @@ export const SERIES = [
 
 const escape = (t) => String(t).replace(/[&<>"]/g, (c) => ({ '&': '&amp;', '<': '&lt;', '>': '&gt;', '"': '&quot;' })[c]);
 
-export function profileSvg(profile) {
+/// `range`: [s0, s1] of the piece clicked, shaded (optional).
+export function profileSvg(profile, range) {
   const W = 340, H = 170, L = 40, R = 8, T = 8, B = 24;
   const s = profile.s;
   const series = SERIES.filter((k) => Array.isArray(profile[k.key]));
@@ -36,6 +37,10 @@ export function profileSvg(profile) {
     });
     return `<path class="series" data-series="${k.key}" d="${d}" fill="none" stroke="${k.colour}" stroke-width="${k.width}"/>`;
   });
+  const band =
+    Array.isArray(range) && range[1] > range[0]
+      ? `<rect class="piece" x="${x(range[0])}" y="${T}" width="${(x(range[1]) - x(range[0])).toFixed(1)}" height="${H - T - B}" fill="#00e5ff" fill-opacity="0.15"/>`
+      : '';
   const axis = [
     `<line x1="${L}" y1="${H - B}" x2="${W - R}" y2="${H - B}" stroke="#888"/>`,
     `<line x1="${L}" y1="${T}" x2="${L}" y2="${H - B}" stroke="#888"/>`,
@@ -47,7 +52,7 @@ export function profileSvg(profile) {
   const key = series
     .map((k) => `<span class="swatch" style="background:${k.colour}"></span>${escape(k.label)}`)
     .join('');
-  return `<svg viewBox="0 0 ${W} ${H}" role="img" aria-label="elevation profile">${axis.join('')}${lines.join('')}</svg><div>${key}</div>`;
+  return `<svg viewBox="0 0 ${W} ${H}" role="img" aria-label="elevation profile">${band}${axis.join('')}${lines.join('')}</svg><div>${key}${band ? '<span class="swatch" style="background:#00e5ff;opacity:.4;height:8px"></span>this road' : ''}</div>`;
 }
 
 export { escape };
