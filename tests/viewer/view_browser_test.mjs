@@ -1,6 +1,6 @@
 // view.html in a real browser: headless Chromium (Debian's) driven by puppeteer-core.
 //   node view_browser_test.mjs --view OUT/view.html --road "NAME" --shots DIR [--replay 1]
-// Checks: the page loads from file:// with no console error and every tile in view; the canvas
+// Checks: the page loads from file:// with the network off, with no console error and every tile in view; the canvas
 // is not empty (pixels read back); a click on a road named NAME selects it and shows its
 // profile (DEM drape, paper, fit); the terrain toggle and the colour mode change the picture;
 // the findings list jumps to a finding; with --replay, a co-simulation's replay plays. Screenshots go to DIR. Prints one JSON line of figures.
@@ -37,6 +37,8 @@ try {
   page.on('console', (m) => m.type() === 'error' && errors.push(m.text()));
   page.on('pageerror', (e) => errors.push(String(e)));
   page.on('requestfailed', (r) => errors.push(`request failed: ${r.url()}`));
+  // No network: everything the page needs is in the build's folder.
+  await page.setOfflineMode(true);
   const start = Date.now();
   await page.goto(pathToFileURL(path.resolve(args.view)).href);
   await page.waitForFunction(() => window.reliefView && window.reliefView.ready, { timeout: 180000, polling: 200 });
