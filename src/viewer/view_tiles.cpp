@@ -8,6 +8,7 @@
 #include <limits>
 #include <map>
 #include <numeric>
+#include <set>
 #include <string_view>
 #include <unordered_map>
 
@@ -143,7 +144,7 @@ Clustered cluster_part(const LayerPart& part, const std::vector<int>* owner_of_t
   out.mesh.kind = part.mesh->kind;
   std::unordered_map<std::uint64_t, std::uint32_t> index_of;
   std::vector<Cell> cells;
-  std::unordered_map<std::uint64_t, char> seen;  // a triangle's three cells, to drop repeats
+  std::set<std::array<std::uint32_t, 3>> seen;  // a triangle's three cells, to drop repeats
   std::vector<std::uint32_t> corner_cell;
   for (const std::uint32_t t : part.triangles) {
     const auto& tri = part.mesh->triangles[t];
@@ -151,7 +152,8 @@ Clustered cluster_part(const LayerPart& part, const std::vector<int>* owner_of_t
     std::array<std::uint32_t, 3> c{};
     for (int k = 0; k < 3; ++k) {
       const Vec3& p = part.mesh->vertices[tri[k]];
-      // 21 bits of cell per axis (±1e6 cells) and the owner's index: one key.
+      // 20 bits of cell per axis (wrapping after 1M cells: 2 500 km at the smallest cell) and
+      // 24 of the owner's index: one key.
       const auto ix =
           static_cast<std::uint64_t>(static_cast<std::int64_t>(std::floor(p.x() / cell_m)) & 0xfffff);
       const auto iy =
@@ -168,10 +170,7 @@ Clustered cluster_part(const LayerPart& part, const std::vector<int>* owner_of_t
     // The same three cells in either winding are one triangle.
     std::array<std::uint32_t, 3> sorted = c;
     std::sort(sorted.begin(), sorted.end());
-    const std::uint64_t id = (static_cast<std::uint64_t>(sorted[0]) * 0x9E3779B97F4A7C15ull) ^
-                             (static_cast<std::uint64_t>(sorted[1]) << 21) ^
-                             (static_cast<std::uint64_t>(sorted[2]) << 42);
-    if (!seen.try_emplace(id, 0).second) continue;
+    if (!seen.insert(sorted).second) continue;
     out.mesh.triangles.push_back(c);
     if (owner_of_triangle) out.owner.push_back(owner);
   }
