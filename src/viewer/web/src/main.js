@@ -52,7 +52,7 @@ function main() {
   controls.maxPolarAngle = Math.PI * 0.495;
   controls.update();
 
-  const state = { mode: 'grade', selected: null, visible: { terrain: true, marking: true, structure: true, findings: true } };
+  const state = { mode: 'grade', selected: null };
   const groups = {};
   for (const name of ['road', 'structure', 'sidewalk', 'marking', 'terrain', 'other']) {
     groups[name] = new THREE.Group();
@@ -238,7 +238,6 @@ function main() {
     requestRender();
   }
   function setLayer(name, visible) {
-    state.visible[name] = visible;
     (name === 'findings' ? markers : groups[name]).visible = visible;
     const box = document.querySelector(`input[name=layer][value=${name}]`);
     if (box) box.checked = visible;
