@@ -1,7 +1,9 @@
 #include "build_summary.h"
 
 #include <algorithm>
+#include <filesystem>
 #include <iomanip>
+#include <map>
 #include <sstream>
 
 #include "console.h"
@@ -128,7 +130,20 @@ std::string format_build_summary(const BuildResult& result) {
   double total = 0.0;
   for (const auto& [stage, s] : r.timings_s) total += s;
   out << "  time       " << fixed(r.wall_s > 0.0 ? r.wall_s : total, 3) << " s\n";
-  for (const auto& path : result.written) out << "  wrote      " << path.string() << "\n";
+  // Files of a folder of their own (the 3D view's view/: a city has a hundred tiles) as one line.
+  std::map<std::filesystem::path, std::size_t> in_folder;
+  for (const auto& path : result.written)
+    if (path.parent_path().filename() == "view") ++in_folder[path.parent_path()];
+  for (const auto& path : result.written) {
+    const auto folder = in_folder.find(path.parent_path());
+    if (folder == in_folder.end()) {
+      out << "  wrote      " << path.string() << "\n";
+    } else if (folder->second > 0) {
+      out << "  wrote      " << folder->first.string() << "/ (" << folder->second
+          << " files: the 3D view's index and tiles)\n";
+      folder->second = 0;
+    }
+  }
   return out.str();
 }
 
