@@ -2,29 +2,12 @@
 #include <string>
 
 #include "relief/core/errors.h"
-
+#include "relief/core/xml_writer.h"
 #include "relief/viewer/view_writer.h"
 #include "viewer/view_assets.h"
 
 namespace relief {
 namespace {
-
-std::string escaped_text(const std::string& text) {
-  std::string out;
-  for (const char c : text) {
-    if (c == '<')
-      out += "&lt;";
-    else if (c == '>')
-      out += "&gt;";
-    else if (c == '&')
-      out += "&amp;";
-    else if (c == '"')
-      out += "&quot;";
-    else
-      out += c;
-  }
-  return out;
-}
 
 void replace_all(std::string& text, std::string_view key, std::string_view value) {
   for (std::size_t at = text.find(key); at != std::string::npos; at = text.find(key, at + value.size()))
@@ -44,7 +27,9 @@ std::string view_page(const std::string& title, const ViewPageOptions& options) 
   for (const std::string& script : options.scripts) extra += "<script src=\"" + script + "\"></script>\n";
   std::string page(detail::kViewPageTemplate);
   // The short fields first: the style and the script may hold any text, {{TITLE}} included.
-  replace_all(page, "{{TITLE}}", escaped_text(title));
+  std::string escaped_title;
+  append_xml_escaped(escaped_title, title);
+  replace_all(page, "{{TITLE}}", escaped_title);
   replace_all(page, "{{DATA}}", options.data_dir);
   replace_all(page, "{{REPORT}}", options.report);
   replace_all(page, "{{EXTRA}}", extra);
