@@ -65,82 +65,100 @@ AxisCells axis_cells(double u, int n) {
   return {i0, std::min(i0 + 1, n - 1), c - i0};
 }
 
-// Frame CRS -> raster CRS through a regular grid of nodes transformed exactly by PROJ and
+// Frame CRS -> raster CRS through a lattice of nodes transformed exactly by PROJ and
 // interpolated bilinearly in between (the idea of GDAL's approximate transformer): PROJ costs
-// ~1 us a point for a datum shift, the grid ~10 ns. Only built when the interpolation error,
-// checked against PROJ at every cell centre, is within the tolerance.
+// ~1 us a point for a datum shift, the lattice ~10 ns. The nodes lie at multiples of a step h
+// (a power of two metres) of the frame CRS, and h is chosen from the raster's whole extent, not
+// from the area read: a point gets the same four nodes, hence the same bits, in every build that
+// reads it (region tiles agree with each other and with a whole build).
 class GridTransform {
  public:
-  // Grid over `box` (frame CRS), refined until the error is <= tolerance_px pixels of
-  // `pixel_size` (raster CRS units) on both axes; nullopt when even the finest grid is not
-  // accurate enough or PROJ fails at a node.
-  static std::optional<GridTransform> build(const CrsTransform& exact, const Aabb2& box,
-                                            const Vec2& pixel_size, double tolerance_px) {
-    const Vec2 size = box.max - box.min;
+  // The coarsest step (1024 m .. 16 m) whose interpolation error, checked against PROJ at the
+  // centres of 24 x 24 lattice cells spread over `extent` (the raster's extent in the frame
+  // CRS), is <= tolerance_px pixels of `pixel_size` (raster CRS units) on both axes; nullopt
+  // when none is, or PROJ fails there.
+  static std::optional<double> step_for(const CrsTransform& exact, const Aabb2& extent,
+                                        const Vec2& pixel_size, double tolerance_px) {
+    const Vec2 size = extent.max - extent.min;
     if (!(size.x() > 0.0) || !(size.y() > 0.0) || !size.allFinite()) return std::nullopt;
-    for (int cells = 16; cells <= 256; cells *= 2) {
-      GridTransform grid(box, cells);
-      if (!grid.transform_nodes(exact)) return std::nullopt;
-      if (grid.max_error_px(exact, pixel_size) <= tolerance_px) return grid;
+    constexpr int kProbes = 24;
+    for (double h = 1024.0; h >= 16.0; h /= 2.0) {
+      // Corners and centre of each probe cell, in one PROJ batch.
+      std::vector<Vec2> points;
+      points.reserve(kProbes * kProbes * 5);
+      for (int j = 0; j < kProbes; ++j) {
+        for (int i = 0; i < kProbes; ++i) {
+          const Vec2 at = extent.min + Vec2((i + 0.5) * size.x() / kProbes, (j + 0.5) * size.y() / kProbes);
+          const Vec2 lo(std::floor(at.x() / h) * h, std::floor(at.y() / h) * h);
+          for (const Vec2& d : {Vec2(0, 0), Vec2(h, 0), Vec2(0, h), Vec2(h, h), Vec2(0.5 * h, 0.5 * h)})
+            points.push_back(lo + d);
+        }
+      }
+      exact.apply(std::span<Vec2>(points));
+      double worst = 0.0;
+      for (std::size_t k = 0; k < points.size(); k += 5) {
+        const Vec2 blend = 0.25 * (points[k] + points[k + 1] + points[k + 2] + points[k + 3]);
+        const double e = (blend - points[k + 4]).cwiseAbs().cwiseQuotient(pixel_size).maxCoeff();
+        worst = std::isfinite(e) ? std::max(worst, e) : std::numeric_limits<double>::infinity();
+      }
+      if (worst <= tolerance_px) return h;
     }
     return std::nullopt;
   }
 
-  [[nodiscard]] bool covers(const Vec2& p) const { return box_.contains(p); }
+  // The lattice of step h over `box` (frame CRS); nullopt when PROJ fails at a node or the box
+  // would take more than kMaxNodes nodes.
+  static std::optional<GridTransform> build(const CrsTransform& exact, const Aabb2& box, double h) {
+    constexpr double kMaxNodes = 4e6;
+    if (!(box.max - box.min).allFinite()) return std::nullopt;
+    GridTransform grid;
+    grid.h_ = h;
+    grid.i0_ = static_cast<long long>(std::floor(box.min.x() / h));
+    grid.j0_ = static_cast<long long>(std::floor(box.min.y() / h));
+    grid.ni_ = static_cast<long long>(std::floor(box.max.x() / h)) - grid.i0_ + 1;
+    grid.nj_ = static_cast<long long>(std::floor(box.max.y() / h)) - grid.j0_ + 1;
+    if (static_cast<double>(grid.ni_ + 1) * static_cast<double>(grid.nj_ + 1) > kMaxNodes)
+      return std::nullopt;
+    grid.nodes_.reserve(static_cast<std::size_t>((grid.ni_ + 1) * (grid.nj_ + 1)));
+    for (long long j = 0; j <= grid.nj_; ++j) {
+      for (long long i = 0; i <= grid.ni_; ++i)
+        grid.nodes_.emplace_back(static_cast<double>(grid.i0_ + i) * h,
+                                 static_cast<double>(grid.j0_ + j) * h);
+    }
+    exact.apply(std::span<Vec2>(grid.nodes_));
+    if (!std::all_of(grid.nodes_.begin(), grid.nodes_.end(), [](const Vec2& n) { return n.allFinite(); }))
+      return std::nullopt;
+    return grid;
+  }
 
-  // Bilinear blend of the four nodes around p (p inside the box).
+  [[nodiscard]] bool covers(const Vec2& p) const {
+    const double u = std::floor(p.x() / h_) - static_cast<double>(i0_);
+    const double v = std::floor(p.y() / h_) - static_cast<double>(j0_);
+    return u >= 0.0 && u < static_cast<double>(ni_) && v >= 0.0 && v < static_cast<double>(nj_);
+  }
+
+  // Bilinear blend of the four nodes of p's lattice cell (p covered).
   [[nodiscard]] Vec2 apply(const Vec2& p) const {
-    const double u = (p.x() - box_.min.x()) / cell_.x();
-    const double v = (p.y() - box_.min.y()) / cell_.y();
-    const int i = std::clamp(static_cast<int>(u), 0, cells_ - 1);
-    const int j = std::clamp(static_cast<int>(v), 0, cells_ - 1);
-    const double s = u - i;
-    const double t = v - j;
+    const double fu = std::floor(p.x() / h_), fv = std::floor(p.y() / h_);
+    const double s = p.x() / h_ - fu;
+    const double t = p.y() / h_ - fv;
+    const auto i = static_cast<long long>(fu) - i0_;
+    const auto j = static_cast<long long>(fv) - j0_;
     return (1 - s) * (1 - t) * node(i, j) + s * (1 - t) * node(i + 1, j) + (1 - s) * t * node(i, j + 1) +
            s * t * node(i + 1, j + 1);
   }
 
  private:
-  GridTransform(const Aabb2& box, int cells) : box_(box), cells_(cells), cell_((box.max - box.min) / cells) {}
+  GridTransform() = default;
 
-  [[nodiscard]] const Vec2& node(int i, int j) const {
-    return nodes_[static_cast<std::size_t>(j) * (cells_ + 1) + i];
-  }
-  [[nodiscard]] Vec2 node_position(double i, double j) const {
-    return box_.min + Vec2(i * cell_.x(), j * cell_.y());
+  [[nodiscard]] const Vec2& node(long long i, long long j) const {
+    return nodes_[static_cast<std::size_t>(j * (ni_ + 1) + i)];
   }
 
-  bool transform_nodes(const CrsTransform& exact) {
-    nodes_.clear();
-    for (int j = 0; j <= cells_; ++j) {
-      for (int i = 0; i <= cells_; ++i) nodes_.push_back(node_position(i, j));
-    }
-    exact.apply(std::span<Vec2>(nodes_));
-    return std::all_of(nodes_.begin(), nodes_.end(), [](const Vec2& n) { return n.allFinite(); });
-  }
-
-  // Largest difference from PROJ at the cell centres, in pixels.
-  [[nodiscard]] double max_error_px(const CrsTransform& exact, const Vec2& pixel_size) const {
-    std::vector<Vec2> centres;
-    centres.reserve(static_cast<std::size_t>(cells_) * cells_);
-    for (int j = 0; j < cells_; ++j) {
-      for (int i = 0; i < cells_; ++i) centres.push_back(node_position(i + 0.5, j + 0.5));
-    }
-    std::vector<Vec2> truth = centres;
-    exact.apply(std::span<Vec2>(truth));
-    double worst = 0.0;
-    for (std::size_t k = 0; k < centres.size(); ++k) {
-      const Vec2 error = (apply(centres[k]) - truth[k]).cwiseAbs().cwiseQuotient(pixel_size);
-      worst = std::max(worst, std::isfinite(error.maxCoeff()) ? error.maxCoeff()
-                                                              : std::numeric_limits<double>::infinity());
-    }
-    return worst;
-  }
-
-  Aabb2 box_;
-  int cells_ = 0;
-  Vec2 cell_;
-  std::vector<Vec2> nodes_;  // (cells_ + 1)^2, row-major from box_.min
+  double h_ = 1.0;
+  long long i0_ = 0, j0_ = 0;  // lattice index of node (0, 0)
+  long long ni_ = 0, nj_ = 0;  // cells
+  std::vector<Vec2> nodes_;    // (ni_ + 1) x (nj_ + 1), row-major from (i0_, j0_)
 };
 
 // Error allowed for the grid transformation: 1e-4 pixel (1 mm on a 10 m DEM).
@@ -302,13 +320,13 @@ std::string quoted_list(const std::vector<std::string>& paths) {
 
 // Bounding box in the frame CRS of the raster's extent, by transforming its densified edges
 // back with the same operation (points PROJ cannot transform are skipped).
-Aabb2 extent_in_frame(const Raster& raster) {
+Aabb2 extent_in_frame(const DemInfo& info, const CrsTransform& to_raster) {
   constexpr int kSteps = 20;
-  const Aabb2& e = raster.info.extent;
+  const Aabb2& e = info.extent;
   Aabb2 out;
   const auto add = [&](double x, double y) {
     try {
-      out.extend(raster.to_raster.apply_inverse(Vec2(x, y)));
+      out.extend(to_raster.apply_inverse(Vec2(x, y)));
     } catch (const ProjectionError&) {
       // Outside the operation's domain: that edge point does not bound anything usable.
     }
@@ -323,6 +341,10 @@ Aabb2 extent_in_frame(const Raster& raster) {
     add(e.max.x(), y);
   }
   return out;
+}
+
+Aabb2 extent_in_frame(const Raster& raster) {
+  return extent_in_frame(raster.info, raster.to_raster);
 }
 
 void report_missing_grid(const DemInfo& info, const std::string& frame_crs, Diagnostics* diagnostics) {
@@ -496,7 +518,11 @@ Opened open_raster(const std::string& path, const GeoFrame& frame, const Aabb2& 
   if (std::all_of(z.begin(), z.end(), [](double v) { return std::isnan(v); })) {
     return {info, std::nullopt, Unused::all_nodata};
   }
-  auto fast = GridTransform::build(to_raster, area_crs, info.pixel_size, kGridTolerancePx);
+  std::optional<GridTransform> fast;
+  if (const std::optional<double> step = GridTransform::step_for(to_raster, extent_in_frame(info, to_raster),
+                                                                 info.pixel_size, kGridTolerancePx)) {
+    fast = GridTransform::build(to_raster, area_crs, *step);
+  }
   return {info, Raster{info, grid, HeightWindow{window, std::move(z)}, std::move(to_raster), std::move(fast)},
           Unused::none};
 }
