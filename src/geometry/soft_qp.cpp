@@ -269,6 +269,7 @@ class InteriorPoint {
     const Eigen::Index n = x.size();
     Vec Px(n), Atz(n), rd(n), rhs(n), dx(n);
     const double tol = options_.tolerance;
+    const double gap_tol = options_.gap_tolerance.value_or(tol);
     double weight_sum = 0.0;
     for (std::size_t k = 0; k < m; ++k) weight_sum += rows_.tl[k] + rows_.tu[k] + rows_.tv[k];
     weight_sum = std::max(weight_sum, 1e-300);
@@ -285,7 +286,8 @@ class InteriorPoint {
     const auto end_without_tolerance = [&](const char* status) {
       if (acceptable_stationarity <= kRoundingStationarity) {
         if (options_.trace)
-          options_.trace(std::string(status) + ": the best point within the rounding tolerances is the answer");
+          options_.trace(std::string(status) +
+                         ": the best point within the rounding tolerances is the answer");
         x = acceptable_x;
         out.stationarity = acceptable.stationarity;
         out.gap = acceptable.gap;
@@ -331,7 +333,7 @@ class InteriorPoint {
       out.gap = gap / (1.0 + std::abs(objective));
       out.objective = objective;
       const double mu = gap / weight_sum;
-      if (out.stationarity <= 10.0 * tol && primal <= tol && price_residual <= tol && out.gap <= tol) {
+      if (out.stationarity <= 10.0 * tol && primal <= tol && price_residual <= tol && out.gap <= gap_tol) {
         out.converged = true;
         return;
       }

@@ -816,6 +816,7 @@ ProfileFitResult fit_profiles(const RoadNetwork& network, const std::vector<Road
   rows.move_into(qp, n);
   SoftQpOptions solver;
   solver.max_iterations = options.max_iterations;
+  solver.gap_tolerance = 1e-12;
   solver.ordering = elimination_order(network, raw, vars, result.separations, block_stations, qp.P, qp.A);
   solver.trace = options.trace;
   const SoftQpResult solution = solve_soft_qp(qp, solver);
