@@ -45,30 +45,56 @@ TriangleMesh extract(const TriangleMesh& mesh, const std::vector<std::uint32_t>&
   return out;
 }
 
-}  // namespace
+using Cell = std::pair<long long, long long>;  // (row, column): sorts row-major
 
-std::vector<SceneTile> split_into_tiles(const MeshScene& scene, double size_m) {
+// The grid cell holding triangle `i`'s centroid.
+Cell cell_of(const TriangleMesh& mesh, std::size_t i, double size_m) {
+  Vec3 c = Vec3::Zero();
+  for (const std::uint32_t v : mesh.triangles[i]) {
+    if (v >= mesh.vertices.size()) {
+      throw InvalidInput("tiles: mesh '" + mesh.name + "' has a vertex index out of range");
+    }
+    c += mesh.vertices[v];
+  }
+  c /= 3.0;
+  return {static_cast<long long>(std::floor(c.y() / size_m)),
+          static_cast<long long>(std::floor(c.x() / size_m))};
+}
+
+void check_size(double size_m) {
   if (!(size_m > 0.0) || !std::isfinite(size_m)) {
     throw InvalidInput("tiles: the tile size must be positive and finite (got " + std::to_string(size_m) +
                        ")");
   }
+}
+
+}  // namespace
+
+MeshScene scene_in_cell(const MeshScene& scene, double size_m, long long column, long long row) {
+  check_size(size_m);
+  MeshScene out;
+  out.frame = scene.frame;
+  out.metadata = scene.metadata;
+  for (const TriangleMesh& mesh : scene.meshes) {
+    std::vector<std::uint32_t> ids;
+    for (std::size_t i = 0; i < mesh.triangles.size(); ++i) {
+      if (cell_of(mesh, i, size_m) == Cell{row, column}) ids.push_back(static_cast<std::uint32_t>(i));
+    }
+    if (ids.empty()) continue;
+    std::vector<std::uint32_t> index(mesh.vertices.size(), kUnused);
+    out.meshes.push_back(extract(mesh, ids, index));
+  }
+  return out;
+}
+
+std::vector<SceneTile> split_into_tiles(const MeshScene& scene, double size_m) {
+  check_size(size_m);
   // Grid cell of every triangle, per mesh; the cells used, in row-major order.
-  using Cell = std::pair<long long, long long>;  // (row, column): sorts row-major
   std::map<Cell, std::vector<std::vector<std::uint32_t>>> cells;
   for (std::size_t m = 0; m < scene.meshes.size(); ++m) {
     const TriangleMesh& mesh = scene.meshes[m];
     for (std::size_t i = 0; i < mesh.triangles.size(); ++i) {
-      Vec3 c = Vec3::Zero();
-      for (const std::uint32_t v : mesh.triangles[i]) {
-        if (v >= mesh.vertices.size()) {
-          throw InvalidInput("tiles: mesh '" + mesh.name + "' has a vertex index out of range");
-        }
-        c += mesh.vertices[v];
-      }
-      c /= 3.0;
-      const Cell cell{static_cast<long long>(std::floor(c.y() / size_m)),
-                      static_cast<long long>(std::floor(c.x() / size_m))};
-      auto& per_mesh = cells[cell];
+      auto& per_mesh = cells[cell_of(mesh, i, size_m)];
       if (per_mesh.empty()) per_mesh.resize(scene.meshes.size());
       per_mesh[m].push_back(static_cast<std::uint32_t>(i));
     }

@@ -73,7 +73,11 @@ MeshSummary write_mesh_outputs(const MeshStageInput& in, const Scene& built, Out
                                StageTimer& timer, std::vector<std::filesystem::path>& written,
                                std::vector<std::string>& names, CarlaFbx* carla_fbx) {
   const BuildOptions& options = in.options;
-  const MeshScene& scene = built.meshes;
+  const MeshScene core = options.mesh_core_size_m > 0.0
+                             ? scene_in_cell(built.meshes, options.mesh_core_size_m, options.mesh_core_column,
+                                             options.mesh_core_row)
+                             : MeshScene{};
+  const MeshScene& scene = options.mesh_core_size_m > 0.0 ? core : built.meshes;
   // The checks only read the scene, so they run beside the file writers.
   BackgroundStage<SceneChecks> check("check meshes (beside the files)", [&] { return check_scene(built); });
 

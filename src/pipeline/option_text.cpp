@@ -93,4 +93,16 @@ LonLatBox parse_lon_lat_box(std::string_view text) {
   return {v[0], v[1], v[2], v[3]};
 }
 
+LonLat parse_lon_lat(std::string_view text) {
+  const std::vector<std::string> items = split_list(text);
+  std::vector<double> v;
+  for (const std::string& item : items) {
+    if (const std::optional<double> number = parse_finite_number(item)) v.push_back(*number);
+  }
+  if (items.size() != 2 || v.size() != 2 || std::abs(v[0]) > 180 || std::abs(v[1]) > 90) {
+    throw OptionError("'" + std::string(text) + "' is not LON,LAT in degrees");
+  }
+  return {v[0], v[1]};
+}
+
 }  // namespace relief

@@ -7,7 +7,7 @@ namespace relief {
 LoadedNetwork load_network(const BuildOptions& options, Diagnostics& diagnostics, StageTimer& timer) {
   LoadedNetwork loaded;
   loaded.osm = timer.run("read OSM", [&] { return read_osm(options.osm_path, options.osm, diagnostics); });
-  const LonLat centre = loaded.osm.bounds.centre();
+  const LonLat centre = options.frame_centre.value_or(loaded.osm.bounds.centre());
   const GeoFrame frame = options.crs ? GeoFrame::in_crs(*options.crs, centre) : GeoFrame::utm_at(centre);
   loaded.network = timer.run("build network", [&] { return build_network(loaded.osm, frame, diagnostics); });
   return loaded;

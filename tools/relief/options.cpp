@@ -57,6 +57,13 @@ void add_input_options(CLI::App& app, BuildOptions& options) {
       },
       "metric CRS of the local frame (default: WGS84 UTM zone of the data)");
   app.add_option_function<std::string>(
+      "--origin",
+      [&options](const std::string& text) {
+        if (!text.empty()) parse_for("--origin", [&] { options.frame_centre = parse_lon_lat(text); });
+      },
+      "centre of the local frame, LON,LAT (default: the centre of the roads; builds that share it share one "
+      "frame)");
+  app.add_option_function<std::string>(
       "--dem-unit",
       [&options](const std::string& text) {
         if (text.empty()) return;

@@ -26,4 +26,10 @@ struct SceneTile {
 /// Linear in the number of triangles. Throws InvalidInput unless size_m is positive and finite.
 [[nodiscard]] std::vector<SceneTile> split_into_tiles(const MeshScene& scene, double size_m);
 
+/// The triangles of `scene` that split_into_tiles puts in the grid cell (column, row), counted
+/// from the frame's origin (cell (c, r) spans size_m * [c, c + 1) x [r, r + 1)): a region tile's
+/// own piece of a scene built over its window. Same frame and metadata; meshes without triangles
+/// there are left out.
+[[nodiscard]] MeshScene scene_in_cell(const MeshScene& scene, double size_m, long long column, long long row);
+
 }  // namespace relief

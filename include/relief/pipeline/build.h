@@ -47,7 +47,10 @@ struct BuildOptions {
   std::vector<std::string> reference_dem_paths;  ///< optional independent check
   std::filesystem::path out_dir;
   std::string name;                ///< default: the OSM file's stem
-  std::optional<std::string> crs;  ///< default: the WGS84 UTM zone of the data
+  std::optional<std::string> crs;  ///< default: the WGS84 UTM zone of the frame's centre
+  /// Centre of the local frame (its origin, rounded to whole metres of the CRS); default: the
+  /// centre of the roads read. Builds that share it (region tiles) share one frame.
+  std::optional<LonLat> frame_centre;
   OsmReadOptions osm;
   DemOptions dem;
   DemOptions reference_dem;
@@ -80,6 +83,11 @@ struct BuildOptions {
   /// Besides the whole scene, the scene cut into tiles of this size (m) in every format, as
   /// NAME_Tile_X_Y (see split_into_tiles); 0: no tiles.
   double mesh_tile_size_m = 0.0;
+  /// Region tiles: the scene files (and the CARLA package) hold only the triangles of this cell
+  /// of the grid of mesh_core_size_m (scene_in_cell, mesh_tiles.h); the checks still see the
+  /// whole window. 0: the whole scene.
+  double mesh_core_size_m = 0.0;
+  long long mesh_core_column = 0, mesh_core_row = 0;
   /// Also NAME.carla.tar.gz: the package CARLA's `make import` ingests (export/carla_package.h),
   /// of NAME.xodr and NAME.fbx, or of the FBX tiles when mesh_tile_size_m > 0 (CARLA's large
   /// map). Needs the xodr and mesh outputs with the fbx format, a name CARLA takes and a tile

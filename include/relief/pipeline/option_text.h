@@ -48,4 +48,7 @@ void apply_gate_threshold(GateThresholds& gates, std::string_view item);
 /// Throws OptionError otherwise.
 [[nodiscard]] LonLatBox parse_lon_lat_box(std::string_view text);
 
+/// "LON,LAT" in degrees within [-180, 180] x [-90, 90]. Throws OptionError otherwise.
+[[nodiscard]] LonLat parse_lon_lat(std::string_view text);
+
 }  // namespace relief
