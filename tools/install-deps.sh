@@ -7,7 +7,7 @@ packages=(
   build-essential cmake ninja-build pkg-config ccache
   libcgal-dev libeigen3-dev libgmp-dev libmpfr-dev libboost-dev
   libproj-dev proj-data proj-bin
-  libosmium2-dev libprotozero-dev libexpat1-dev libbz2-dev zlib1g-dev libdeflate-dev
+  libosmium2-dev libprotozero-dev libexpat1-dev libbz2-dev zlib1g-dev libdeflate-dev libssl-dev
   libgdal-dev gdal-bin
   libassimp-dev assimp-utils
   libgtest-dev libgmock-dev libbenchmark-dev
@@ -15,7 +15,7 @@ packages=(
   libxml2-utils sumo sumo-tools python3-xmlschema zip blender
   pybind11-dev python3-dev python3-pytest
   libbullet-dev python3-numpy libembree-dev python3-open3d
-  nodejs chromium
+  nodejs chromium python3-distributed
 )
 # npm: Debian's own package when Node.js is Debian's (a Node.js with its own npm has it already).
 command -v npm >/dev/null || packages+=(npm)

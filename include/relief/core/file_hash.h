@@ -1,0 +1,19 @@
+#pragma once
+// Content hashes (SHA-256) of input files, so that work done on them can be recognised as done:
+// a region tile is rebuilt only when its inputs or options changed.
+
+#include <filesystem>
+#include <string>
+#include <string_view>
+
+namespace relief {
+
+/// Lower-case hex SHA-256 of `bytes`.
+[[nodiscard]] std::string sha256_hex(std::string_view bytes);
+
+/// Lower-case hex SHA-256 of the file's content, read in blocks (constant memory). A GDAL
+/// virtual path ("/vsizip/A.zip/B.hgt", "/vsigzip/C.gz") is hashed by its container file, the
+/// first component of the path that is a regular file. Throws IoError when it cannot be read.
+[[nodiscard]] std::string sha256_of_file(const std::filesystem::path& path);
+
+}  // namespace relief

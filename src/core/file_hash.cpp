@@ -1,0 +1,77 @@
+#include "relief/core/file_hash.h"
+
+#include <openssl/evp.h>
+
+#include <array>
+#include <fstream>
+#include <memory>
+
+#include "relief/core/errors.h"
+
+namespace relief {
+namespace {
+
+class Sha256 {
+ public:
+  Sha256() : ctx_(EVP_MD_CTX_new(), &EVP_MD_CTX_free) {
+    if (!ctx_ || EVP_DigestInit_ex(ctx_.get(), EVP_sha256(), nullptr) != 1) {
+      throw Error("cannot start a SHA-256 digest (OpenSSL)");
+    }
+  }
+  void update(const char* data, std::size_t size) { EVP_DigestUpdate(ctx_.get(), data, size); }
+  std::string hex() {
+    std::array<unsigned char, EVP_MAX_MD_SIZE> digest{};
+    unsigned int size = 0;
+    EVP_DigestFinal_ex(ctx_.get(), digest.data(), &size);
+    static constexpr char kDigits[] = "0123456789abcdef";
+    std::string out;
+    for (unsigned int i = 0; i < size; ++i) {
+      out += kDigits[digest[i] >> 4];
+      out += kDigits[digest[i] & 15];
+    }
+    return out;
+  }
+
+ private:
+  std::unique_ptr<EVP_MD_CTX, decltype(&EVP_MD_CTX_free)> ctx_;
+};
+
+// The file a GDAL virtual path reads from: its first component that is a regular file.
+std::filesystem::path container_file(const std::filesystem::path& path) {
+  const std::string text = path.string();
+  if (text.rfind("/vsi", 0) != 0) return path;
+  std::size_t slash = text.find('/', 1);  // after "/vsizip"
+  std::error_code ec;
+  while (slash != std::string::npos) {
+    const std::size_t next = text.find('/', slash + 1);
+    const std::filesystem::path candidate =
+        text.substr(slash, next == std::string::npos ? next : next - slash);
+    if (std::filesystem::is_regular_file(candidate, ec)) return candidate;
+    slash = next;
+  }
+  return path;
+}
+
+}  // namespace
+
+std::string sha256_hex(std::string_view bytes) {
+  Sha256 digest;
+  digest.update(bytes.data(), bytes.size());
+  return digest.hex();
+}
+
+std::string sha256_of_file(const std::filesystem::path& path) {
+  const std::filesystem::path file = container_file(path);
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw IoError("cannot read " + file.string() + " to hash it");
+  Sha256 digest;
+  std::array<char, 1 << 16> block{};
+  while (in) {
+    in.read(block.data(), block.size());
+    digest.update(block.data(), static_cast<std::size_t>(in.gcount()));
+  }
+  if (in.bad()) throw IoError("cannot read " + file.string() + " to hash it");
+  return digest.hex();
+}
+
+}  // namespace relief
