@@ -29,7 +29,8 @@ set(relief_realdata_tests
   "^Build\\.(FailedRunLeavesNoOutputs|PotreroIdwDiffersFromBilinear)$"
   "^Info\\.DescribesPotreroWithoutWriting$"
   "^MeshPipeline\\.(PotreroTilesAddUpToTheScene|PotreroCarlaPackageHoldsTheFilesWritten)$"
-  "^MeshPipeline\\.PotreroCarlaLargeMapFillsTheTileGrid$")
+  "^MeshPipeline\\.PotreroCarlaLargeMapFillsTheTileGrid$"
+  "^TilesRealData\\.")
 
 foreach(module IN LISTS relief_test_modules)
   foreach(test IN LISTS relief_${module}_tests_TESTS)

@@ -617,5 +617,53 @@ PY
   check "bad SOURCE_DATE_EPOCH no outputs" no_outputs "$RELIEF_TMP/epoch"
 fi
 
+# relief tiles: Potrero in 250 m tiles, built two at a time, merged, and measured against a
+# whole build in the plan's frame: the same roads and junctions, the plan to the bit, heights
+# within 1 mm, the tiles' Road_Road one surface without self-intersections.
+if [ -d "$potrero" ]; then
+  t="$RELIEF_TMP/tiles"
+  pdem="$potrero/USGS_13_n38w123-subsection-small-potrero.tif"
+  check "tiles plan" run 0 "$t" tiles plan --osm "$potrero/sf-potrero.osm.gz" --dem "$pdem" --tile-size 250 \
+    --out "$t" --no-compare
+  check "tiles merge before the build" run 3 "$t" tiles merge "$t"
+  check "tiles merge before the build message" stderr_has "is not built: run relief tiles build"
+  check "tiles unknown tile" run 2 "$t" tiles build "$t" --tile 99,99
+  check "tiles build all" run 0 "$t" tiles build "$t" --all --jobs 2
+  check "tiles up to date" run 0 "$t" tiles build "$t" --all
+  check "tiles up to date says so" grep -q "skipped" "$RELIEF_TMP/err"
+  origin=$(python3 -c "import json,sys; print('%.12f,%.12f' % tuple(json.load(open(sys.argv[1]))['frame']['centre_lon_lat']))" "$t/manifest.json")
+  check "tiles whole build" run 0 "$t/whole" build --osm "$potrero/sf-potrero.osm.gz" --dem "$pdem" --origin "$origin" \
+    --out "$t/whole" --outputs xodr,mesh,report --mesh-formats glb --no-compare --quiet
+  check "tiles merge" run 0 "$t" tiles merge "$t" --compare "$t/whole/sf-potrero.xodr"
+  check "tiles merged like the whole build" python3 - "$t" <<'PY'
+import json, os, sys
+t = sys.argv[1]
+r = json.load(open(os.path.join(t, "merged", "report.json")))
+m = json.load(open(os.path.join(t, "manifest.json")))
+w = r["whole_build"]
+print("tiles potrero: %d tiles, %d roads, %d junctions; against the whole build: %d of %d roads, plan %.2g m, "
+      "height %.2g m; seams: %d shared vertices, %d welded (%.2g m); Road_Road %d triangles, %d self-intersections"
+      % (len(r["tiles"]), r["opendrive"]["roads"], r["opendrive"]["junctions"], w["roads"] - w["unmatched"], w["roads"],
+         w["max_xy_m"], w["max_z_m"], r["seams"]["shared_vertices"], r["seams"]["welded"], r["seams"]["max_dz_m"],
+         r["joined"]["Road_Road"]["triangles"], r["joined"]["Road_Road"]["self_intersecting_pairs"]))
+assert len(r["tiles"]) == len(m["tiles"]) >= 6, len(r["tiles"])
+assert r["opendrive"]["links_unresolved"] == 0, r["opendrive"]
+assert w["unmatched"] == 0 and r["opendrive"]["roads"] == w["roads"], w
+assert w["max_xy_m"] <= 1e-9 and w["max_z_m"] <= 1e-3, w
+assert r["seams"]["shared_vertices"] > 0 and r["seams"]["max_dz_m"] <= 1e-3, r["seams"]
+assert r["joined"]["Road_Road"]["self_intersecting_pairs"] == 0, r["joined"]
+ts = json.load(open(os.path.join(t, "merged", "tileset.json")))
+assert ts["asset"]["version"] == "1.1" and len(ts["root"]["transform"]) == 16, ts["asset"]
+kids = ts["root"]["children"]
+assert len(kids) == r["scene_tiles"] > 0, len(kids)
+for k in kids:
+    assert os.path.isfile(os.path.join(t, "merged", k["content"]["uri"])), k
+    assert len(k["boundingVolume"]["box"]) == 12, k
+PY
+  if [ -f "$xsd" ] && command -v xmllint >/dev/null; then
+    check "tiles merged xodr validates (1.7)" xmllint --noout --schema "$xsd" "$t/merged/sf-potrero.xodr"
+  fi
+fi
+
 echo "$passed passed, $failures failed"
 [ "$failures" -eq 0 ]

@@ -6,6 +6,7 @@
 #include <set>
 #include <sstream>
 
+#include "build_args.h"
 #include "build_summary.h"
 #include "commands.h"
 #include "console.h"
@@ -16,15 +17,6 @@
 
 namespace relief::cli {
 namespace {
-
-// What `relief build` parses into: the library's options, bound field by field, and what only
-// the CLI knows (how loud to be, what a failed gate means for the exit code).
-struct BuildCommandArgs {
-  BuildOptions options;
-  bool quiet = false;
-  std::string fit_trace;  ///< file for the profile fit solver's progress, or empty
-  std::string gate_mode = "enforce";
-};
 
 // "bus=20 coach=15 ..." for the --help text of --vclass-max-grade: the library's defaults.
 std::string vclass_grades_text(const std::map<std::string, double>& grades) {
@@ -44,15 +36,9 @@ std::string list_text(const std::set<T>& items) {
 
 }  // namespace
 
-Runner add_build_command(CLI::App& app) {
-  auto* cmd =
-      app.add_subcommand("build", "Build the 3D road network from OSM and DEM(s) and write its outputs");
-  auto args = std::make_shared<BuildCommandArgs>();
+void add_build_options(CLI::App* cmd, BuildCommandArgs* args) {
   BuildOptions& o = args->options;
   add_input_options(*cmd, o);
-  cmd->add_option_function<std::string>(
-         "--out", [&o](const std::string& dir) { o.out_dir = dir; }, "output directory (created if missing)")
-      ->required();
   cmd->add_option("--name", o.name, "base name of the outputs (default: the OSM file's stem)");
   cmd->add_option("--reference-dem", o.reference_dem_paths,
                   "independent DEM(s) to validate the road heights against (e.g. a finer one)");
@@ -204,7 +190,17 @@ Runner add_build_command(CLI::App& app) {
                   "report failed gates but exit with 0")
       ->capture_default_str()
       ->check(CLI::IsMember({"enforce", "report"}));
+}
 
+Runner add_build_command(CLI::App& app) {
+  auto* cmd =
+      app.add_subcommand("build", "Build the 3D road network from OSM and DEM(s) and write its outputs");
+  auto args = std::make_shared<BuildCommandArgs>();
+  add_build_options(cmd, args.get());
+  cmd->add_option_function<std::string>(
+         "--out", [args](const std::string& dir) { args->options.out_dir = dir; },
+         "output directory (created if missing)")
+      ->required();
   return [args] {
     return run_reporting_errors([&] {
       Diagnostics diagnostics;

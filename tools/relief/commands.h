@@ -21,5 +21,6 @@ Runner add_cosim_command(CLI::App& app);
 Runner add_demand_command(CLI::App& app);
 Runner add_sight_command(CLI::App& app);
 Runner add_lidar_command(CLI::App& app);
+Runner add_tiles_command(CLI::App& app);
 
 }  // namespace relief::cli

@@ -23,6 +23,7 @@ int main(int argc, char** argv) {  // NOLINT(bugprone-exception-escape)
   const Runner demand = add_demand_command(app);
   const Runner sight = add_sight_command(app);
   const Runner lidar = add_lidar_command(app);
+  const Runner tiles = add_tiles_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::Success& e) {
@@ -38,5 +39,6 @@ int main(int argc, char** argv) {  // NOLINT(bugprone-exception-escape)
   if (app.got_subcommand("demand")) return demand();
   if (app.got_subcommand("sight")) return sight();
   if (app.got_subcommand("lidar")) return lidar();
+  if (app.got_subcommand("tiles")) return tiles();
   return kUsage;
 }

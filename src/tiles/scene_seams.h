@@ -1,0 +1,31 @@
+#pragma once
+// The seams between a region's scene tiles. Each tile is built over its own window, so a vertex
+// on the line between two tiles is computed twice: its plan position comes out with the same
+// bits in both builds (the reference lines and the DEM do not depend on the window) and its
+// height within the fit's agreement (well under a millimetre). The weld gives every such vertex
+// the height of the first tile that has it, so neighbouring tiles share their border vertices
+// bit for bit.
+
+#include <cstddef>
+#include <vector>
+
+#include "relief/geometry/triangle_mesh.h"
+
+namespace relief::detail {
+
+struct SeamWeld {
+  std::size_t shared_vertices = 0;  ///< vertices of a later tile at the plan position of an earlier one's
+  std::size_t welded = 0;           ///< of them, moved to the earlier tile's height
+  double max_dz_m = 0.0;            ///< largest height difference welded
+};
+
+/// Welds the tiles' meshes of the same name, in the order given: a vertex whose plan position
+/// (exact bits) is a vertex of an earlier tile's mesh and whose height is within `max_dz_m` of
+/// it takes that height. Linear (a hash of plan positions).
+SeamWeld weld_seams(std::vector<MeshScene>& tiles, double max_dz_m = 0.01);
+
+/// Every tile's mesh `name` in one mesh, vertices at the same position (exact bits) merged: the
+/// region's surface as a whole build would have it, for its checks.
+[[nodiscard]] TriangleMesh joined_mesh(const std::vector<MeshScene>& tiles, const std::string& name);
+
+}  // namespace relief::detail

@@ -1,0 +1,171 @@
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "relief/core/atomic_file.h"
+#include "relief/core/errors.h"
+#include "relief/export/mesh_writer.h"
+#include "relief/export/opendrive_writer.h"
+#include "relief/export/report_writer.h"
+#include "relief/geometry/mesh_quality.h"
+#include "relief/roads/opendrive_reader.h"
+#include "relief/tiles/tiles.h"
+#include "tiles/model_alignment.h"
+#include "tiles/scene_seams.h"
+#include "tiles/tile_record.h"
+#include "tiles/tileset_writer.h"
+#include "tiles/xodr_merge.h"
+
+namespace relief {
+namespace {
+
+std::string tile_name(const TileSpec& t) {
+  return std::to_string(t.x) + "_" + std::to_string(t.y);
+}
+
+nlohmann::json read_json(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  if (!in) throw IoError("cannot read " + path.string());
+  return nlohmann::json::parse(in);
+}
+
+}  // namespace
+
+TileMergeResult merge_tiles(const std::filesystem::path& dir, const TileMergeOptions& options,
+                            Diagnostics& diagnostics) {
+  (void)diagnostics;
+  const TileManifest manifest = read_manifest(dir);
+  const std::filesystem::path merged = dir / "merged";
+  std::filesystem::create_directories(merged);
+  TileMergeResult result;
+  nlohmann::json tiles_json = nlohmann::json::array();
+  std::vector<detail::TileModel> models;
+  std::vector<detail::TilesetTile> tileset;
+  std::vector<MeshScene> scenes;
+  std::vector<std::string> scene_names;
+  std::vector<std::vector<MeshFormat>> scene_formats;
+  OutputSet files;
+  for (const TileSpec& spec : manifest.tiles) {
+    const std::filesystem::path here = tile_dir(dir, spec.x, spec.y);
+    const std::optional<detail::TileRecord> record = detail::read_tile_record(here);
+    if (!record || record->key != tile_key(manifest, spec)) {
+      throw InvalidInput("tile " + std::to_string(spec.x) + "," + std::to_string(spec.y) + " is " +
+                         (record ? "out of date" : "not built") + ": run relief tiles build " + dir.string() +
+                         " --tile " + std::to_string(spec.x) + "," + std::to_string(spec.y) + " (or --all)");
+    }
+    ++result.tiles;
+    for (const std::string& g : record->failed_gates)
+      result.failed_gates.push_back(tile_name(spec) + ": " + g);
+    nlohmann::json t = read_json(here / detail::kTileRecordFile);
+    t.erase("key");
+    tiles_json.push_back(t);
+
+    const std::filesystem::path out = here / "out";
+    if (const std::filesystem::path xodr = out / (manifest.name + ".xodr"); std::filesystem::exists(xodr)) {
+      models.push_back({spec.x, spec.y, spec.core, read_opendrive(xodr)});
+    }
+    if (const std::filesystem::path glb = out / (manifest.name + ".glb"); std::filesystem::exists(glb)) {
+      scenes.push_back(read_mesh_file(glb));
+      scene_names.push_back(manifest.name + "_Tile_" + tile_name(spec));
+      scene_formats.push_back({MeshFormat::glb});
+      if (std::filesystem::exists(out / (manifest.name + ".fbx")))
+        scene_formats.back().push_back(MeshFormat::fbx);
+    }
+  }
+
+  // The scene tiles, their seams welded, then their checks as one surface.
+  const detail::SeamWeld weld = detail::weld_seams(scenes);
+  for (std::size_t i = 0; i < scenes.size(); ++i) {
+    for (const MeshFormat format : scene_formats[i]) {
+      for (EncodedFile& f : encode_mesh_scene(scenes[i], format, scene_names[i])) {
+        const std::filesystem::path to = merged / f.filename;
+        files.add(to, [&f](std::ostream& o) { o << f.bytes; });
+        result.written.push_back(to);
+      }
+    }
+    ++result.scene_tiles;
+    detail::TilesetTile tile{scene_names[i] + ".glb"};
+    tile.min = Vec3::Constant(std::numeric_limits<double>::infinity());
+    tile.max = -tile.min;
+    for (const TriangleMesh& m : scenes[i].meshes) {
+      for (const Vec3& v : m.vertices) {
+        tile.min = tile.min.cwiseMin(v);
+        tile.max = tile.max.cwiseMax(v);
+      }
+    }
+    if (tile.min.allFinite()) tileset.push_back(tile);
+  }
+
+  nlohmann::json report;
+  report["name"] = manifest.name;
+  report["relief_version"] = relief_version();
+  report["tile_size_m"] = manifest.tile_size_m;
+  report["halo_m"] = manifest.halo_m;
+  report["tiles"] = tiles_json;
+  report["failed_gates"] = result.failed_gates;
+  if (!models.empty()) {
+    detail::ModelMergeResult m = detail::merge_models(models);
+    result.roads = m.model.roads.size();
+    result.junctions = m.model.junctions.size();
+    report["opendrive"] = {{"roads", result.roads},
+                           {"junctions", result.junctions},
+                           {"links_unresolved", m.links_unresolved},
+                           {"first_unresolved", m.first_unresolved}};
+    if (m.links_unresolved > 0) result.failed_gates.push_back("merge: " + m.first_unresolved);
+    if (options.whole_xodr) {
+      const detail::WholeBuildComparison c =
+          detail::compare_with_whole(read_opendrive(*options.whole_xodr), m.model);
+      result.whole_roads = c.roads;
+      result.whole_unmatched = c.unmatched;
+      result.whole_max_xy_m = c.deviation.max_xy_m;
+      result.whole_max_z_m = c.deviation.max_z_m;
+      report["whole_build"] = {{"xodr", options.whole_xodr->string()},
+                               {"roads", c.roads},
+                               {"unmatched", c.unmatched},
+                               {"points", c.deviation.points},
+                               {"max_xy_m", c.deviation.max_xy_m},
+                               {"max_z_m", c.deviation.max_z_m},
+                               {"worst_road", c.deviation.worst_road}};
+    }
+    auto model = std::make_shared<RoadModel>(std::move(m.model));
+    const std::filesystem::path xodr = merged / (manifest.name + ".xodr");
+    files.add(xodr, [model](std::ostream& o) { write_opendrive(o, *model); });
+    result.written.push_back(xodr);
+  }
+  if (!tileset.empty()) {
+    const std::string text = detail::tileset_json(manifest.frame, tileset, manifest.tile_size_m / 10.0);
+    files.add(merged / "tileset.json", [text](std::ostream& o) { o << text; });
+    result.written.push_back(merged / "tileset.json");
+  }
+  report["scene_tiles"] = result.scene_tiles;
+  report["seams"] = {
+      {"shared_vertices", weld.shared_vertices}, {"welded", weld.welded}, {"max_dz_m", weld.max_dz_m}};
+  if (!scenes.empty()) {
+    const MeshQuality road = analyse_mesh(detail::joined_mesh(scenes, "Road_Road"));
+    const MeshQuality terrain = analyse_mesh(detail::joined_mesh(scenes, "Terrain"));
+    result.road_self_intersections = road.self_intersecting_pairs;
+    for (const MeshQuality* q : {&road, &terrain}) {
+      report["joined"][q == &road ? "Road_Road" : "Terrain"] = {
+          {"triangles", q->triangles},
+          {"self_intersecting_pairs", q->self_intersecting_pairs},
+          {"boundary_loops", q->boundary_loops},
+          {"holes", q->holes},
+          {"non_manifold_edges", q->non_manifold_edges}};
+    }
+    if (road.self_intersecting_pairs > 0) {
+      std::ostringstream where;
+      const Vec3& p = road.self_intersection_sites.front();
+      where << "merge: " << road.self_intersecting_pairs
+            << " self-intersecting Road_Road pairs, the first at (" << p.x() << ", " << p.y() << ", " << p.z()
+            << ")";
+      result.failed_gates.push_back(where.str());
+    }
+  }
+  const std::string report_text = report.dump(1) + "\n";
+  files.add(merged / "report.json", [report_text](std::ostream& o) { o << report_text; });
+  result.written.push_back(merged / "report.json");
+  files.commit();
+  return result;
+}
+
+}  // namespace relief

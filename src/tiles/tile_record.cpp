@@ -1,0 +1,54 @@
+#include "tiles/tile_record.h"
+
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "relief/core/atomic_file.h"
+
+namespace relief::detail {
+
+std::optional<TileRecord> read_tile_record(const std::filesystem::path& tile_dir) {
+  std::ifstream in(tile_dir / kTileRecordFile);
+  if (!in) return std::nullopt;
+  try {
+    const nlohmann::json j = nlohmann::json::parse(in);
+    TileRecord r;
+    r.key = j.at("key").get<std::string>();
+    r.x = j.at("x").get<int>();
+    r.y = j.at("y").get<int>();
+    r.status = j.at("status").get<std::string>();
+    r.seconds = j.at("seconds").get<double>();
+    r.window_ways = j.at("window").at("ways").get<std::size_t>();
+    r.window_nodes = j.at("window").at("nodes").get<std::size_t>();
+    r.failed_gates = j.at("failed_gates").get<std::vector<std::string>>();
+    r.halo_gates = j.at("halo_gates").get<std::vector<std::string>>();
+    return r;
+  } catch (const std::exception&) {
+    return std::nullopt;  // a damaged record: the tile is built again
+  }
+}
+
+void write_tile_record(const std::filesystem::path& tile_dir, const TileRecord& record,
+                       const RunReport& report) {
+  nlohmann::json j;
+  j["key"] = record.key;
+  j["x"] = record.x;
+  j["y"] = record.y;
+  j["status"] = record.status;
+  j["seconds"] = record.seconds;
+  j["window"] = {{"ways", record.window_ways}, {"nodes", record.window_nodes}};
+  j["failed_gates"] = record.failed_gates;
+  j["halo_gates"] = record.halo_gates;
+  j["gates"] = nlohmann::json::object();
+  for (const Gate& g : report.gates) {
+    j["gates"][g.name] = {
+        {"value", g.value}, {"threshold", g.threshold}, {"passed", g.passed}, {"where", g.where}};
+  }
+  j["network"] = {{"roads", report.network.roads},
+                  {"junctions", report.network.junctions},
+                  {"length_km", report.network.length_km}};
+  write_file_atomically(tile_dir / kTileRecordFile, j.dump(1) + "\n");
+}
+
+}  // namespace relief::detail

@@ -1,0 +1,162 @@
+// Region tiles (issue 17): a plan's manifest, and a region built tile by tile and merged against
+// the whole build of the same region in the same frame. The merge must give the same roads and
+// junctions, the same plan to the bit, heights within 1 mm, and seams that close: the tiles'
+// Road_Road joined is one surface without self-intersections, like the whole build's.
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <filesystem>
+#include <fstream>
+
+#include "relief/core/errors.h"
+#include "relief/tiles/tiles.h"
+#include "support/corpus.h"
+#include "support/test_data.h"
+
+namespace relief {
+namespace {
+
+TEST(TileManifest, JsonRoundTrip) {
+  TileManifest m;
+  m.name = "region";
+  m.frame = GeoFrame("EPSG:32632", Vec2(750000.0, 5230000.0));
+  m.frame_centre = {9.5, 47.15};
+  m.tile_size_m = 2000.0;
+  m.halo_m = 500.0;
+  m.grid_origin = Vec2(-4000.0, -2000.0);
+  m.inputs = {{"a.osm.pbf", std::string(64, 'a'), "osm"},
+              {"/vsizip/b.zip/b.hgt", std::string(64, 'b'), "dem"}};
+  m.build_args = {"--dem", "/vsizip/b.zip/b.hgt", "--no-compare"};
+  TileSpec t;
+  t.x = 1;
+  t.y = 2;
+  t.core = Aabb2{Vec2(-2000.0, 2000.0), Vec2(0.0, 4000.0)};
+  t.window = {9.4, 47.1, 9.45, 47.13};
+  t.road_nodes = 17;
+  m.tiles = {t};
+  const TileManifest back = TileManifest::from_json(m.to_json(), "test");
+  EXPECT_EQ(back.to_json(), m.to_json());
+  EXPECT_EQ(back.frame.origin(), m.frame.origin());
+  ASSERT_NE(back.find(1, 2), nullptr);
+  EXPECT_EQ(back.find(1, 2)->core.max, Vec2(0.0, 4000.0));
+  EXPECT_EQ(back.find(2, 1), nullptr);
+  // Another tile key for another option, grid or input.
+  TileManifest other = m;
+  other.build_args.push_back("--max-grade");
+  EXPECT_NE(tile_key(other, t), tile_key(m, t));
+  other = m;
+  other.inputs[1].sha256 = std::string(64, 'c');
+  EXPECT_NE(tile_key(other, t), tile_key(m, t));
+  EXPECT_EQ(tile_key(back, *back.find(1, 2)), tile_key(m, t));
+  EXPECT_THROW((void)TileManifest::from_json("{\"manifest_version\": 1}", "broken.json"), InvalidInput);
+  EXPECT_THROW((void)TileManifest::from_json("not json", "broken.json"), InvalidInput);
+}
+
+TEST(TilePlan, RefusesATileSizeOrHaloThatIsNotAPositiveNumber) {
+  Diagnostics d;
+  TilePlanOptions o;
+  o.osm_path = "does-not-matter.osm";
+  o.tile_size_m = 0.0;
+  EXPECT_THROW((void)plan_tiles(o, d), OptionError);
+  o.tile_size_m = std::numeric_limits<double>::infinity();
+  EXPECT_THROW((void)plan_tiles(o, d), OptionError);
+  o.tile_size_m = 500.0;
+  o.halo_m = -1.0;
+  EXPECT_THROW((void)plan_tiles(o, d), OptionError);
+  o.halo_m = 500.0;
+  EXPECT_THROW((void)plan_tiles(o, d), IoError);  // no such file
+}
+
+struct Region {
+  TileManifest manifest;
+  TileMergeResult merge;
+  nlohmann::json report;
+};
+
+// Plans `osm` in tiles, builds every tile in this process, builds the whole region in the plan's
+// frame and merges the tiles against it.
+Region tile_and_merge(const std::filesystem::path& osm, const std::string& dem, double tile_m,
+                      const std::filesystem::path& dir) {
+  Diagnostics d;
+  TilePlanOptions plan;
+  plan.osm_path = osm;
+  plan.dem_paths = {dem};
+  plan.tile_size_m = tile_m;
+  plan.build_args = {"(in-process)"};
+  Region r;
+  r.manifest = plan_tiles(plan, d);
+  write_manifest(dir, r.manifest);
+  BuildOptions options;
+  options.dem_paths = {dem};
+  options.outputs = {Output::xodr, Output::mesh, Output::report};
+  options.mesh_formats = {MeshFormat::glb};
+  options.compare_methods = false;
+  for (const TileSpec& t : r.manifest.tiles) {
+    Diagnostics td;
+    const TileBuildResult b = build_tile(dir, r.manifest, t.x, t.y, options, td);
+    EXPECT_EQ(b.status, "built") << t.x << "," << t.y;
+    EXPECT_TRUE(b.failed_gates.empty()) << t.x << "," << t.y << ": " << b.failed_gates.front();
+  }
+  // Up to date: nothing is built again.
+  Diagnostics again;
+  EXPECT_EQ(
+      build_tile(dir, r.manifest, r.manifest.tiles.front().x, r.manifest.tiles.front().y, options, again)
+          .status,
+      "skipped");
+
+  BuildOptions whole = options;
+  whole.osm_path = osm;
+  whole.out_dir = dir / "whole";
+  whole.name = r.manifest.name;
+  whole.frame_centre = r.manifest.frame_centre;
+  (void)build(whole, d);
+  TileMergeOptions merge;
+  merge.whole_xodr = whole.out_dir / (r.manifest.name + ".xodr");
+  r.merge = merge_tiles(dir, merge, d);
+  std::ifstream in(dir / "merged" / "report.json");
+  r.report = nlohmann::json::parse(in);
+  std::ifstream whole_mesh(whole.out_dir / "mesh_report.json");
+  const nlohmann::json mesh = nlohmann::json::parse(whole_mesh);
+  for (const auto& m : mesh.at("meshes")) {
+    if (m.at("name") == "Road_Road") r.report["whole_road_road"] = m;
+  }
+  return r;
+}
+
+void expect_like_the_whole_build(const Region& r) {
+  const auto& w = r.report.at("whole_build");
+  std::cout << r.manifest.tiles.size() << " tiles: " << r.merge.roads << " roads, " << r.merge.junctions
+            << " junctions; against the whole build " << w << "\n  seams " << r.report.at("seams")
+            << "\n  joined " << r.report.at("joined") << "\n";
+  EXPECT_GE(r.manifest.tiles.size(), 4u);
+  EXPECT_EQ(r.report.at("opendrive").at("links_unresolved").get<int>(), 0) << r.report.at("opendrive");
+  EXPECT_EQ(w.at("unmatched").get<int>(), 0);
+  EXPECT_EQ(r.merge.roads, w.at("roads").get<std::size_t>());
+  EXPECT_LE(w.at("max_xy_m").get<double>(), 1e-9);  // the plan does not depend on the window
+  EXPECT_LE(w.at("max_z_m").get<double>(), 1e-3);   // the fit, to its gap tolerance
+  EXPECT_GT(r.report.at("seams").at("shared_vertices").get<int>(), 0);
+  EXPECT_LE(r.report.at("seams").at("max_dz_m").get<double>(), 1e-3);
+  const auto& road = r.report.at("joined").at("Road_Road");
+  EXPECT_EQ(road.at("self_intersecting_pairs").get<int>(), 0);
+  EXPECT_EQ(road.at("non_manifold_edges").get<int>(), 0);
+  // The joined surface has the whole build's boundary: the seams are closed.
+  EXPECT_EQ(road.at("boundary_loops"), r.report.at("whole_road_road").at("boundary_loops"));
+  EXPECT_EQ(road.at("holes"), r.report.at("whole_road_road").at("holes"));
+}
+
+TEST(Tiles, OldTownMergesLikeTheWholeBuild) {
+  const test::CorpusCase c = test::make_old_town(test::scratch_dir("input"));
+  expect_like_the_whole_build(tile_and_merge(c.osm, c.dem, 120.0, test::scratch_dir("tiles")));
+}
+
+TEST(TilesRealData, NortheastIn500mTilesMergesLikeTheWholeBuild) {
+  RELIEF_REQUIRE_SHARED_DATA();
+  const Region r = tile_and_merge(test::shared_data("sf-ne/sf_ne_drive_2017.osm.gz"),
+                                  test::shared_data("sf-ne/sf_ne_usgs24k_30m_nad27utm10_m.tif").string(),
+                                  500.0, test::scratch_dir("northeast"));
+  expect_like_the_whole_build(r);
+  EXPECT_EQ(r.manifest.tiles.size(), 52u);
+}
+
+}  // namespace
+}  // namespace relief
