@@ -39,14 +39,22 @@ struct Projection {
   double s = 0.0, t = 0.0, beyond = 0.0;
 };
 
-// (s, t) of the point of `road`'s reference line nearest to p: a 1 m scan, then Newton steps;
-// with a station `hint` near the answer (a point a few metres from one projected before), Newton
-// from there alone (the scan is O(length) per point).
+// (s, t) of the point of `road`'s reference line nearest to p: the nearest of its points sampled
+// every metre or less, then Newton steps within one sample spacing of it. With a station `hint`
+// near the answer (a point a few metres from one projected before) only the samples within
+// 2 d + one spacing along the road from the hint are searched, d the distance from p to the
+// hint's point: the answer lies within d of p, so within 2 d of that point in plan (and along
+// the road unless it curls back on itself; the search of the whole road is O(length) per
+// point). Newton alone from the hint ran off on a hairpin of 3.75 m arcs and short lines
+// (Liechtenstein's Bergstrasse: to the hairpin's other leg, 12 m away and 3 m lower) and stopped
+// at the wrong end of a connecting road turning 150 degrees on a 1.7 m radius (a wheel past the
+// turn's centre), and the cosim measures took those heights.
 class RoadProjector {
  public:
   explicit RoadProjector(const ModelRoad& road) : road_(road) {
     const double length = road.length();
     const int n = std::max(1, static_cast<int>(std::ceil(length)));
+    spacing_ = length / n;
     for (int i = 0; i <= n; ++i) {
       const double s = length * i / n;
       stations_.push_back(s);
@@ -55,21 +63,28 @@ class RoadProjector {
   }
 
   [[nodiscard]] Projection project(const Vec2& p, std::optional<double> hint = std::nullopt) const {
-    double s = 0.0;
-    if (hint) {
-      s = std::clamp(*hint, 0.0, road_.length());
-    } else {
-      std::size_t best = 0;
-      double best_d = std::numeric_limits<double>::infinity();
-      for (std::size_t i = 0; i < points_.size(); ++i) {
-        const double d = (points_[i] - p).squaredNorm();
-        if (d < best_d) {
-          best_d = d;
-          best = i;
-        }
-      }
-      s = stations_[best];
+    std::size_t first = 0, last = points_.size() - 1;
+    if (hint && spacing_ > 0.0) {
+      const double h = std::clamp(*hint, 0.0, road_.length());
+      const double reach = 2.0 * (p - road_.plan.at(h).position).norm() + spacing_;
+      const auto index = [&](double s) {
+        return static_cast<std::size_t>(std::clamp(s / spacing_, 0.0, static_cast<double>(last)));
+      };
+      first = index(h - reach);
+      last = std::min(last, index(h + reach) + 1);
     }
+    std::size_t best = first;
+    double best_d = std::numeric_limits<double>::infinity();
+    for (std::size_t i = first; i <= last; ++i) {
+      const double d = (points_[i] - p).squaredNorm();
+      if (d < best_d) {
+        best_d = d;
+        best = i;
+      }
+    }
+    const double lo = std::max(0.0, stations_[best] - spacing_);
+    const double hi = std::min(road_.length(), stations_[best] + spacing_);
+    double s = stations_[best];
     for (int it = 0; it < 20; ++it) {
       // Newton on (p - o(s)) . T(s) = 0, whose derivative is -(1 - curvature t): on a tight
       // bend the plain tangent step (the derivative taken as -1) overshoots on the outside and
@@ -80,7 +95,7 @@ class RoadProjector {
       const double across = d.dot(Vec2(-std::sin(pose.heading), std::cos(pose.heading)));
       const double scale = 1.0 - pose.curvature * across;
       const double ds = along / std::max(scale, 0.25);
-      s = std::clamp(s + ds, 0.0, road_.length());
+      s = std::clamp(s + ds, lo, hi);
       if (std::abs(ds) < 1e-6) break;
     }
     const Pose2 pose = road_.plan.at(s);
@@ -92,6 +107,7 @@ class RoadProjector {
 
  private:
   const ModelRoad& road_;
+  double spacing_ = 0.0;
   std::vector<double> stations_;
   std::vector<Vec2> points_;
 };
