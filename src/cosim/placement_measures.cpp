@@ -12,6 +12,10 @@ namespace relief::detail {
 namespace {
 
 constexpr double kDegree = 180.0 / std::numbers::pi;
+// A wheel contact this far outside a road's outermost lane borders is off that road: its
+// OpenDRIVE height there would be the road's roll carried past its edge (Liechtenstein's road
+// 3046, a wheel 2.5 m outside it: 1 m over the junction it stood on).
+constexpr double kOffRoad_m = 0.25;
 
 }  // namespace
 
@@ -58,14 +62,17 @@ std::optional<double> PlacementMeasures::odr_body_z(const SumoVehicleState& v, c
   for (const double along : {0.5 * wheels.wheelbase_m, -0.5 * wheels.wheelbase_m}) {
     for (const double across : {0.5 * wheels.track_m, -0.5 * wheels.track_m}) {
       const Vec2 contact = centre + along * forward + across * left;
+      const auto on = [](const std::optional<LaneSurfacePoint>& p) {
+        return p && p->on_road() && p->outside_m <= kOffRoad_m;
+      };
       std::optional<LaneSurfacePoint> at = odr_.at(lane, contact, &near);
-      // A contact past the centre's road (the vehicle spans a road's end): on the road of
-      // another of its last lanes.
+      // A contact past the centre's road (the vehicle spans a road's end) or beside it (it
+      // turns across a road's edge): on the road of another of its last lanes.
       for (const std::string& other : recent_[v.id]) {
-        if ((at && at->on_road()) || other.empty()) break;
+        if (on(at) || other.empty()) break;
         if (other != lane) at = odr_.at(other, contact);
       }
-      if (!at || !at->on_road()) return std::nullopt;
+      if (!on(at)) return std::nullopt;
       sum += at->z_m;
     }
   }

@@ -40,7 +40,8 @@ class PlacementMeasures {
  private:
   // The mean height of the vehicle's four wheel contacts (vehicle_pose.h's wheel base) on the
   // OpenDRIVE road of `lane` (`near`: the centre's answer there), a contact beyond that road's
-  // ends on the road of another of the vehicle's last lanes; none when one is on neither.
+  // ends or more than 0.25 m outside its outermost lane borders on the road of another of the
+  // vehicle's last lanes; none when one is on neither.
   std::optional<double> odr_body_z(const SumoVehicleState& v, const std::string& lane,
                                    const LaneSurfacePoint& near);
 

@@ -2,6 +2,7 @@
 
 #include <pugixml.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <optional>
 
@@ -35,7 +36,16 @@ std::optional<LaneSurfacePoint> SumoSurface::at(const std::string& lane_id, cons
   const std::optional<detail::LanePoint> on = impl_->locator->locate(
       lane_id, p, near ? std::optional<std::pair<int, double>>({near->odr_road, near->s}) : std::nullopt);
   if (!on) return std::nullopt;
-  return LaneSurfacePoint{on->road->id, on->s, on->t, surface_z(*on->road, on->s, on->t), on->beyond};
+  LaneSurfacePoint out{on->road->id, on->s, on->t, surface_z(*on->road, on->s, on->t), on->beyond};
+  if (!on->road->sections.empty()) {
+    const LaneSection& section = section_at(*on->road, on->s);
+    int right = 0, left = 0;  // the outermost lanes (0: the centre lane where a side has none)
+    for (const LaneModel& lane : section.right) right = std::min(right, lane.id);
+    for (const LaneModel& lane : section.left) left = std::max(left, lane.id);
+    out.outside_m = std::max(
+        {0.0, lane_border_t(*on->road, on->s, right) - on->t, on->t - lane_border_t(*on->road, on->s, left)});
+  }
+  return out;
 }
 
 std::optional<double> SumoSurface::slope(const std::string& lane_id, const Vec2& p, double heading,

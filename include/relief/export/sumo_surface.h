@@ -25,6 +25,9 @@ struct LaneSurfacePoint {
   /// How far p lies past the road's start (< 0) or end (> 0) along its reference line, 0 when
   /// it projects onto the road: then s is clamped to the end and z is the end's, not p's.
   double beyond_m = 0.0;
+  /// How far p lies outside the road's outermost lane borders across it (0 between them): the
+  /// surface there is the road's roll carried past its edge, not the road's.
+  double outside_m = 0.0;
   [[nodiscard]] bool on_road(double tolerance_m = 0.01) const { return std::abs(beyond_m) <= tolerance_m; }
 };
 
