@@ -138,6 +138,7 @@ void write_cosim_json(const std::filesystem::path& path, const CosimInputs& inpu
   j["wheel_under_limit_m"] = options.wheel_under_limit_m;
   j["worst_z_place"] = r.worst_z_place;
   j["worst_body_place"] = r.worst_body_place;
+  j["worst_wheel_under_place"] = r.worst_wheel_under_place;
   write_file_atomically(path, j.dump(2) + "\n");
 }
 

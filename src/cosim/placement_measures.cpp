@@ -83,8 +83,18 @@ void PlacementMeasures::add(const SumoVehicleState& v, const SurfacePose& pose, 
                             bool sumo_placed) {
   ++result.vehicle_steps;
   result.contacts_missing += static_cast<std::size_t>(pose.contacts_missing);
-  wheel_under_.push_back(static_cast<float>(
-      std::max(0.0, *std::max_element(pose.wheel_under_m.begin(), pose.wheel_under_m.end()))));
+  const double under = std::max(0.0, *std::max_element(pose.wheel_under_m.begin(), pose.wheel_under_m.end()));
+  wheel_under_.push_back(static_cast<float>(under));
+  if (under > worst_under_) {
+    worst_under_ = under;
+    const Vec2 centre = v.centre();
+    std::ostringstream where;
+    where << "vehicle '" << v.id << "' at t = " << t << " s on lane '" << v.lane << "' at (" << centre.x()
+          << ", " << centre.y() << "), heading " << v.heading() << " rad: wheels at " << pose.wheel_z_m[0]
+          << ", " << pose.wheel_z_m[1] << ", " << pose.wheel_z_m[2] << ", " << pose.wheel_z_m[3]
+          << " m (front left, front right, rear left, rear right), " << under << " m";
+    result.worst_wheel_under_place = where.str();
+  }
   for (const double under : pose.wheel_under_m)
     if (under > options_.wheel_under_limit_m) ++result.wheels_under_road;
   for (const SurfaceKind kind : pose.wheel_kind)

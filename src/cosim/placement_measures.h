@@ -52,7 +52,7 @@ class PlacementMeasures {
   std::unordered_map<std::string, std::array<std::string, 3>> recent_;
   std::vector<float> z_errors_, z_errors_road_, z_errors_junction_, sumo_z_errors_, pitch_errors_,
       wheel_under_, body_errors_, body_errors_road_, body_errors_junction_;
-  double worst_z_ = -1.0, worst_body_ = -1.0;
+  double worst_z_ = -1.0, worst_body_ = -1.0, worst_under_ = 0.0;
   std::string first_unplaced_, first_unmapped_;
 };
 

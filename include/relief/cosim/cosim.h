@@ -151,12 +151,13 @@ struct CosimResult {
   /// scene against the vehicle set the same way on the .xodr (the body's own sag over a crest,
   /// in both, cancels), where every contact lies on the centre's road; and split as above.
   Spread z_error_body_m, z_error_body_on_roads_m, z_error_body_in_junctions_m;
-  Spread sumo_z_error_m;              ///< |SUMO's z - S(road, s, t).z| at the front bumper
-  Spread pitch_error_deg;             ///< |pitch - atan(surface slope along the heading)|
-  Spread wheel_under_m;               ///< the deepest contact per vehicle-step (0 when none is under)
-  std::size_t wheels_under_road = 0;  ///< contacts deeper than wheel_under_limit_m
-  std::string worst_z_place;          ///< vehicle, time, lane and (x, y) of the largest z error
-  std::string worst_body_place;       ///< the same for the largest z_error_body_m
+  Spread sumo_z_error_m;                ///< |SUMO's z - S(road, s, t).z| at the front bumper
+  Spread pitch_error_deg;               ///< |pitch - atan(surface slope along the heading)|
+  Spread wheel_under_m;                 ///< the deepest contact per vehicle-step (0 when none is under)
+  std::size_t wheels_under_road = 0;    ///< contacts deeper than wheel_under_limit_m
+  std::string worst_z_place;            ///< vehicle, time, lane and (x, y) of the largest z error
+  std::string worst_body_place;         ///< the same for the largest z_error_body_m
+  std::string worst_wheel_under_place;  ///< the same for the deepest wheel_under_m
   // The egos.
   std::size_t egos = 0;       ///< distinct ego vehicles driven
   std::size_t ego_steps = 0;  ///< egos x steps
