@@ -36,20 +36,20 @@ class Sha256 {
   std::unique_ptr<EVP_MD_CTX, decltype(&EVP_MD_CTX_free)> ctx_;
 };
 
-// The file a GDAL virtual path reads from: its first component that is a regular file.
+// The file a GDAL virtual path reads from: its shortest prefix after "/vsiNAME" that is a
+// regular file ("/vsizip//data/a.zip/b.hgt" -> "/data/a.zip").
 std::filesystem::path container_file(const std::filesystem::path& path) {
   const std::string text = path.string();
   if (text.rfind("/vsi", 0) != 0) return path;
-  std::size_t slash = text.find('/', 1);  // after "/vsizip"
+  const std::size_t start = text.find('/', 1);
+  if (start == std::string::npos) return path;
   std::error_code ec;
-  while (slash != std::string::npos) {
-    const std::size_t next = text.find('/', slash + 1);
+  for (std::size_t next = text.find('/', start + 1);; next = text.find('/', next + 1)) {
     const std::filesystem::path candidate =
-        text.substr(slash, next == std::string::npos ? next : next - slash);
+        text.substr(start, next == std::string::npos ? std::string::npos : next - start);
     if (std::filesystem::is_regular_file(candidate, ec)) return candidate;
-    slash = next;
+    if (next == std::string::npos) return path;
   }
-  return path;
 }
 
 }  // namespace
