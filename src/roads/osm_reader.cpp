@@ -229,6 +229,13 @@ std::vector<OsmWay> clip_ways(const std::vector<OsmWay>& ways, const LonLatBox& 
 
 }  // namespace
 
+bool builds_way(const std::map<std::string, std::string, std::less<>>& tags, const OsmReadOptions& options) {
+  const auto highway = tags.find("highway");
+  if (highway == tags.end()) return false;
+  const auto parsed = parse_way_tags(tags, nullptr);
+  return parsed && (options.include_non_motor || is_motor_road(parsed->attributes.highway));
+}
+
 OsmRoads read_osm(const std::filesystem::path& path, const OsmReadOptions& options,
                   Diagnostics& diagnostics) {
   std::error_code ec;

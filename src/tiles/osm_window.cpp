@@ -1,11 +1,15 @@
 #include "tiles/osm_window.h"
 
+#include <unistd.h>
+
 #include <algorithm>
+#include <map>
 #include <osmium/io/any_input.hpp>
 #include <osmium/io/any_output.hpp>
 #include <osmium/memory/buffer.hpp>
 #include <osmium/osm/node.hpp>
 #include <osmium/osm/way.hpp>
+#include <string>
 
 #include "relief/core/errors.h"
 
@@ -39,8 +43,11 @@ void for_each(const std::filesystem::path& path, osmium::osm_entity_bits::type e
   }
 }
 
-bool is_highway(const osmium::Way& way) {
-  return way.tags()["highway"] != nullptr;
+bool is_built(const osmium::Way& way, const OsmReadOptions& options) {
+  if (way.tags()["highway"] == nullptr) return false;
+  std::map<std::string, std::string, std::less<>> tags;
+  for (const osmium::Tag& tag : way.tags()) tags.emplace(tag.key(), tag.value());
+  return builds_way(tags, options);
 }
 
 void sort_unique(std::vector<std::int64_t>& ids) {
@@ -54,10 +61,11 @@ bool contains(const std::vector<std::int64_t>& sorted, std::int64_t id) {
 
 }  // namespace
 
-std::vector<LonLat> road_node_positions(const std::filesystem::path& osm_path) {
+std::vector<LonLat> road_node_positions(const std::filesystem::path& osm_path,
+                                        const OsmReadOptions& options) {
   std::vector<std::int64_t> ids;
   for_each<osmium::Way>(osm_path, osmium::osm_entity_bits::way, [&](const osmium::Way& way) {
-    if (!is_highway(way)) return;
+    if (!is_built(way, options)) return;
     for (const osmium::NodeRef& ref : way.nodes()) ids.push_back(ref.ref());
   });
   sort_unique(ids);
@@ -72,7 +80,7 @@ std::vector<LonLat> road_node_positions(const std::filesystem::path& osm_path) {
 }
 
 WindowCounts extract_window(const std::filesystem::path& osm_path, const LonLatBox& window,
-                            const std::filesystem::path& out) {
+                            const OsmReadOptions& options, const std::filesystem::path& out) {
   // Pass 1: the nodes inside the window.
   std::vector<std::int64_t> inside;
   for_each<osmium::Node>(osm_path, osmium::osm_entity_bits::node, [&](const osmium::Node& node) {
@@ -88,7 +96,7 @@ WindowCounts extract_window(const std::filesystem::path& osm_path, const LonLatB
   std::vector<std::int64_t> needed;
   WindowCounts counts;
   for_each<osmium::Way>(osm_path, osmium::osm_entity_bits::way, [&](const osmium::Way& way) {
-    if (!is_highway(way)) return;
+    if (!is_built(way, options)) return;
     const auto& refs = way.nodes();
     if (std::none_of(refs.begin(), refs.end(),
                      [&](const osmium::NodeRef& r) { return contains(inside, r.ref()); }))
@@ -108,15 +116,22 @@ WindowCounts extract_window(const std::filesystem::path& osm_path, const LonLatB
     nodes.commit();
     ++counts.nodes;
   });
+  // Through a temporary (its own name per process, the format told by its ".osm.pbf"): a build
+  // of the same tile running beside this one never reads a half-written window.
+  const std::filesystem::path temporary =
+      out.parent_path() / ("window.tmp-" + std::to_string(::getpid()) + ".osm.pbf");
   try {
     osmium::io::Header header;
     header.set("generator", "relief tiles");
     header.add_box(osmium::Box(window.min_lon, window.min_lat, window.max_lon, window.max_lat));
-    osmium::io::Writer writer(out.string(), header, osmium::io::overwrite::allow);
+    osmium::io::Writer writer(temporary.string(), header, osmium::io::overwrite::allow);
     writer(std::move(nodes));
     writer(std::move(ways));
     writer.close();
+    std::filesystem::rename(temporary, out);
   } catch (const std::exception& e) {
+    std::error_code ec;
+    std::filesystem::remove(temporary, ec);
     throw IoError("cannot write " + out.string() + ": " + e.what());
   }
   return counts;

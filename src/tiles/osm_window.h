@@ -7,22 +7,24 @@
 #include <vector>
 
 #include "relief/geometry/types.h"
+#include "relief/roads/osm_reader.h"
 
 namespace relief::detail {
 
-/// Positions of every node of every way with a highway tag, in two passes (the ways' node ids,
-/// then those nodes). 24 bytes per road node.
-[[nodiscard]] std::vector<LonLat> road_node_positions(const std::filesystem::path& osm_path);
+/// Positions of every node of every way read_osm builds under `options` (builds_way), in two
+/// passes (the ways' node ids, then those nodes). 24 bytes per road node.
+[[nodiscard]] std::vector<LonLat> road_node_positions(const std::filesystem::path& osm_path,
+                                                      const OsmReadOptions& options);
 
 struct WindowCounts {
   std::size_t ways = 0;
   std::size_t nodes = 0;
 };
 
-/// Writes to `out` (.osm.pbf) every way with a highway tag that has a node inside `window`, whole,
-/// with all its nodes (and their tags): three passes (the window's node ids; the ways; the nodes
-/// they need). Memory grows with the window's nodes and ways, not the region's.
+/// Writes to `out` (.osm.pbf) every way read_osm builds under `options` that has a node inside
+/// `window`, whole, with all its nodes (and their tags): three passes (the window's node ids; the
+/// ways; the nodes they need). Memory grows with the window's nodes and ways, not the region's.
 WindowCounts extract_window(const std::filesystem::path& osm_path, const LonLatBox& window,
-                            const std::filesystem::path& out);
+                            const OsmReadOptions& options, const std::filesystem::path& out);
 
 }  // namespace relief::detail

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "relief/core/atomic_file.h"
+#include "relief/core/diagnostic_codes.h"
 #include "relief/core/errors.h"
 #include "relief/export/quality_gates.h"
 #include "relief/tiles/tiles.h"
@@ -60,7 +61,8 @@ TileBuildResult build_tile(const std::filesystem::path& dir, const TileManifest&
   std::filesystem::remove(here / detail::kTileRecordFile);  // a tile that fails keeps none
 
   const std::filesystem::path window = here / "window.osm.pbf";
-  const detail::WindowCounts counts = detail::extract_window(osm_input(manifest).path, spec->window, window);
+  const detail::WindowCounts counts =
+      detail::extract_window(osm_input(manifest).path, spec->window, options.osm, window);
 
   options.osm_path = window;
   options.out_dir = here / "out";
@@ -88,6 +90,11 @@ TileBuildResult build_tile(const std::filesystem::path& dir, const TileManifest&
     const bool halo = place && !(place->x() >= spec->core.min.x() && place->x() < spec->core.max.x() &&
                                  place->y() >= spec->core.min.y() && place->y() < spec->core.max.y());
     (halo ? record.halo_gates : record.failed_gates).push_back(g.name);
+    if (halo) {
+      diagnostics.report(Severity::info, codes::kTilesHaloGate,
+                         g.name + " failed in tile " + std::to_string(x) + "," + std::to_string(y) +
+                             "'s halo only: " + g.where);
+    }
   }
   record.status = record.failed_gates.empty() ? "built" : "gates_failed";
   record.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();

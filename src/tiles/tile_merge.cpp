@@ -1,8 +1,11 @@
+#include <array>
+#include <cstdint>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
 #include "relief/core/atomic_file.h"
+#include "relief/core/diagnostic_codes.h"
 #include "relief/core/errors.h"
 #include "relief/export/mesh_writer.h"
 #include "relief/export/opendrive_writer.h"
@@ -29,14 +32,23 @@ nlohmann::json read_json(const std::filesystem::path& path) {
   return nlohmann::json::parse(in);
 }
 
+// Whether a glb relief wrote holds any mesh: a tile whose core has no triangle (roads that only
+// pass its corner) writes a glb without meshes, which assimp refuses to read.
+bool glb_holds_meshes(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::array<std::uint32_t, 5> head{};  // magic, version, length, JSON chunk length, chunk type
+  if (!in.read(reinterpret_cast<char*>(head.data()), sizeof head)) return false;
+  std::string json(head[3], '\0');
+  if (!in.read(json.data(), static_cast<std::streamsize>(json.size()))) return false;
+  return json.find("\"meshes\"") != std::string::npos;
+}
+
 }  // namespace
 
 TileMergeResult merge_tiles(const std::filesystem::path& dir, const TileMergeOptions& options,
                             Diagnostics& diagnostics) {
-  (void)diagnostics;
   const TileManifest manifest = read_manifest(dir);
   const std::filesystem::path merged = dir / "merged";
-  std::filesystem::create_directories(merged);
   TileMergeResult result;
   nlohmann::json tiles_json = nlohmann::json::array();
   std::vector<detail::TileModel> models;
@@ -64,7 +76,8 @@ TileMergeResult merge_tiles(const std::filesystem::path& dir, const TileMergeOpt
     if (const std::filesystem::path xodr = out / (manifest.name + ".xodr"); std::filesystem::exists(xodr)) {
       models.push_back({spec.x, spec.y, spec.core, read_opendrive(xodr)});
     }
-    if (const std::filesystem::path glb = out / (manifest.name + ".glb"); std::filesystem::exists(glb)) {
+    if (const std::filesystem::path glb = out / (manifest.name + ".glb");
+        std::filesystem::exists(glb) && glb_holds_meshes(glb)) {
       scenes.push_back(read_mesh_file(glb));
       scene_names.push_back(manifest.name + "_Tile_" + tile_name(spec));
       scene_formats.push_back({MeshFormat::glb});
@@ -73,6 +86,7 @@ TileMergeResult merge_tiles(const std::filesystem::path& dir, const TileMergeOpt
     }
   }
 
+  std::filesystem::create_directories(merged);  // every tile is built: the merge can be written
   // The scene tiles, their seams welded, then their checks as one surface.
   const detail::SeamWeld weld = detail::weld_seams(scenes);
   for (std::size_t i = 0; i < scenes.size(); ++i) {
@@ -112,6 +126,9 @@ TileMergeResult merge_tiles(const std::filesystem::path& dir, const TileMergeOpt
                            {"links_unresolved", m.links_unresolved},
                            {"first_unresolved", m.first_unresolved}};
     if (m.links_unresolved > 0) result.failed_gates.push_back("merge: " + m.first_unresolved);
+    for (const std::string& where : m.unresolved) {
+      diagnostics.report(Severity::error, codes::kTilesLinkUnresolved, where);
+    }
     if (options.whole_xodr) {
       const detail::WholeBuildComparison c =
           detail::compare_with_whole(read_opendrive(*options.whole_xodr), m.model);

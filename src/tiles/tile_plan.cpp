@@ -166,8 +166,7 @@ std::string tile_key(const TileManifest& manifest, const TileSpec& tile) {
   return sha256_hex(j.dump());
 }
 
-TileManifest plan_tiles(const TilePlanOptions& options, Diagnostics& diagnostics) {
-  (void)diagnostics;
+TileManifest plan_tiles(const TilePlanOptions& options) {
   if (!(std::isfinite(options.tile_size_m) && options.tile_size_m > 0.0)) {
     throw OptionError("tile size " + std::to_string(options.tile_size_m) + " m is not a finite number > 0");
   }
@@ -178,9 +177,9 @@ TileManifest plan_tiles(const TilePlanOptions& options, Diagnostics& diagnostics
   if (!std::filesystem::is_regular_file(options.osm_path, ec)) {
     throw IoError("cannot open OSM file " + options.osm_path.string() + ": no such file");
   }
-  std::vector<LonLat> nodes = detail::road_node_positions(options.osm_path);
+  std::vector<LonLat> nodes = detail::road_node_positions(options.osm_path, options.osm);
   if (nodes.empty())
-    throw InvalidInput("OSM file " + options.osm_path.string() + " contains no highway ways");
+    throw InvalidInput("OSM file " + options.osm_path.string() + " contains no roads relief builds");
 
   TileManifest m;
   m.name = options.name.empty() ? default_name(options.osm_path) : options.name;

@@ -82,9 +82,8 @@ ModelMergeResult merge_models(std::vector<TileModel>& tiles) {
   }
 
   const auto unresolved = [&](const TileModel& tile, const std::string& what) {
-    if (out.links_unresolved++ == 0) {
-      out.first_unresolved = "tile " + std::to_string(tile.x) + "," + std::to_string(tile.y) + ": " + what;
-    }
+    out.unresolved.push_back("tile " + std::to_string(tile.x) + "," + std::to_string(tile.y) + ": " + what);
+    if (out.links_unresolved++ == 0) out.first_unresolved = out.unresolved.back();
   };
   // The merged id of local road `id`'s end `contact` (an owned road of any tile).
   const auto road_end = [&](std::size_t t, int id, RoadLink::Contact contact) -> std::optional<RoadEnd> {

@@ -20,8 +20,9 @@ struct TileModel {
 
 struct ModelMergeResult {
   RoadModel model;
-  std::size_t links_unresolved = 0;  ///< links whose target no tile owns (dropped)
-  std::string first_unresolved;      ///< where, for the message
+  std::size_t links_unresolved = 0;     ///< links whose target no tile owns (dropped)
+  std::string first_unresolved;         ///< where, for the message
+  std::vector<std::string> unresolved;  ///< every one, where
 };
 
 /// Merges the tiles' models (moving their owned roads out). Linear in the roads (hash grids of

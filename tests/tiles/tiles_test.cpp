@@ -53,18 +53,17 @@ TEST(TileManifest, JsonRoundTrip) {
 }
 
 TEST(TilePlan, RefusesATileSizeOrHaloThatIsNotAPositiveNumber) {
-  Diagnostics d;
   TilePlanOptions o;
   o.osm_path = "does-not-matter.osm";
   o.tile_size_m = 0.0;
-  EXPECT_THROW((void)plan_tiles(o, d), OptionError);
+  EXPECT_THROW((void)plan_tiles(o), OptionError);
   o.tile_size_m = std::numeric_limits<double>::infinity();
-  EXPECT_THROW((void)plan_tiles(o, d), OptionError);
+  EXPECT_THROW((void)plan_tiles(o), OptionError);
   o.tile_size_m = 500.0;
   o.halo_m = -1.0;
-  EXPECT_THROW((void)plan_tiles(o, d), OptionError);
+  EXPECT_THROW((void)plan_tiles(o), OptionError);
   o.halo_m = 500.0;
-  EXPECT_THROW((void)plan_tiles(o, d), IoError);  // no such file
+  EXPECT_THROW((void)plan_tiles(o), IoError);  // no such file
 }
 
 struct Region {
@@ -84,7 +83,7 @@ Region tile_and_merge(const std::filesystem::path& osm, const std::string& dem, 
   plan.tile_size_m = tile_m;
   plan.build_args = {"(in-process)"};
   Region r;
-  r.manifest = plan_tiles(plan, d);
+  r.manifest = plan_tiles(plan);
   write_manifest(dir, r.manifest);
   BuildOptions options;
   options.dem_paths = {dem};
@@ -123,7 +122,9 @@ Region tile_and_merge(const std::filesystem::path& osm, const std::string& dem, 
   return r;
 }
 
-void expect_like_the_whole_build(const Region& r) {
+// `max_dz_m`: the heights' agreement with the whole build (1 mm where the fit's optimum is well
+// determined; a few roads of a mountain network come out up to a centimetre apart).
+void expect_like_the_whole_build(const Region& r, double max_dz_m = 1e-3) {
   const auto& w = r.report.at("whole_build");
   std::cout << r.manifest.tiles.size() << " tiles: " << r.merge.roads << " roads, " << r.merge.junctions
             << " junctions; against the whole build " << w << "\n  seams " << r.report.at("seams")
@@ -132,10 +133,10 @@ void expect_like_the_whole_build(const Region& r) {
   EXPECT_EQ(r.report.at("opendrive").at("links_unresolved").get<int>(), 0) << r.report.at("opendrive");
   EXPECT_EQ(w.at("unmatched").get<int>(), 0);
   EXPECT_EQ(r.merge.roads, w.at("roads").get<std::size_t>());
-  EXPECT_LE(w.at("max_xy_m").get<double>(), 1e-9);  // the plan does not depend on the window
-  EXPECT_LE(w.at("max_z_m").get<double>(), 1e-3);   // the fit, to its gap tolerance
+  EXPECT_LE(w.at("max_xy_m").get<double>(), 1e-9);     // the plan does not depend on the window
+  EXPECT_LE(w.at("max_z_m").get<double>(), max_dz_m);  // the fit, to its gap tolerance
   EXPECT_GT(r.report.at("seams").at("shared_vertices").get<int>(), 0);
-  EXPECT_LE(r.report.at("seams").at("max_dz_m").get<double>(), 1e-3);
+  EXPECT_LE(r.report.at("seams").at("max_dz_m").get<double>(), max_dz_m);
   const auto& road = r.report.at("joined").at("Road_Road");
   EXPECT_EQ(road.at("self_intersecting_pairs").get<int>(), 0);
   EXPECT_EQ(road.at("non_manifold_edges").get<int>(), 0);
@@ -156,6 +157,18 @@ TEST(TilesRealData, NortheastIn500mTilesMergesLikeTheWholeBuild) {
                                   500.0, test::scratch_dir("northeast"));
   expect_like_the_whole_build(r);
   EXPECT_EQ(r.manifest.tiles.size(), 52u);
+}
+
+// A mountain country in 2 km tiles: 37 tiles, 15 616 roads. Five roads (of Vordersilumstrasse's
+// kind: long climbs whose grades bind) come out 1-10 mm from the whole build (README, tiles).
+TEST(TilesRealData, LiechtensteinIn2kmTilesMergesLikeTheWholeBuild) {
+  RELIEF_REQUIRE_SHARED_DATA();
+  const Region r = tile_and_merge(
+      test::shared_data("liechtenstein/liechtenstein-latest.osm.pbf"),
+      "/vsizip/" + test::shared_data("liechtenstein/N47E009.hgt.zip").string() + "/N47E009.hgt", 2000.0,
+      test::scratch_dir("liechtenstein"));
+  expect_like_the_whole_build(r, 0.015);
+  EXPECT_EQ(r.manifest.tiles.size(), 37u);
 }
 
 }  // namespace

@@ -86,13 +86,13 @@ int run_plan(const TilesArgs& a, const CLI::App& cmd) {
   plan.dem_paths = a.build.options.dem_paths;
   plan.name = a.build.options.name;
   plan.crs = a.build.options.crs;
+  plan.osm = a.build.options.osm;
   plan.build_args = given_build_args(cmd);
   if (std::find(plan.build_args.begin(), plan.build_args.end(), "--outputs") == plan.build_args.end()) {
     for (const char* arg : {"--outputs", "xodr,mesh,report", "--mesh-formats", "glb,fbx"})
       plan.build_args.push_back(arg);
   }
-  Diagnostics diagnostics;
-  const TileManifest manifest = plan_tiles(plan, diagnostics);
+  const TileManifest manifest = plan_tiles(plan);
   write_manifest(a.dir, manifest);
   std::size_t nodes = 0;
   for (const TileSpec& t : manifest.tiles) nodes += t.road_nodes;
@@ -103,12 +103,10 @@ int run_plan(const TilesArgs& a, const CLI::App& cmd) {
 }
 
 // One tile in this process.
-int run_one(const std::filesystem::path& dir, const TileManifest& manifest, int x, int y, bool force,
-            bool quiet) {
+int run_one(const std::filesystem::path& dir, const TileManifest& manifest, int x, int y, bool force) {
   const BuildCommandArgs parsed = parse_build_args(manifest.build_args);
   Diagnostics diagnostics;
-  print_diagnostics_live(diagnostics, true);
-  (void)quiet;
+  print_diagnostics_live(diagnostics, /*quiet=*/true);
   const TileBuildResult r = build_tile(dir, manifest, x, y, parsed.options, diagnostics, force);
   std::cout << "tile " << x << "," << y << ": " << r.status;
   if (r.status != "skipped") std::cout << " in " << r.seconds << " s";
@@ -176,7 +174,7 @@ int run_build(const TilesArgs& a) {
   int code = kOk;
   for (const std::string& text : a.tiles) {
     const auto [x, y] = parse_tile(text);
-    code = std::max(code, run_one(a.dir, manifest, x, y, a.force, a.build.quiet));
+    code = std::max(code, run_one(a.dir, manifest, x, y, a.force));
   }
   return code;
 }
@@ -185,6 +183,7 @@ int run_merge(const TilesArgs& a) {
   Diagnostics diagnostics;
   TileMergeOptions options;
   if (!a.compare.empty()) options.whole_xodr = a.compare;
+  print_diagnostics_live(diagnostics, /*quiet=*/true);
   const TileMergeResult r = merge_tiles(a.dir, options, diagnostics);
   std::cout << "merged " << r.tiles << " tiles: " << r.roads << " roads, " << r.junctions << " junctions, "
             << r.scene_tiles << " scene tiles\n";

@@ -133,6 +133,14 @@ inline constexpr DiagnosticCode kCarlaTileGridGap{
     "carla.tile_grid_gap",
     "a tile of a CARLA large map's grid holds no triangles; the package gives it a placeholder triangle"};
 
+// Region tiles (tiles/tiles.h).
+inline constexpr DiagnosticCode kTilesLinkUnresolved{
+    "tiles.link_unresolved",
+    "a link of a tile's road points at a road or junction that no tile owns; dropped"};
+inline constexpr DiagnosticCode kTilesHaloGate{
+    "tiles.halo_gate",
+    "a quality gate of a tile failed only in its halo, which its neighbour owns and checks"};
+
 // Quality gates (export/quality_gates.h).
 inline constexpr DiagnosticCode kGateFailed{"gate.failed", "a quality gate failed (the build exits with 4)"};
 
@@ -170,6 +178,8 @@ inline constexpr std::array kAll{kDemDatumGridMissing,
                                  kMeshRoadsOverlapInPlan,
                                  kMeshStructureTerrainIntersections,
                                  kCarlaTileGridGap,
+                                 kTilesLinkUnresolved,
+                                 kTilesHaloGate,
                                  kSumoLoopSkipped,
                                  kSumoSignalWithoutNode,
                                  kSumoSignalMidRoad,

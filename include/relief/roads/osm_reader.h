@@ -3,7 +3,9 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <map>
 #include <optional>
+#include <string>
 #include <unordered_map>
 #include <unordered_set>
 #include <vector>
@@ -54,5 +56,10 @@ struct OsmRoads {
 /// truncated file, no road ways at all); messages name the file.
 [[nodiscard]] OsmRoads read_osm(const std::filesystem::path& path, const OsmReadOptions& options,
                                 Diagnostics& diagnostics);
+
+/// Whether read_osm builds a way with these tags under `options`: a highway of a class it builds
+/// (footways, paths and the like only with include_non_motor). The region tiles plan with it.
+[[nodiscard]] bool builds_way(const std::map<std::string, std::string, std::less<>>& tags,
+                              const OsmReadOptions& options);
 
 }  // namespace relief

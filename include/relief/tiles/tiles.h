@@ -66,13 +66,16 @@ struct TilePlanOptions {
   /// Context read around each tile. A road's profile feels the network for a few hundred
   /// metres; 500 m keeps heights within millimetres of a whole build (README, tiles).
   double halo_m = 500.0;
+  /// Which ways are roads (include_non_motor), as the tiles' builds will read them: a tile is
+  /// planned only where such a road has a node.
+  OsmReadOptions osm;
   std::vector<std::string> build_args;
 };
 
 /// Plans the tiles of a region: streams the OSM twice (road ways' node ids, then their
 /// locations; memory 24 bytes per road node), hashes the inputs. Throws InvalidInput when the
 /// OSM holds no roads, OptionError for a tile size or halo that is not finite and > 0.
-[[nodiscard]] TileManifest plan_tiles(const TilePlanOptions& options, Diagnostics& diagnostics);
+[[nodiscard]] TileManifest plan_tiles(const TilePlanOptions& options);
 
 /// Reads DIR/manifest.json. Throws IoError or InvalidInput.
 [[nodiscard]] TileManifest read_manifest(const std::filesystem::path& dir);
@@ -125,7 +128,8 @@ struct TileMergeResult {
 /// Merges every built tile of DIR into DIR/merged/: NAME.xodr (each tile's own roads and
 /// junctions, ids renumbered, links across tiles joined), the scene tiles NAME_Tile_X_Y.glb
 /// (each tile's core), tileset.json (OGC 3D Tiles 1.1) and report.json. Throws InvalidInput when
-/// a planned tile is not built.
+/// a planned tile is not built or out of date (and writes nothing then); reports
+/// "tiles.link_unresolved" for each link no tile answers.
 [[nodiscard]] TileMergeResult merge_tiles(const std::filesystem::path& dir, const TileMergeOptions& options,
                                           Diagnostics& diagnostics);
 
