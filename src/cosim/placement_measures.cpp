@@ -95,8 +95,8 @@ void PlacementMeasures::add(const SumoVehicleState& v, const SurfacePose& pose, 
           << " m (front left, front right, rear left, rear right), " << under << " m";
     result.worst_wheel_under_place = where.str();
   }
-  for (const double under : pose.wheel_under_m)
-    if (under > options_.wheel_under_limit_m) ++result.wheels_under_road;
+  for (const double wheel : pose.wheel_under_m)
+    if (wheel > options_.wheel_under_limit_m) ++result.wheels_under_road;
   for (const SurfaceKind kind : pose.wheel_kind)
     if (kind != SurfaceKind::road && kind != SurfaceKind::junction) ++result.off_pavement;
 

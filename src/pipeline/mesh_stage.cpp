@@ -128,14 +128,14 @@ MeshSummary write_mesh_outputs(const MeshStageInput& in, const Scene& built, Out
   if (options.mesh_tile_size_m > 0.0) {
     summary.tile_size_m = options.mesh_tile_size_m;
     timer.run("write tiles", [&] {
-      const std::vector<SceneTile> tiles = split_into_tiles(scene, options.mesh_tile_size_m);
-      for (const SceneTile& tile : tiles) {
+      const std::vector<SceneTile> cut = split_into_tiles(scene, options.mesh_tile_size_m);
+      for (const SceneTile& tile : cut) {
         const std::string base = in.name + "_Tile_" + std::to_string(tile.x) + "_" + std::to_string(tile.y);
         for (const MeshFormat format : options.mesh_formats)
           write_scene(tile.scene, format, base, summary.tile_files, true);
       }
       if (carla_fbx != nullptr)
-        add_placeholder_tiles(scene, tiles, options.mesh_tile_size_m, in.name, *carla_fbx);
+        add_placeholder_tiles(scene, cut, options.mesh_tile_size_m, in.name, *carla_fbx);
       return 0;
     });
   }
