@@ -45,7 +45,7 @@ std::filesystem::path container_file(const std::filesystem::path& path) {
   if (start == std::string::npos) return path;
   std::error_code ec;
   for (std::size_t next = text.find('/', start + 1);; next = text.find('/', next + 1)) {
-    const std::filesystem::path candidate =
+    std::filesystem::path candidate =
         text.substr(start, next == std::string::npos ? std::string::npos : next - start);
     if (std::filesystem::is_regular_file(candidate, ec)) return candidate;
     if (next == std::string::npos) return path;

@@ -70,7 +70,7 @@ ModelMergeResult merge_models(std::vector<TileModel>& tiles) {
     }
     for (const ModelRoad& r : m.roads) {
       const bool owned =
-          r.junction == -1 ? owns(tiles[t].core, road_anchor(r)) : local[t].junction.count(r.junction) > 0;
+          r.junction == -1 ? owns(tiles[t].core, road_anchor(r)) : local[t].junction.contains(r.junction);
       if (!owned) continue;
       local[t].road[r.id] = next_road;
       if (r.junction == -1) {

@@ -29,7 +29,7 @@ std::vector<std::string> given_build_args(const CLI::App& cmd) {
   for (const CLI::Option* opt : cmd.get_options()) {
     if (opt->count() == 0 || opt->get_lnames().empty()) continue;
     const std::string name = "--" + opt->get_lnames().front();
-    if (kPlanOnly.count(name) > 0 || name == "--help") continue;
+    if (kPlanOnly.contains(name) || name == "--help") continue;
     if (opt->get_expected_max() == 0) {  // a flag
       args.push_back(name);
       continue;
@@ -90,7 +90,7 @@ int run_plan(const TilesArgs& a, const CLI::App& cmd) {
   plan.build_args = given_build_args(cmd);
   if (std::find(plan.build_args.begin(), plan.build_args.end(), "--outputs") == plan.build_args.end()) {
     for (const char* arg : {"--outputs", "xodr,mesh,report", "--mesh-formats", "glb,fbx"})
-      plan.build_args.push_back(arg);
+      plan.build_args.emplace_back(arg);
   }
   const TileManifest manifest = plan_tiles(plan);
   write_manifest(a.dir, manifest);
@@ -133,7 +133,7 @@ int run_all(const TilesArgs& a, const TileManifest& manifest) {
       const TileSpec& t = manifest.tiles[i];
       const std::string tile = std::to_string(t.x) + "," + std::to_string(t.y);
       std::vector<std::string> argv = {self, "tiles", "build", a.dir, "--tile", tile};
-      if (a.force) argv.push_back("--force");
+      if (a.force) argv.emplace_back("--force");
       ProcessResult r;
       for (int attempt = 0; attempt <= a.retries; ++attempt) {
         r = run_process(argv);
