@@ -136,7 +136,11 @@ int run_all(const TilesArgs& a, const TileManifest& manifest) {
       if (a.force) argv.emplace_back("--force");
       ProcessResult r;
       for (int attempt = 0; attempt <= a.retries; ++attempt) {
-        r = run_process(argv);
+        try {
+          r = run_process(argv);
+        } catch (const std::exception& e) {  // the process could not be started: a failed try
+          r = {kInternalError, std::string(e.what()) + "\n"};
+        }
         if (r.exit_code == kOk || r.exit_code == kGateFailed) break;
         std::lock_guard lock(mutex);
         std::cerr << "tiles: tile " << tile << " failed (exit " << r.exit_code << ")"
