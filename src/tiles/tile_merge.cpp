@@ -116,7 +116,6 @@ TileMergeResult merge_tiles(const std::filesystem::path& dir, const TileMergeOpt
   report["tile_size_m"] = manifest.tile_size_m;
   report["halo_m"] = manifest.halo_m;
   report["tiles"] = tiles_json;
-  report["failed_gates"] = result.failed_gates;
   if (!models.empty()) {
     detail::ModelMergeResult m = detail::merge_models(models);
     result.roads = m.model.roads.size();
@@ -144,14 +143,13 @@ TileMergeResult merge_tiles(const std::filesystem::path& dir, const TileMergeOpt
                                {"max_z_m", c.deviation.max_z_m},
                                {"worst_road", c.deviation.worst_road}};
     }
-    auto model = std::make_shared<RoadModel>(std::move(m.model));
     const std::filesystem::path xodr = merged / (manifest.name + ".xodr");
-    files.add(xodr, [model](std::ostream& o) { write_opendrive(o, *model); });
+    files.add(xodr, [&m](std::ostream& o) { write_opendrive(o, m.model); });
     result.written.push_back(xodr);
   }
   if (!tileset.empty()) {
     const std::string text = detail::tileset_json(manifest.frame, tileset, manifest.tile_size_m / 10.0);
-    files.add(merged / "tileset.json", [text](std::ostream& o) { o << text; });
+    files.add(merged / "tileset.json", [&text](std::ostream& o) { o << text; });
     result.written.push_back(merged / "tileset.json");
   }
   report["scene_tiles"] = result.scene_tiles;
@@ -178,8 +176,9 @@ TileMergeResult merge_tiles(const std::filesystem::path& dir, const TileMergeOpt
       result.failed_gates.push_back(where.str());
     }
   }
-  const std::string report_text = report.dump(1) + "\n";
-  files.add(merged / "report.json", [report_text](std::ostream& o) { o << report_text; });
+  // Last, with every failed gate: the tiles' and the merge's own.
+  report["failed_gates"] = result.failed_gates;
+  files.add(merged / "report.json", [&report](std::ostream& o) { o << report.dump(1) << "\n"; });
   result.written.push_back(merged / "report.json");
   files.commit();
   return result;
