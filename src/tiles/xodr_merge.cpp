@@ -51,9 +51,9 @@ ModelMergeResult merge_models(std::vector<TileModel>& tiles) {
 
   // Ownership and new ids, tile by tile.
   struct Local {
-    std::unordered_map<int, int> road;      // local road id -> merged id (owned roads)
-    std::unordered_map<int, int> junction;  // local junction id -> merged id (owned junctions)
-    std::vector<Vec2> junction_centre;      // per junction index
+    std::unordered_map<int, int> road;              // local road id -> merged id (owned roads)
+    std::unordered_map<int, int> junction;          // local junction id -> merged id (owned junctions)
+    std::unordered_map<int, Vec2> junction_centre;  // local junction id -> its anchor
   };
   std::vector<Local> local(tiles.size());
   PointIndex<RoadEnd> ends;
@@ -63,7 +63,7 @@ ModelMergeResult merge_models(std::vector<TileModel>& tiles) {
     const RoadModel& m = tiles[t].model;
     for (const JunctionModel& j : m.junctions) {
       const Vec2 c = junction_anchor(m, j);
-      local[t].junction_centre.push_back(c);
+      local[t].junction_centre[j.id] = c;
       if (!owns(tiles[t].core, c)) continue;
       local[t].junction[j.id] = next_junction;
       centres.add(c, next_junction++);
@@ -96,11 +96,9 @@ ModelMergeResult merge_models(std::vector<TileModel>& tiles) {
   };
   const auto junction_id = [&](std::size_t t, int id) -> std::optional<int> {
     if (const auto it = local[t].junction.find(id); it != local[t].junction.end()) return it->second;
-    const RoadModel& m = tiles[t].model;
-    for (std::size_t k = 0; k < m.junctions.size(); ++k) {
-      if (m.junctions[k].id == id) return centres.nearest(local[t].junction_centre[k], kCentreTolerance);
-    }
-    return std::nullopt;
+    const auto c = local[t].junction_centre.find(id);
+    if (c == local[t].junction_centre.end()) return std::nullopt;
+    return centres.nearest(c->second, kCentreTolerance);
   };
   const auto relink = [&](std::size_t t, const ModelRoad& road, std::optional<RoadLink>& link) {
     if (!link) return;
