@@ -12,6 +12,7 @@
 #include "relief/export/report_writer.h"
 #include "relief/geometry/mesh_quality.h"
 #include "relief/roads/opendrive_reader.h"
+#include "relief/roads/road_model_checks.h"
 #include "relief/tiles/tiles.h"
 #include "tiles/model_alignment.h"
 #include "tiles/scene_seams.h"
@@ -127,6 +128,19 @@ TileMergeResult merge_tiles(const std::filesystem::path& dir, const TileMergeOpt
     if (m.links_unresolved > 0) result.failed_gates.push_back("merge: " + m.first_unresolved);
     for (const std::string& where : m.unresolved) {
       diagnostics.report(Severity::error, codes::kTilesLinkUnresolved, where);
+    }
+    // Links across tiles join two owners' copies: their lane borders must meet as in one build
+    // (the build's link_height_step_m gate, 1 cm), or the region has a step where tiles disagree.
+    const LinkContinuity links = check_link_continuity(m.model);
+    report["opendrive"]["max_link_gap_m"] = links.max_horizontal_m;
+    report["opendrive"]["max_link_step_m"] = links.max_vertical_m;
+    report["opendrive"]["links_over_1cm"] = links.over_tolerance;
+    if (links.over_tolerance > 0) {
+      std::ostringstream where;
+      where << "merge: " << links.over_tolerance << " lane borders apart at road links (largest "
+            << links.max_horizontal_m << " m in plan, " << links.max_vertical_m << " m in height, road "
+            << links.worst_road << "): tiles disagree there";
+      result.failed_gates.push_back(where.str());
     }
     if (options.whole_xodr) {
       const detail::WholeBuildComparison c =

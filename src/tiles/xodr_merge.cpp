@@ -85,14 +85,24 @@ ModelMergeResult merge_models(std::vector<TileModel>& tiles) {
     out.unresolved.push_back("tile " + std::to_string(tile.x) + "," + std::to_string(tile.y) + ": " + what);
     if (out.links_unresolved++ == 0) out.first_unresolved = out.unresolved.back();
   };
-  // The merged id of local road `id`'s end `contact` (an owned road of any tile).
-  const auto road_end = [&](std::size_t t, int id, RoadLink::Contact contact) -> std::optional<RoadEnd> {
+  // The owned road end at `p` that is a `contact` end of a road other than `self` (merged id):
+  // where two roads link end to start, or start to start, both ends lie at one point, and only
+  // the contact and the linking road itself tell them apart.
+  const auto end_at = [&](const Vec2& p, RoadLink::Contact contact, int self) -> std::optional<RoadEnd> {
+    for (const RoadEnd& e : ends.all_near(p, kEndTolerance)) {
+      if (e.contact == contact && e.id != self) return e;
+    }
+    return std::nullopt;
+  };
+  // The merged id of local road `id`'s end `contact` (an owned road of any tile), linked from
+  // the road with merged id `self`.
+  const auto road_end = [&](std::size_t t, int id, RoadLink::Contact contact,
+                            int self) -> std::optional<RoadEnd> {
     if (const auto it = local[t].road.find(id); it != local[t].road.end())
       return RoadEnd{it->second, contact};
     const int index = tiles[t].model.road_index(id);
     if (index < 0) return std::nullopt;
-    return ends.nearest(end_point(tiles[t].model.roads[static_cast<std::size_t>(index)], contact),
-                        kEndTolerance);
+    return end_at(end_point(tiles[t].model.roads[static_cast<std::size_t>(index)], contact), contact, self);
   };
   const auto junction_id = [&](std::size_t t, int id) -> std::optional<int> {
     if (const auto it = local[t].junction.find(id); it != local[t].junction.end()) return it->second;
@@ -100,14 +110,14 @@ ModelMergeResult merge_models(std::vector<TileModel>& tiles) {
     if (c == local[t].junction_centre.end()) return std::nullopt;
     return centres.nearest(c->second, kCentreTolerance);
   };
-  const auto relink = [&](std::size_t t, const ModelRoad& road, std::optional<RoadLink>& link) {
+  const auto relink = [&](std::size_t t, const ModelRoad& road, int self, std::optional<RoadLink>& link) {
     if (!link) return;
     if (link->element == RoadLink::Element::junction) {
       if (const std::optional<int> j = junction_id(t, link->id)) {
         link->id = *j;
         return;
       }
-    } else if (const std::optional<RoadEnd> end = road_end(t, link->id, link->contact)) {
+    } else if (const std::optional<RoadEnd> end = road_end(t, link->id, link->contact, self)) {
       link->id = end->id;
       link->contact = end->contact;
       return;
@@ -124,8 +134,8 @@ ModelMergeResult merge_models(std::vector<TileModel>& tiles) {
       const auto it = local[t].road.find(r.id);
       if (it == local[t].road.end()) continue;
       ModelRoad road = std::move(r);
-      relink(t, road, road.predecessor);
-      relink(t, road, road.successor);
+      relink(t, road, it->second, road.predecessor);
+      relink(t, road, it->second, road.successor);
       road.id = it->second;
       if (road.junction != -1) road.junction = local[t].junction.at(road.junction);
       out.model.roads.push_back(std::move(road));
@@ -151,8 +161,8 @@ ModelMergeResult merge_models(std::vector<TileModel>& tiles) {
           const ModelRoad& in = m.roads[static_cast<std::size_t>(index)];
           const bool at_start = in.predecessor && in.predecessor->element == RoadLink::Element::junction &&
                                 in.predecessor->id == j.id;
-          incoming = ends.nearest(end_point(in, at_start ? RoadLink::Contact::start : RoadLink::Contact::end),
-                                  kEndTolerance);
+          const RoadLink::Contact contact = at_start ? RoadLink::Contact::start : RoadLink::Contact::end;
+          incoming = end_at(end_point(in, contact), contact, -1);
         }
         if (!incoming) {
           unresolved(tiles[t], "junction " + std::to_string(j.id) + "'s incoming road " +

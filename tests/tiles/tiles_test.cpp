@@ -131,6 +131,9 @@ void expect_like_the_whole_build(const Region& r, double max_dz_m = 1e-3) {
             << "\n  joined " << r.report.at("joined") << "\n";
   EXPECT_GE(r.manifest.tiles.size(), 4u);
   EXPECT_EQ(r.report.at("opendrive").at("links_unresolved").get<int>(), 0) << r.report.at("opendrive");
+  // Links across tiles join two owners' copies: their lane borders meet as in one build.
+  EXPECT_EQ(r.report.at("opendrive").at("links_over_1cm").get<int>(), 0) << r.report.at("opendrive");
+  EXPECT_TRUE(r.merge.failed_gates.empty()) << r.merge.failed_gates.front();
   EXPECT_EQ(w.at("unmatched").get<int>(), 0);
   EXPECT_EQ(r.merge.roads, w.at("roads").get<std::size_t>());
   EXPECT_LE(w.at("max_xy_m").get<double>(), 1e-9);     // the plan does not depend on the window
