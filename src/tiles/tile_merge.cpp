@@ -16,6 +16,7 @@
 #include "relief/tiles/tiles.h"
 #include "tiles/model_alignment.h"
 #include "tiles/scene_seams.h"
+#include "tiles/sumo_merge.h"
 #include "tiles/tile_record.h"
 #include "tiles/tileset_writer.h"
 #include "tiles/xodr_merge.h"
@@ -156,6 +157,10 @@ TileMergeResult merge_tiles(const std::filesystem::path& dir, const TileMergeOpt
                                {"max_xy_m", c.deviation.max_xy_m},
                                {"max_z_m", c.deviation.max_z_m},
                                {"worst_road", c.deviation.worst_road}};
+    }
+    if (options.sumo_net) {
+      report["sumo"] = detail::merge_sumo_net(m.model, options.sumo, options.gates, merged, manifest.name, files,
+                                              result.written, result.failed_gates, diagnostics);
     }
     const std::filesystem::path xodr = merged / (manifest.name + ".xodr");
     files.add(xodr, [&m](std::ostream& o) { write_opendrive(o, m.model); });

@@ -78,6 +78,7 @@ struct TilesArgs {
   int jobs = 1;
   int retries = 1;
   std::string compare;  ///< merge: a whole build's .xodr
+  bool no_sumo = false;  ///< merge: no SUMO network
 };
 
 int run_plan(const TilesArgs& a, const CLI::App& cmd) {
@@ -187,6 +188,12 @@ int run_merge(const TilesArgs& a) {
   Diagnostics diagnostics;
   TileMergeOptions options;
   if (!a.compare.empty()) options.whole_xodr = a.compare;
+  {
+    const BuildCommandArgs parsed = parse_build_args(read_manifest(a.dir).build_args);
+    options.sumo = parsed.options.sumo;
+    options.gates = parsed.options.gates;
+  }
+  options.sumo_net = !a.no_sumo;
   print_diagnostics_live(diagnostics, /*quiet=*/true);
   const TileMergeResult r = merge_tiles(a.dir, options, diagnostics);
   std::cout << "merged " << r.tiles << " tiles: " << r.roads << " roads, " << r.junctions << " junctions, "
@@ -239,6 +246,7 @@ Runner add_tiles_command(CLI::App& app) {
   merge->add_option("--compare", args->compare,
                     "a whole build's .xodr (relief build --origin at the plan's centre): measure the merge "
                     "against it");
+  merge->add_flag("--no-sumo", args->no_sumo, "no SUMO network (it needs netconvert; the region's in one run)");
 
   return [args, plan, build, merge] {
     return run_reporting_errors([&] {
