@@ -11,8 +11,8 @@ namespace relief::detail {
 
 nlohmann::json merge_sumo_net(const RoadModel& model, const SumoOptions& options, const GateThresholds& gates,
                               const std::filesystem::path& dir, const std::string& name, OutputSet& files,
-                              std::vector<std::filesystem::path>& written, std::vector<std::string>& failed_gates,
-                              Diagnostics& diagnostics) {
+                              std::vector<std::filesystem::path>& written,
+                              std::vector<std::string>& failed_gates, Diagnostics& diagnostics) {
   // Junction ids in the options are a tile's; the merged junctions carry their lights.
   SumoOptions region = options;
   region.signalled_junctions.clear();
@@ -37,8 +37,8 @@ nlohmann::json merge_sumo_net(const RoadModel& model, const SumoOptions& options
   const auto gate = [&](const std::string& what, double value, double threshold, const std::string& where) {
     if (value <= threshold) return;
     std::ostringstream text;
-    text << "merge: " << what << " " << value << " (at most " << threshold << ")" << (where.empty() ? "" : ", ")
-         << where;
+    text << "merge: " << what << " " << value << " (at most " << threshold << ")"
+         << (where.empty() ? "" : ", ") << where;
     failed_gates.push_back(text.str());
   };
   gate("sumo_lanes_without_z", static_cast<double>(c.lanes_without_z), gates.sumo_lanes_without_z, "");

@@ -24,7 +24,7 @@ namespace relief::detail {
 /// "sumo" object.
 nlohmann::json merge_sumo_net(const RoadModel& model, const SumoOptions& options, const GateThresholds& gates,
                               const std::filesystem::path& dir, const std::string& name, OutputSet& files,
-                              std::vector<std::filesystem::path>& written, std::vector<std::string>& failed_gates,
-                              Diagnostics& diagnostics);
+                              std::vector<std::filesystem::path>& written,
+                              std::vector<std::string>& failed_gates, Diagnostics& diagnostics);
 
 }  // namespace relief::detail

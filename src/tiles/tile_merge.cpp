@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <fstream>
@@ -14,6 +15,7 @@
 #include "relief/roads/opendrive_reader.h"
 #include "relief/roads/road_model_checks.h"
 #include "relief/tiles/tiles.h"
+#include "tiles/carla_merge.h"
 #include "tiles/model_alignment.h"
 #include "tiles/scene_seams.h"
 #include "tiles/sumo_merge.h"
@@ -57,6 +59,7 @@ TileMergeResult merge_tiles(const std::filesystem::path& dir, const TileMergeOpt
   std::vector<detail::TilesetTile> tileset;
   std::vector<MeshScene> scenes;
   std::vector<std::string> scene_names;
+  std::vector<std::pair<int, int>> scene_tiles;
   std::vector<std::vector<MeshFormat>> scene_formats;
   OutputSet files;
   for (const TileSpec& spec : manifest.tiles) {
@@ -82,6 +85,7 @@ TileMergeResult merge_tiles(const std::filesystem::path& dir, const TileMergeOpt
         std::filesystem::exists(glb) && glb_holds_meshes(glb)) {
       scenes.push_back(read_mesh_file(glb));
       scene_names.push_back(manifest.name + "_Tile_" + tile_name(spec));
+      scene_tiles.emplace_back(spec.x, spec.y);
       scene_formats.push_back({MeshFormat::glb});
       if (std::filesystem::exists(out / (manifest.name + ".fbx")))
         scene_formats.back().push_back(MeshFormat::fbx);
@@ -91,14 +95,28 @@ TileMergeResult merge_tiles(const std::filesystem::path& dir, const TileMergeOpt
   std::filesystem::create_directories(merged);  // every tile is built: the merge can be written
   // The scene tiles, their seams welded, then their checks as one surface.
   const detail::SeamWeld weld = detail::weld_seams(scenes);
+  // CARLA's large map takes the FBX tiles as they are written.
+  std::size_t fbx_tiles = 0;
+  for (const std::vector<MeshFormat>& formats : scene_formats)
+    fbx_tiles += std::count(formats.begin(), formats.end(), MeshFormat::fbx);
+  const std::string carla_refusal = detail::carla_large_map_refusal(manifest, fbx_tiles);
+  std::vector<EncodedFile> carla_fbx;
+  std::vector<std::pair<int, int>> carla_tiles;
+  double lowest_z = std::numeric_limits<double>::infinity();
   for (std::size_t i = 0; i < scenes.size(); ++i) {
     for (const MeshFormat format : scene_formats[i]) {
       for (EncodedFile& f : encode_mesh_scene(scenes[i], format, scene_names[i])) {
         const std::filesystem::path to = merged / f.filename;
         files.add(to, [&f](std::ostream& o) { o << f.bytes; });
         result.written.push_back(to);
+        if (format == MeshFormat::fbx && carla_refusal.empty()) {
+          carla_fbx.push_back(std::move(f));
+          carla_tiles.push_back(scene_tiles[i]);
+        }
       }
     }
+    for (const TriangleMesh& m : scenes[i].meshes)
+      for (const Vec3& v : m.vertices) lowest_z = std::min(lowest_z, v.z());
     ++result.scene_tiles;
     detail::TilesetTile tile{scene_names[i] + ".glb"};
     tile.min = Vec3::Constant(std::numeric_limits<double>::infinity());
@@ -159,12 +177,21 @@ TileMergeResult merge_tiles(const std::filesystem::path& dir, const TileMergeOpt
                                {"worst_road", c.deviation.worst_road}};
     }
     if (options.sumo_net) {
-      report["sumo"] = detail::merge_sumo_net(m.model, options.sumo, options.gates, merged, manifest.name, files,
-                                              result.written, result.failed_gates, diagnostics);
+      report["sumo"] = detail::merge_sumo_net(m.model, options.sumo, options.gates, merged, manifest.name,
+                                              files, result.written, result.failed_gates, diagnostics);
     }
     const std::filesystem::path xodr = merged / (manifest.name + ".xodr");
-    files.add(xodr, [&m](std::ostream& o) { write_opendrive(o, m.model); });
+    std::ostringstream xodr_text;
+    write_opendrive(xodr_text, m.model);
+    files.add(xodr, [&xodr_text](std::ostream& o) { o << xodr_text.view(); });
     result.written.push_back(xodr);
+    if (carla_refusal.empty()) {
+      report["carla"] = detail::write_carla_large_map(
+          manifest, std::move(xodr_text).str(), std::move(carla_fbx), carla_tiles, lowest_z, scenes.front(),
+          merged, files, result.written, diagnostics);
+    } else {
+      report["carla"] = {{"package", nullptr}, {"why_not", carla_refusal}};
+    }
   }
   if (!tileset.empty()) {
     const std::string text = detail::tileset_json(manifest.frame, tileset, manifest.tile_size_m / 10.0);

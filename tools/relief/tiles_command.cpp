@@ -77,7 +77,7 @@ struct TilesArgs {
   bool force = false;
   int jobs = 1;
   int retries = 1;
-  std::string compare;  ///< merge: a whole build's .xodr
+  std::string compare;   ///< merge: a whole build's .xodr
   bool no_sumo = false;  ///< merge: no SUMO network
 };
 
@@ -246,7 +246,8 @@ Runner add_tiles_command(CLI::App& app) {
   merge->add_option("--compare", args->compare,
                     "a whole build's .xodr (relief build --origin at the plan's centre): measure the merge "
                     "against it");
-  merge->add_flag("--no-sumo", args->no_sumo, "no SUMO network (it needs netconvert; the region's in one run)");
+  merge->add_flag("--no-sumo", args->no_sumo,
+                  "no SUMO network (it needs netconvert; the region's in one run)");
 
   return [args, plan, build, merge] {
     return run_reporting_errors([&] {
