@@ -1,3 +1,5 @@
+#include <sys/resource.h>
+
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -98,6 +100,8 @@ TileBuildResult build_tile(const std::filesystem::path& dir, const TileManifest&
   }
   record.status = record.failed_gates.empty() ? "built" : "gates_failed";
   record.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  rusage usage{};
+  if (getrusage(RUSAGE_SELF, &usage) == 0) record.peak_rss_mb = static_cast<double>(usage.ru_maxrss) / 1024.0;
   detail::write_tile_record(here, record, built.report);
   result.status = record.status;
   result.seconds = record.seconds;

@@ -62,6 +62,8 @@ TileMergeResult merge_tiles(const std::filesystem::path& dir, const TileMergeOpt
   std::vector<std::pair<int, int>> scene_tiles;
   std::vector<std::vector<MeshFormat>> scene_formats;
   OutputSet files;
+  double seconds = 0.0, peak_rss_mb = 0.0;
+  std::string peak_tile;
   for (const TileSpec& spec : manifest.tiles) {
     const std::filesystem::path here = tile_dir(dir, spec.x, spec.y);
     const std::optional<detail::TileRecord> record = detail::read_tile_record(here);
@@ -71,6 +73,11 @@ TileMergeResult merge_tiles(const std::filesystem::path& dir, const TileMergeOpt
                          " --tile " + std::to_string(spec.x) + "," + std::to_string(spec.y) + " (or --all)");
     }
     ++result.tiles;
+    seconds += record->seconds;
+    if (record->peak_rss_mb > peak_rss_mb) {
+      peak_rss_mb = record->peak_rss_mb;
+      peak_tile = tile_name(spec);
+    }
     for (const std::string& g : record->failed_gates)
       result.failed_gates.push_back(tile_name(spec) + ": " + g);
     nlohmann::json t = read_json(here / detail::kTileRecordFile);
@@ -136,6 +143,7 @@ TileMergeResult merge_tiles(const std::filesystem::path& dir, const TileMergeOpt
   report["tile_size_m"] = manifest.tile_size_m;
   report["halo_m"] = manifest.halo_m;
   report["tiles"] = tiles_json;
+  report["tile_builds"] = {{"seconds", seconds}, {"largest_peak_rss_mb", peak_rss_mb}, {"largest_tile", peak_tile}};
   if (!models.empty()) {
     detail::ModelMergeResult m = detail::merge_models(models);
     result.roads = m.model.roads.size();
