@@ -124,7 +124,9 @@ int run_one(const std::filesystem::path& dir, const TileManifest& manifest, int 
 // Every tile, `jobs` at a time, each in its own process (its memory is its window's); a tile that
 // fails is tried again `retries` times, the others go on.
 int run_all(const TilesArgs& a, const TileManifest& manifest) {
-  const std::string self = std::filesystem::read_symlink("/proc/self/exe").string();
+  // This very program, also when its file was replaced (rebuilt) while the tiles run: the
+  // kernel's link to the running image, not the path it was started from.
+  const std::string self = "/proc/self/exe";
   std::atomic<std::size_t> next{0};
   std::mutex mutex;
   std::size_t done = 0, gates_failed = 0;
