@@ -10,7 +10,7 @@ set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 copies=${1:-87}
 tile=${2:-2000}
-relief="$root/build/tools/relief"
+relief="${RELIEF:-$root/build/tools/relief}"  # a copy, to keep rebuilding beside the run
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 export SUMO_HOME=${SUMO_HOME:-/usr/share/sumo}
