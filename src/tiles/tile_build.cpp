@@ -61,6 +61,8 @@ TileBuildResult build_tile(const std::filesystem::path& dir, const TileManifest&
   const auto started = std::chrono::steady_clock::now();
   std::filesystem::create_directories(here);
   std::filesystem::remove(here / detail::kTileRecordFile);  // a tile that fails keeps none
+  // The outputs of an earlier build, and the temporaries of one that was killed, go.
+  std::filesystem::remove_all(here / "out");
 
   const std::filesystem::path window = here / "window.osm.pbf";
   const detail::WindowCounts counts =

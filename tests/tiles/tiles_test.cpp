@@ -149,6 +149,15 @@ Region tile_and_merge(const std::filesystem::path& osm, const std::string& dem, 
     EXPECT_EQ(b.status, "built") << t.x << "," << t.y;
     EXPECT_TRUE(b.failed_gates.empty()) << t.x << "," << t.y << ": " << b.failed_gates.front();
   }
+  // A killed build's temporaries go with the next build of the tile.
+  {
+    const TileSpec& first = r.manifest.tiles.front();
+    const std::filesystem::path stale = tile_dir(dir, first.x, first.y) / "out" / "old.xodr.tmp-99999";
+    std::ofstream(stale) << "half written";
+    Diagnostics forced;
+    EXPECT_EQ(build_tile(dir, r.manifest, first.x, first.y, options, forced, /*force=*/true).status, "built");
+    EXPECT_FALSE(std::filesystem::exists(stale));
+  }
   // Up to date: nothing is built again.
   Diagnostics again;
   EXPECT_EQ(
