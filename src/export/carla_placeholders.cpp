@@ -42,4 +42,13 @@ std::vector<EncodedFile> carla_placeholder_tiles(const std::set<std::pair<int, i
   return out;
 }
 
+std::string carla_placeholder_message(const std::vector<std::string>& placed, int tile_size_m) {
+  std::string listed;
+  for (std::size_t i = 0; i < placed.size() && i < 10; ++i) listed += (i == 0 ? "" : ", ") + placed[i];
+  return std::to_string(placed.size()) + " tile(s) of the " + std::to_string(tile_size_m) +
+         " m grid hold no triangles (X Y: " + listed + (placed.size() > 10 ? ", ..." : "") +
+         "): the CARLA package gives each a placeholder triangle 50 m under the scene, since CARLA's cook "
+         "stops a row at its first missing tile";
+}
+
 }  // namespace relief

@@ -158,16 +158,9 @@ void write_carla_package_output(const MeshStageInput& in, std::string xodr, Carl
   summary.carla_package = filename;
   summary.carla_package_entries = carla_package_entries(package);
   summary.carla_placeholder_tiles = std::move(fbx.placeholders);
-  const std::vector<std::string>& gaps = summary.carla_placeholder_tiles;
-  if (!gaps.empty()) {
-    std::string listed;
-    for (std::size_t i = 0; i < gaps.size() && i < 10; ++i) listed += (i == 0 ? "" : ", ") + gaps[i];
-    in.diagnostics.report(
-        Severity::warning, codes::kCarlaTileGridGap,
-        std::to_string(gaps.size()) + " tile(s) of the " + std::to_string(package.tile_size_m) +
-            " m grid hold no triangles (X Y: " + listed + (gaps.size() > 10 ? ", ..." : "") +
-            "): the CARLA package gives each a placeholder triangle 50 m under the scene, "
-            "since CARLA's cook stops a row at its first missing tile");
+  if (!summary.carla_placeholder_tiles.empty()) {
+    in.diagnostics.report(Severity::warning, codes::kCarlaTileGridGap,
+                          carla_placeholder_message(summary.carla_placeholder_tiles, package.tile_size_m));
   }
   written.push_back(in.options.out_dir / filename);
   names.push_back(filename);

@@ -38,14 +38,8 @@ nlohmann::json write_carla_large_map(const TileManifest& manifest, std::string x
                                               lowest_z - 50.0, like, manifest.name, placed);
   for (EncodedFile& f : fbx) package.fbx_files.push_back(std::move(f));
   if (!placed.empty()) {
-    std::string listed;
-    for (std::size_t i = 0; i < placed.size() && i < 10; ++i) listed += (i == 0 ? "" : ", ") + placed[i];
     diagnostics.report(Severity::warning, codes::kCarlaTileGridGap,
-                       std::to_string(placed.size()) + " tile(s) of the " +
-                           std::to_string(package.tile_size_m) + " m grid hold no triangles (X Y: " + listed +
-                           (placed.size() > 10 ? ", ..." : "") +
-                           "): the CARLA package gives each a placeholder triangle 50 m under the scene, "
-                           "since CARLA's cook stops a row at its first missing tile");
+                       carla_placeholder_message(placed, package.tile_size_m));
   }
   const std::string bytes = encode_carla_package(package);
   const std::filesystem::path path = dir / (manifest.name + ".carla.tar.gz");

@@ -83,6 +83,9 @@ struct CarlaPackageInput {
                                                                const std::string& name,
                                                                std::vector<std::string>& placed);
 
+/// The warning for `placed` placeholder tiles ("X Y" each) of a grid of `tile_size_m`.
+[[nodiscard]] std::string carla_placeholder_message(const std::vector<std::string>& placed, int tile_size_m);
+
 /// The package as a .tar.gz. Throws InvalidInput for a map name that is not valid, no FBX, an
 /// FBX not named NAME.fbx (standard map: exactly one) or NAME_Tile_X_Y.fbx (large map), the same
 /// tile twice, a tile size out of range, mtime_s < 0, or a path too long for ustar.
