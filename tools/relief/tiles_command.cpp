@@ -154,7 +154,10 @@ int run_all(const TilesArgs& a, const TileManifest& manifest) {
       ++done;
       if (r.exit_code == kGateFailed) ++gates_failed;
       if (r.exit_code != kOk && r.exit_code != kGateFailed) failed.push_back(tile);
-      std::string line = r.output.substr(0, r.output.find('\n'));
+      // The tile's own summary line ("tile X,Y: ..."); its diagnostics come before it.
+      const std::size_t at = r.output.rfind("tile " + tile + ":");
+      std::string line = at == std::string::npos ? "tile " + tile + ": done"
+                                                 : r.output.substr(at, r.output.find('\n', at) - at);
       if (r.exit_code != kOk && r.exit_code != kGateFailed) line = "tile " + tile + ": FAILED";
       std::cerr << "tiles: [" << done << "/" << manifest.tiles.size() << "] " << line << "\n";
     }
