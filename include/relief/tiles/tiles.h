@@ -123,6 +123,7 @@ struct TileMergeResult {
   /// Against TileMergeOptions::whole_xodr: roads matched by their ends, then their surfaces.
   std::size_t whole_roads = 0, whole_unmatched = 0;
   double whole_max_xy_m = 0.0, whole_max_z_m = 0.0;
+  std::size_t whole_roads_over_1mm = 0;  ///< matched roads whose heights differ by more than 1 mm
 };
 
 /// Merges every built tile of DIR into DIR/merged/: NAME.xodr (each tile's own roads and
