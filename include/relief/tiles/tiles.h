@@ -98,7 +98,8 @@ struct TileBuildResult {
 };
 
 /// Builds tile (x, y) of the plan in DIR: extracts its window of the OSM (complete road ways
-/// with a node in the window) to DIR/tiles/X_Y/window.osm.pbf in three streaming passes, runs
+/// with a node in the window, and the structure chains they touch with the ways within the halo
+/// of them: osm_window.h) to DIR/tiles/X_Y/window.osm.pbf in streaming passes, runs
 /// build() on it in the manifest's frame (`options` as parsed from manifest.build_args; its
 /// osm_path, out_dir, name, crs, frame_centre and the scene's core are set here) and writes
 /// tile.json. Throws what build() throws; a tile that throws keeps no tile.json.
