@@ -1,5 +1,8 @@
 #include "tiles/model_alignment.h"
 
+#include <algorithm>
+#include <optional>
+
 #include "tiles/point_index.h"
 
 namespace relief::detail {
@@ -19,13 +22,13 @@ Vec2 end_of(const ModelRoad& r) {
 WholeBuildComparison compare_with_whole(const RoadModel& whole, const RoadModel& merged) {
   PointIndex<std::size_t> starts;
   for (std::size_t i = 0; i < merged.roads.size(); ++i) starts.add(start_of(merged.roads[i]), i);
-  // `merged` with each matched road under its whole-build id; the rest left out.
-  RoadModel aligned;
-  aligned.frame = merged.frame;
+  // Each matched pair measured on its own (the merged road under its whole-build id), so that
+  // the roads apart by more than a millimetre or a centimetre are counted.
   WholeBuildComparison c;
   c.roads = whole.roads.size();
-  RoadModel reference;
+  RoadModel reference, aligned;
   reference.frame = whole.frame;
+  aligned.frame = merged.frame;
   for (const ModelRoad& w : whole.roads) {
     std::optional<std::size_t> match;
     // Several roads may start at one place (a junction's connecting roads): the one that also
@@ -41,12 +44,17 @@ WholeBuildComparison compare_with_whole(const RoadModel& whole, const RoadModel&
       ++c.unmatched;
       continue;
     }
-    reference.roads.push_back(w);
-    ModelRoad m = merged.roads[*match];
-    m.id = w.id;
-    aligned.roads.push_back(std::move(m));
+    reference.roads.assign(1, w);
+    aligned.roads.assign(1, merged.roads[*match]);
+    aligned.roads.front().id = w.id;
+    const ModelDeviation d = compare_models(reference, aligned);
+    c.deviation.points += d.points;
+    if (d.max_xy_m > c.deviation.max_xy_m || d.max_z_m > c.deviation.max_z_m) c.deviation.worst_road = w.id;
+    c.deviation.max_xy_m = std::max(c.deviation.max_xy_m, d.max_xy_m);
+    c.deviation.max_z_m = std::max(c.deviation.max_z_m, d.max_z_m);
+    if (d.max_z_m > 1e-3) ++c.roads_over_1mm;
+    if (d.max_z_m > 1e-2) ++c.roads_over_1cm;
   }
-  c.deviation = compare_models(reference, aligned);
   return c;
 }
 

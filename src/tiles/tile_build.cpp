@@ -66,7 +66,7 @@ TileBuildResult build_tile(const std::filesystem::path& dir, const TileManifest&
 
   const std::filesystem::path window = here / "window.osm.pbf";
   const detail::WindowCounts counts =
-      detail::extract_window(osm_input(manifest).path, spec->window, options.osm, window);
+      detail::extract_window(osm_input(manifest).path, spec->window, manifest.halo_m, options.osm, window);
 
   options.osm_path = window;
   options.out_dir = here / "out";
@@ -87,6 +87,7 @@ TileBuildResult build_tile(const std::filesystem::path& dir, const TileManifest&
   record.y = y;
   record.window_ways = counts.ways;
   record.window_nodes = counts.nodes;
+  record.window_chain_ways = counts.chain_ways;
   // A gate that fails at a place outside the core is the halo's: the window ends there, cutting
   // the network short, and the tile that owns the place checks it with its whole context.
   for (const Gate& g : failed_gates(built.report.gates)) {

@@ -176,12 +176,15 @@ TileMergeResult merge_tiles(const std::filesystem::path& dir, const TileMergeOpt
       result.whole_unmatched = c.unmatched;
       result.whole_max_xy_m = c.deviation.max_xy_m;
       result.whole_max_z_m = c.deviation.max_z_m;
+      result.whole_roads_over_1mm = c.roads_over_1mm;
       report["whole_build"] = {{"xodr", options.whole_xodr->string()},
                                {"roads", c.roads},
                                {"unmatched", c.unmatched},
                                {"points", c.deviation.points},
                                {"max_xy_m", c.deviation.max_xy_m},
                                {"max_z_m", c.deviation.max_z_m},
+                               {"roads_over_1mm", c.roads_over_1mm},
+                               {"roads_over_1cm", c.roads_over_1cm},
                                {"worst_road", c.deviation.worst_road}};
     }
     if (options.sumo_net) {

@@ -170,6 +170,8 @@ std::string tile_key(const TileManifest& manifest, const TileSpec& tile) {
   j["frame"] = {manifest.frame.crs(), manifest.frame.origin().x(), manifest.frame.origin().y()};
   j["grid"] = {manifest.tile_size_m, manifest.halo_m, manifest.grid_origin.x(), manifest.grid_origin.y()};
   j["tile"] = {tile.x, tile.y};
+  // What a window holds (osm_window.h): a tile built under another rule is built again.
+  j["window"] = "ways in the window; their structure chains, with the ways within the halo of them";
   j["inputs"] = nlohmann::json::array();
   for (const TileInput& in : manifest.inputs) j["inputs"].push_back(in.sha256);
   j["build_args"] = manifest.build_args;

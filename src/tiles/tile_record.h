@@ -22,6 +22,7 @@ struct TileRecord {
   /// process of its own: the tile's peak).
   double peak_rss_mb = 0.0;
   std::size_t window_ways = 0, window_nodes = 0;
+  std::size_t window_chain_ways = 0;      ///< of window_ways: taken for structure chains beyond the window
   std::vector<std::string> failed_gates;  ///< failed in the core (or at no known place)
   /// Failed at a place in the halo only: reported, not the tile's (its owner checks the place).
   std::vector<std::string> halo_gates;

@@ -13,12 +13,16 @@
 #include <limits>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <numbers>
 #include <pugixml.hpp>
 #include <sstream>
 
 #include "relief/core/errors.h"
+#include "relief/geometry/crs_transform.h"
 #include "relief/tiles/tiles.h"
 #include "support/corpus.h"
+#include "support/osm_sketch.h"
+#include "support/synthetic.h"
 #include "support/test_data.h"
 
 namespace relief {
@@ -128,12 +132,13 @@ std::pair<double, double> distance_to(const Vec3& p, const std::vector<Vec3>& li
 // Plans `osm` in tiles, builds every tile in this process, builds the whole region in the plan's
 // frame and merges the tiles against it.
 Region tile_and_merge(const std::filesystem::path& osm, const std::string& dem, double tile_m,
-                      const std::filesystem::path& dir) {
+                      const std::filesystem::path& dir, double halo_m = 500.0) {
   Diagnostics d;
   TilePlanOptions plan;
   plan.osm_path = osm;
   plan.dem_paths = {dem};
   plan.tile_size_m = tile_m;
+  plan.halo_m = halo_m;
   plan.build_args = {"(in-process)"};
   Region r;
   r.manifest = plan_tiles(plan);
@@ -263,6 +268,55 @@ void expect_like_the_whole_build(const Region& r, double max_dz_m = 1e-3) {
 TEST(Tiles, OldTownMergesLikeTheWholeBuild) {
   const test::CorpusCase c = test::make_old_town(test::scratch_dir("input"));
   expect_like_the_whole_build(tile_and_merge(c.osm, c.dem, 120.0, test::scratch_dir("tiles")));
+}
+
+// A viaduct longer than the halo (Portland's Fremont Bridge in small): a 1 km road whose middle
+// 600 m are three bridge ways over a valley 30 m deep, a street along the valley floor under it,
+// in 200 m tiles with a 50 m halo. The fit spans the deck between its abutments, 600 m apart: a
+// window that holds only the ways with a node in it cuts the deck short of one or both, and its
+// fit spans it differently (before the structure chains: 0.97 m from the whole build, 8 lane
+// borders apart by up to 0.83 m at links between tiles). Windows take the whole chain and the
+// ground within the halo of it, so every tile spans the deck as the whole build does.
+TEST(Tiles, AStructureChainLongerThanTheHaloMergesLikeTheWholeBuild) {
+  const GeoFrame frame = test::synthetic_frame();
+  const Vec2 west = CrsTransform(frame.crs(), "EPSG:4326").apply(frame.origin() + Vec2(-500.0, 100.0));
+  // 25 m a column, 50 m a row: A-U every 50 m from x = -500 to 500, the street a-b at x = 25.
+  test::OsmSketch sketch(R"(
+                           a
+
+
+      A-B-C-D-E-F-G-H-I-J-K-L-M-N-O-P-Q-R-S-T-U
+
+
+                           b
+  )",
+                         25.0, {west.x(), west.y()});
+  const test::OsmSketch::Tags ground{{"highway", "primary"}, {"lanes", "2"}};
+  test::OsmSketch::Tags bridge = ground;
+  bridge.insert(bridge.end(), {{"bridge", "yes"}, {"layer", "1"}});
+  sketch.way("ABCDE", ground)
+      .way("EFGHI", bridge)
+      .way("IJKLM", bridge)
+      .way("MNOPQ", bridge)
+      .way("QRSTU", ground);
+  sketch.way("ab", {{"highway", "residential"}});
+  const std::filesystem::path input = test::scratch_dir("chain_input");
+  const std::filesystem::path osm = sketch.write(input / "viaduct.osm");
+  // Flat at 100 m but for the valley under the deck (x in [-300, 300], 30 m deep at x = 0).
+  const std::string dem = test::write_local_dem("chain_valley", 800.0, 10.0, [](double x, double) {
+    const double u = std::abs(x) / 300.0;
+    return u >= 1.0 ? 100.0 : 100.0 - 30.0 * std::pow(std::cos(0.5 * std::numbers::pi * u), 2.0);
+  });
+  const std::filesystem::path dir = test::scratch_dir("chain_tiles");
+  const Region r = tile_and_merge(osm, dem, 200.0, dir, 50.0);
+  expect_like_the_whole_build(r);
+  // Some windows took ways beyond their halo for the chain.
+  std::size_t chain_ways = 0;
+  for (const TileSpec& t : r.manifest.tiles) {
+    std::ifstream in(tile_dir(dir, t.x, t.y) / "tile.json");
+    chain_ways += nlohmann::json::parse(in).at("window").at("chain_ways").get<std::size_t>();
+  }
+  EXPECT_GT(chain_ways, 0u);
 }
 
 TEST(TilesRealData, NortheastIn500mTilesMergesLikeTheWholeBuild) {

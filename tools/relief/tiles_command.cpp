@@ -206,7 +206,7 @@ int run_merge(const TilesArgs& a) {
   if (options.whole_xodr) {
     std::cout << "against the whole build: " << r.whole_roads - r.whole_unmatched << " of " << r.whole_roads
               << " roads matched; surface within " << r.whole_max_xy_m << " m in plan, " << r.whole_max_z_m
-              << " m in height\n";
+              << " m in height (" << r.whole_roads_over_1mm << " roads over 1 mm)\n";
   }
   for (const std::filesystem::path& p : r.written) std::cout << "  wrote " << p.string() << "\n";
   if (!r.failed_gates.empty()) {

@@ -98,7 +98,8 @@ struct TileBuildResult {
 };
 
 /// Builds tile (x, y) of the plan in DIR: extracts its window of the OSM (complete road ways
-/// with a node in the window) to DIR/tiles/X_Y/window.osm.pbf in three streaming passes, runs
+/// with a node in the window, and the structure chains they touch with the ways within the halo
+/// of them: osm_window.h) to DIR/tiles/X_Y/window.osm.pbf in streaming passes, runs
 /// build() on it in the manifest's frame (`options` as parsed from manifest.build_args; its
 /// osm_path, out_dir, name, crs, frame_centre and the scene's core are set here) and writes
 /// tile.json. Throws what build() throws; a tile that throws keeps no tile.json.
@@ -129,6 +130,7 @@ struct TileMergeResult {
   /// Against TileMergeOptions::whole_xodr: roads matched by their ends, then their surfaces.
   std::size_t whole_roads = 0, whole_unmatched = 0;
   double whole_max_xy_m = 0.0, whole_max_z_m = 0.0;
+  std::size_t whole_roads_over_1mm = 0;  ///< matched roads whose heights differ by more than 1 mm
 };
 
 /// Merges every built tile of DIR into DIR/merged/: NAME.xodr (each tile's own roads and
