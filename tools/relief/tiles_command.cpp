@@ -78,6 +78,7 @@ struct TilesArgs {
   int jobs = 1;
   int retries = 1;
   std::string compare;  ///< merge: a whole build's .xodr
+  double lod_cell_m = 0.0;  ///< merge: the coarse level's cell (0: tile size / 32)
 };
 
 int run_plan(const TilesArgs& a, const CLI::App& cmd) {
@@ -187,10 +188,15 @@ int run_merge(const TilesArgs& a) {
   Diagnostics diagnostics;
   TileMergeOptions options;
   if (!a.compare.empty()) options.whole_xodr = a.compare;
+  options.lod_cell_m = a.lod_cell_m;
   print_diagnostics_live(diagnostics, /*quiet=*/true);
   const TileMergeResult r = merge_tiles(a.dir, options, diagnostics);
   std::cout << "merged " << r.tiles << " tiles: " << r.roads << " roads, " << r.junctions << " junctions, "
             << r.scene_tiles << " scene tiles\n";
+  if (r.scene_tiles > 0) {
+    std::cout << "coarse level (lod1): " << r.lod_coarse_triangles << " of " << r.lod_full_triangles
+              << " triangles, geometric error up to " << r.lod_max_error_m << " m\n";
+  }
   if (options.whole_xodr) {
     std::cout << "against the whole build: " << r.whole_roads - r.whole_unmatched << " of " << r.whole_roads
               << " roads matched; surface within " << r.whole_max_xy_m << " m in plan, " << r.whole_max_z_m
@@ -239,6 +245,9 @@ Runner add_tiles_command(CLI::App& app) {
   merge->add_option("--compare", args->compare,
                     "a whole build's .xodr (relief build --origin at the plan's centre): measure the merge "
                     "against it");
+  merge->add_option("--lod-cell", args->lod_cell_m,
+                    "the coarse level's clustering cell, m (default: the tile size / 32)")
+      ->check(finite_positive());
 
   return [args, plan, build, merge] {
     return run_reporting_errors([&] {

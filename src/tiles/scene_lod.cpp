@@ -1,0 +1,209 @@
+#include "tiles/scene_lod.h"
+
+#include <CGAL/AABB_traits.h>
+#include <CGAL/AABB_tree.h>
+#include <CGAL/AABB_triangle_primitive.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+
+#include <Eigen/Geometry>
+#include <Eigen/SVD>
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <limits>
+#include <unordered_map>
+#include <unordered_set>
+
+#include "relief/core/errors.h"
+
+namespace relief::detail {
+namespace {
+
+using Key = std::array<std::int64_t, 4>;  // cell (i, j, k, 0), or a pinned vertex (bits of x, y, z, 1)
+struct KeyHash {
+  std::size_t operator()(const Key& k) const {
+    std::size_t h = 0x9e3779b97f4a7c15ULL;
+    for (const std::int64_t v : k) h = (h ^ std::hash<std::int64_t>()(v)) * 0x100000001b3ULL;
+    return h;
+  }
+};
+
+struct Cluster {
+  Eigen::Matrix3d a = Eigen::Matrix3d::Zero();  // sum of area * n n^T
+  Vec3 b = Vec3::Zero();                        // sum of area * d n
+  Vec3 sum = Vec3::Zero();                      // of the positions
+  std::size_t count = 0;
+  Vec3 cell_min = Vec3::Zero();
+  bool pinned = false;
+  Vec3 at = Vec3::Zero();  // the representative
+};
+
+// The point of the cluster where its quadric is least, near the mean of its vertices where the
+// quadric is flat in some direction (singular values below 1e-3 of the largest are dropped),
+// clamped to the cell.
+Vec3 representative(const Cluster& c, double cell_m) {
+  const Vec3 mean = c.sum / static_cast<double>(c.count);
+  if (c.pinned) return mean;
+  Vec3 x = mean;
+  const Eigen::JacobiSVD<Eigen::Matrix3d> svd(c.a, Eigen::ComputeFullU | Eigen::ComputeFullV);
+  const Vec3 s = svd.singularValues();
+  if (s(0) > 0.0) {
+    const Vec3 r = -(c.a * mean + c.b);  // the gradient's negative half at the mean
+    Vec3 y = svd.matrixU().transpose() * r;
+    for (int i = 0; i < 3; ++i) y(i) = s(i) > 1e-3 * s(0) ? y(i) / s(i) : 0.0;
+    x = mean + svd.matrixV() * y;
+  }
+  return x.cwiseMax(c.cell_min).cwiseMin(c.cell_min + Vec3::Constant(cell_m));
+}
+
+bool on_border(const Vec3& v, const Aabb2& border) {
+  constexpr double kTol = 1e-3;
+  if (border.empty()) return false;
+  return std::abs(v.x() - border.min.x()) <= kTol || std::abs(v.x() - border.max.x()) <= kTol ||
+         std::abs(v.y() - border.min.y()) <= kTol || std::abs(v.y() - border.max.y()) <= kTol;
+}
+
+using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+using Triangles = std::vector<K::Triangle_3>;
+using Tree = CGAL::AABB_tree<CGAL::AABB_traits<K, CGAL::AABB_triangle_primitive<K, Triangles::const_iterator>>>;
+
+// The largest distance from a vertex or a triangle centroid of `full` to the triangles of `coarse`.
+double full_to_coarse(const MeshScene& full, const MeshScene& coarse) {
+  Triangles triangles;
+  const auto point = [](const Vec3& v) { return K::Point_3(v.x(), v.y(), v.z()); };
+  for (const TriangleMesh& m : coarse.meshes) {
+    for (const auto& t : m.triangles) {
+      triangles.emplace_back(point(m.vertices[t[0]]), point(m.vertices[t[1]]), point(m.vertices[t[2]]));
+    }
+  }
+  if (triangles.empty()) {
+    const bool any = std::any_of(full.meshes.begin(), full.meshes.end(), [](const TriangleMesh& m) { return !m.empty(); });
+    return any ? std::numeric_limits<double>::infinity() : 0.0;
+  }
+  Tree tree(triangles.begin(), triangles.end());
+  tree.accelerate_distance_queries();
+  double worst2 = 0.0;
+  for (const TriangleMesh& m : full.meshes) {
+    for (const Vec3& v : m.vertices) worst2 = std::max(worst2, tree.squared_distance(point(v)));
+    for (const auto& t : m.triangles) {
+      const Vec3 c = (m.vertices[t[0]] + m.vertices[t[1]] + m.vertices[t[2]]) / 3.0;
+      worst2 = std::max(worst2, tree.squared_distance(point(c)));
+    }
+  }
+  return std::sqrt(worst2);
+}
+
+}  // namespace
+
+void scene_bounds(const MeshScene& scene, Vec3& min, Vec3& max) {
+  min = Vec3::Constant(std::numeric_limits<double>::infinity());
+  max = -min;
+  for (const TriangleMesh& m : scene.meshes) {
+    for (const Vec3& v : m.vertices) {
+      min = min.cwiseMin(v);
+      max = max.cwiseMax(v);
+    }
+  }
+}
+
+SceneLod coarsen_scene(const MeshScene& full, double cell_m, const Aabb2& border) {
+  if (!(cell_m > 0.0) || !std::isfinite(cell_m)) throw InvalidInput("coarsen_scene: cell size must be > 0");
+  const Vec3 origin = border.empty() ? Vec3::Zero() : Vec3(border.min.x(), border.min.y(), 0.0);
+  std::unordered_map<Key, std::uint32_t, KeyHash> ids;
+  std::vector<Cluster> clusters;
+  // The cluster of every vertex, per mesh (markings have none).
+  std::vector<std::vector<std::uint32_t>> of(full.meshes.size());
+  SceneLod lod;
+  lod.scene.frame = full.frame;
+  lod.scene.metadata = full.metadata;
+  for (std::size_t mi = 0; mi < full.meshes.size(); ++mi) {
+    const TriangleMesh& m = full.meshes[mi];
+    lod.full_triangles += m.triangles.size();
+    if (m.kind == SurfaceKind::marking) continue;
+    of[mi].resize(m.vertices.size());
+    for (std::size_t vi = 0; vi < m.vertices.size(); ++vi) {
+      const Vec3& v = m.vertices[vi];
+      const bool pinned = on_border(v, border);
+      const Vec3 cell = ((v - origin) / cell_m).array().floor();
+      const Key key = pinned ? Key{std::bit_cast<std::int64_t>(v.x()), std::bit_cast<std::int64_t>(v.y()),
+                                   std::bit_cast<std::int64_t>(v.z()), 1}
+                             : Key{static_cast<std::int64_t>(cell.x()), static_cast<std::int64_t>(cell.y()),
+                                   static_cast<std::int64_t>(cell.z()), 0};
+      const auto [it, added] = ids.try_emplace(key, static_cast<std::uint32_t>(clusters.size()));
+      if (added) {
+        clusters.emplace_back();
+        clusters.back().pinned = pinned;
+        clusters.back().cell_min = origin + cell * cell_m;
+      }
+      Cluster& c = clusters[it->second];
+      c.sum += v;
+      ++c.count;
+      of[mi][vi] = it->second;
+    }
+    for (const auto& t : m.triangles) {
+      const Vec3& p = m.vertices[t[0]];
+      const Vec3 cross = (m.vertices[t[1]] - p).cross(m.vertices[t[2]] - p);
+      const double twice_area = cross.norm();
+      if (!(twice_area > 0.0)) continue;
+      const Vec3 n = cross / twice_area;
+      const double d = -n.dot(p);
+      const double w = 0.5 * twice_area;
+      for (const std::uint32_t corner : t) {
+        Cluster& c = clusters[of[mi][corner]];
+        c.a += w * n * n.transpose();
+        c.b += w * d * n;
+      }
+    }
+  }
+  for (Cluster& c : clusters) c.at = representative(c, cell_m);
+
+  for (std::size_t mi = 0; mi < full.meshes.size(); ++mi) {
+    const TriangleMesh& m = full.meshes[mi];
+    if (m.kind == SurfaceKind::marking) continue;
+    TriangleMesh out;
+    out.name = m.name;
+    out.kind = m.kind;
+    std::unordered_map<std::uint32_t, std::uint32_t> index;  // cluster -> vertex of `out`
+    std::unordered_set<Key, KeyHash> seen;                   // sorted cluster triples
+    for (std::size_t vi = 0; vi < m.vertices.size(); ++vi) {
+      lod.max_vertex_shift_m = std::max(lod.max_vertex_shift_m, (m.vertices[vi] - clusters[of[mi][vi]].at).norm());
+    }
+    for (const auto& t : m.triangles) {
+      std::array<std::uint32_t, 3> c{of[mi][t[0]], of[mi][t[1]], of[mi][t[2]]};
+      if (c[0] == c[1] || c[1] == c[2] || c[0] == c[2]) continue;
+      std::array<std::uint32_t, 3> sorted = c;
+      std::sort(sorted.begin(), sorted.end());
+      if (!seen.insert(Key{sorted[0], sorted[1], sorted[2], 0}).second) continue;
+      const Vec3& a = clusters[c[0]].at;
+      if ((clusters[c[1]].at - a).cross(clusters[c[2]].at - a).norm() < 2e-6) continue;  // < 1 mm^2
+      std::array<std::uint32_t, 3> tri{};
+      for (int k = 0; k < 3; ++k) {
+        const auto [it, added] = index.try_emplace(c[k], static_cast<std::uint32_t>(out.vertices.size()));
+        if (added) out.vertices.push_back(clusters[c[k]].at);
+        tri[k] = it->second;
+      }
+      out.triangles.push_back(tri);
+    }
+    if (out.empty()) continue;
+    lod.coarse_triangles += out.triangles.size();
+    lod.scene.meshes.push_back(std::move(out));
+  }
+  if (lod.scene.meshes.empty()) {
+    // Nothing survived (a tile of a few triangles): the full scene, markings left out when
+    // something else remains.
+    lod.max_vertex_shift_m = 0.0;
+    for (const TriangleMesh& m : full.meshes) {
+      if (m.kind != SurfaceKind::marking && !m.empty()) lod.scene.meshes.push_back(m);
+    }
+    if (lod.scene.meshes.empty()) lod.scene.meshes = full.meshes;
+    for (TriangleMesh& m : lod.scene.meshes) {
+      m.normals.clear();
+      m.uvs.clear();
+      lod.coarse_triangles += m.triangles.size();
+    }
+  }
+  lod.max_full_to_coarse_m = full_to_coarse(full, lod.scene);
+  return lod;
+}
+
+}  // namespace relief::detail
