@@ -67,30 +67,61 @@ using K = CGAL::Exact_predicates_inexact_constructions_kernel;
 using Triangles = std::vector<K::Triangle_3>;
 using Tree = CGAL::AABB_tree<CGAL::AABB_traits<K, CGAL::AABB_triangle_primitive<K, Triangles::const_iterator>>>;
 
-// The largest distance from a vertex or a triangle centroid of `full` to the triangles of `coarse`.
-double full_to_coarse(const MeshScene& full, const MeshScene& coarse) {
+K::Point_3 point(const Vec3& v) {
+  return {v.x(), v.y(), v.z()};
+}
+
+Triangles triangles_of(const MeshScene& scene) {
   Triangles triangles;
-  const auto point = [](const Vec3& v) { return K::Point_3(v.x(), v.y(), v.z()); };
-  for (const TriangleMesh& m : coarse.meshes) {
+  for (const TriangleMesh& m : scene.meshes) {
     for (const auto& t : m.triangles) {
       triangles.emplace_back(point(m.vertices[t[0]]), point(m.vertices[t[1]]), point(m.vertices[t[2]]));
     }
   }
-  if (triangles.empty()) {
-    const bool any = std::any_of(full.meshes.begin(), full.meshes.end(), [](const TriangleMesh& m) { return !m.empty(); });
-    return any ? std::numeric_limits<double>::infinity() : 0.0;
-  }
-  Tree tree(triangles.begin(), triangles.end());
+  return triangles;
+}
+
+// The largest distance from a corner or centroid of a triangle of `full` to the triangles of
+// `coarse` (vertices no triangle uses are no part of the surface).
+double full_to_coarse(const MeshScene& full, const Triangles& coarse) {
+  if (coarse.empty()) return std::numeric_limits<double>::infinity();
+  Tree tree(coarse.begin(), coarse.end());
   tree.accelerate_distance_queries();
   double worst2 = 0.0;
   for (const TriangleMesh& m : full.meshes) {
-    for (const Vec3& v : m.vertices) worst2 = std::max(worst2, tree.squared_distance(point(v)));
     for (const auto& t : m.triangles) {
       const Vec3 c = (m.vertices[t[0]] + m.vertices[t[1]] + m.vertices[t[2]]) / 3.0;
       worst2 = std::max(worst2, tree.squared_distance(point(c)));
+      for (const std::uint32_t i : t) worst2 = std::max(worst2, tree.squared_distance(point(m.vertices[i])));
     }
   }
   return std::sqrt(worst2);
+}
+
+// A bound on the distance from any point of `coarse` to the triangles of `full`: each coarse
+// triangle split into k x k similar ones, their edges at most `spacing` long; the distance at
+// their corners, plus the farthest any point of a small triangle is from its nearest corner
+// (longest edge / sqrt 3: the circumradius of an acute triangle, half the longest edge of
+// another). The distance to a surface is 1-Lipschitz.
+double coarse_to_full(const Triangles& coarse, const Triangles& full, double spacing) {
+  if (full.empty()) return std::numeric_limits<double>::infinity();
+  Tree tree(full.begin(), full.end());
+  tree.accelerate_distance_queries();
+  double worst = 0.0;
+  for (const K::Triangle_3& t : coarse) {
+    const Vec3 a(t[0].x(), t[0].y(), t[0].z()), b(t[1].x(), t[1].y(), t[1].z()), c(t[2].x(), t[2].y(), t[2].z());
+    const double longest = std::max({(b - a).norm(), (c - b).norm(), (a - c).norm()});
+    const int k = std::max(1, static_cast<int>(std::ceil(longest / spacing)));
+    double worst2 = 0.0;
+    for (int i = 0; i <= k; ++i) {
+      for (int j = 0; i + j <= k; ++j) {
+        const Vec3 p = a + (b - a) * (static_cast<double>(i) / k) + (c - a) * (static_cast<double>(j) / k);
+        worst2 = std::max(worst2, tree.squared_distance(point(p)));
+      }
+    }
+    worst = std::max(worst, std::sqrt(worst2) + longest / k / std::sqrt(3.0));
+  }
+  return worst;
 }
 
 }  // namespace
@@ -192,6 +223,7 @@ SceneLod coarsen_scene(const MeshScene& full, double cell_m, const Aabb2& border
     // Nothing survived (a tile of a few triangles): the full scene, markings left out when
     // something else remains.
     lod.max_vertex_shift_m = 0.0;
+    lod.coarse_triangles = 0;
     for (const TriangleMesh& m : full.meshes) {
       if (m.kind != SurfaceKind::marking && !m.empty()) lod.scene.meshes.push_back(m);
     }
@@ -202,7 +234,11 @@ SceneLod coarsen_scene(const MeshScene& full, double cell_m, const Aabb2& border
       lod.coarse_triangles += m.triangles.size();
     }
   }
-  lod.max_full_to_coarse_m = full_to_coarse(full, lod.scene);
+  const Triangles coarse = triangles_of(lod.scene), whole = triangles_of(full);
+  if (!whole.empty()) {
+    lod.max_full_to_coarse_m = full_to_coarse(full, coarse);
+    lod.coarse_to_full_m = coarse_to_full(coarse, whole, cell_m / 4.0);
+  }
   return lod;
 }
 

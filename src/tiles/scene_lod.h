@@ -10,13 +10,18 @@
 // Vertices on the tile's core border keep their exact position (their own cell), so that two
 // neighbouring coarse tiles still share their seam's vertices.
 //
-// The error is measured, both ways:
-//   coarse to full: every coarse triangle is the image of a full triangle whose corners moved
-//     by at most max_vertex_shift_m; a point of it at given barycentric coordinates is that far
-//     at most from the full triangle's point at the same coordinates (a bound, not a sample);
-//   full to coarse: the largest distance from a full vertex or triangle centroid (markings'
-//     included) to the coarse surface (CGAL AABB tree; a sample, as Hausdorff-distance tools do).
-// error_m() is the larger: the tile's geometricError in tileset.json.
+// The error is measured both ways (CGAL AABB trees over each surface), as Hausdorff-distance
+// tools do:
+//   coarse to full: the distance to the full surface of points on every coarse triangle, a
+//     triangular grid of them at most cell/4 apart, plus the largest distance of a point of a
+//     coarse triangle from its grid's nearest point (at most a grid edge / sqrt 3); the distance
+//     to a surface moving by at most as much as the point, this is a bound;
+//   full to coarse: the largest distance from a full triangle's corner or centroid (markings'
+//     included) to the coarse surface (a sample: the full triangles are the small ones).
+// error_m() is the larger: the tile's geometricError in tileset.json. How far vertices moved to
+// their cell's point (max_vertex_shift_m) is larger still (most of it along the surface) and
+// bounds the coarse-to-full distance too (a coarse triangle's point at given barycentric
+// coordinates is at most that far from the full triangle's point at the same coordinates).
 
 #include "relief/geometry/triangle_mesh.h"
 #include "relief/geometry/types.h"
@@ -26,10 +31,11 @@ namespace relief::detail {
 struct SceneLod {
   MeshScene scene;  ///< the coarse meshes (no normals or UVs), same frame and metadata
   std::size_t full_triangles = 0, coarse_triangles = 0;
-  double max_vertex_shift_m = 0.0;    ///< bound on the distance coarse -> full
+  double max_vertex_shift_m = 0.0;   ///< vertex to its cell's point (a loose bound coarse -> full)
+  double coarse_to_full_m = 0.0;     ///< bound on the distance coarse -> full (see above)
   double max_full_to_coarse_m = 0.0;  ///< sampled distance full -> coarse
   [[nodiscard]] double error_m() const {
-    return max_vertex_shift_m > max_full_to_coarse_m ? max_vertex_shift_m : max_full_to_coarse_m;
+    return coarse_to_full_m > max_full_to_coarse_m ? coarse_to_full_m : max_full_to_coarse_m;
   }
 };
 

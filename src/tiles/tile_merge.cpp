@@ -124,6 +124,7 @@ TileMergeResult merge_tiles(const std::filesystem::path& dir, const TileMergeOpt
                         {"full_triangles", lod.full_triangles},
                         {"coarse_triangles", lod.coarse_triangles},
                         {"max_vertex_shift_m", lod.max_vertex_shift_m},
+                        {"coarse_to_full_m", lod.coarse_to_full_m},
                         {"max_full_to_coarse_m", lod.max_full_to_coarse_m},
                         {"geometric_error_m", tile.coarse_error_m}});
     if (tile.min.allFinite()) tileset.push_back(tile);
