@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include <map>
 #include <optional>
 #include <random>
 #include <set>
@@ -391,6 +392,57 @@ Region tile_and_merge(const std::filesystem::path& osm, const std::string& dem, 
   return r;
 }
 
+// tileset.json of the merge: every scene tile a coarse glb refined by replacement with the full
+// one, read back: the coarse has fewer triangles and no markings, every vertex of each lies in
+// its node's box, each box in its parent's, the errors those report.json measured.
+void expect_tileset_holds_its_tiles(const Region& r) {
+  std::ifstream in(r.dir / "merged" / "tileset.json");
+  const nlohmann::json ts = nlohmann::json::parse(in);
+  const auto& root = ts.at("root");
+  const Box rb = box_of(root);
+  std::map<std::string, nlohmann::json> lod;
+  for (const auto& t : r.report.at("lod1").at("tiles")) lod[t.at("tile").get<std::string>()] = t;
+  ASSERT_EQ(root.at("children").size(), r.merge.scene_tiles);
+  ASSERT_GT(r.merge.scene_tiles, 0u);
+  std::size_t full_sum = 0, coarse_sum = 0;
+  const auto triangles = [](const MeshScene& s) {
+    std::size_t n = 0;
+    for (const TriangleMesh& m : s.meshes) n += m.triangles.size();
+    return n;
+  };
+  for (const auto& node : root.at("children")) {
+    ASSERT_EQ(node.at("refine"), "REPLACE");
+    ASSERT_EQ(node.at("children").size(), 1u);
+    const auto& leaf = node.at("children")[0];
+    EXPECT_EQ(leaf.at("geometricError").get<double>(), 0.0);
+    const std::string full_uri = leaf.at("content").at("uri");
+    const std::string stem = full_uri.substr(0, full_uri.size() - 4);
+    EXPECT_EQ(node.at("content").at("uri"), stem + "_lod1.glb");
+    EXPECT_EQ(node.at("geometricError").get<double>(), lod.at(stem).at("geometric_error_m").get<double>());
+    EXPECT_GT(node.at("geometricError").get<double>(), 0.0);
+    EXPECT_LE(node.at("geometricError").get<double>(), root.at("geometricError").get<double>());
+    const Box nb = box_of(node), lb = box_of(leaf);
+    EXPECT_TRUE(holds(rb, nb));
+    EXPECT_TRUE(holds(nb, lb));
+    const MeshScene full = read_mesh_file(r.dir / "merged" / full_uri);
+    const MeshScene coarse = read_mesh_file(r.dir / "merged" / (stem + "_lod1.glb"));
+    for (const auto& [scene, box] : {std::pair{&full, lb}, std::pair{&coarse, nb}}) {
+      for (const TriangleMesh& m : scene->meshes) {
+        for (const Vec3& v : m.vertices) ASSERT_TRUE(holds(box, v, 1e-6)) << stem << " " << v.transpose();
+      }
+    }
+    for (const TriangleMesh& m : coarse.meshes) EXPECT_NE(m.kind, SurfaceKind::marking) << stem;
+    EXPECT_EQ(triangles(coarse), lod.at(stem).at("coarse_triangles").get<std::size_t>());
+    EXPECT_LE(triangles(coarse), triangles(full));
+    full_sum += triangles(full);
+    coarse_sum += triangles(coarse);
+  }
+  std::cout << "  lod1 " << coarse_sum << " of " << full_sum << " triangles, error up to "
+            << r.merge.lod_max_error_m << " m\n";
+  EXPECT_EQ(full_sum, r.merge.lod_full_triangles);
+  EXPECT_LT(coarse_sum * 2, full_sum);
+}
+
 // `max_dz_m`: the heights' agreement with the whole build (1 mm where the fit's optimum is well
 // determined; a few roads of a mountain network come out up to a centimetre apart).
 void expect_like_the_whole_build(const Region& r, double max_dz_m = 1e-3) {
@@ -415,6 +467,7 @@ void expect_like_the_whole_build(const Region& r, double max_dz_m = 1e-3) {
   // The joined surface has the whole build's boundary: the seams are closed.
   EXPECT_EQ(road.at("boundary_loops"), r.report.at("whole_road_road").at("boundary_loops"));
   EXPECT_EQ(road.at("holes"), r.report.at("whole_road_road").at("holes"));
+  expect_tileset_holds_its_tiles(r);
 }
 
 TEST(Tiles, OldTownMergesLikeTheWholeBuild) {
