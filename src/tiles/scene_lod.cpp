@@ -11,6 +11,7 @@
 #include <bit>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <unordered_map>
 #include <unordered_set>
 
@@ -71,6 +72,18 @@ K::Point_3 point(const Vec3& v) {
   return {v.x(), v.y(), v.z()};
 }
 
+// Squared distances to a tree's triangles, each query starting from the previous answer (the
+// queries come in order along the surface).
+struct Nearest {
+  const Tree& tree;
+  std::optional<K::Point_3> hint;
+  double operator()(const K::Point_3& p) {
+    const K::Point_3 q = hint ? tree.closest_point(p, *hint) : tree.closest_point(p);
+    hint = q;
+    return CGAL::squared_distance(p, q);
+  }
+};
+
 Triangles triangles_of(const MeshScene& scene) {
   Triangles triangles;
   for (const TriangleMesh& m : scene.meshes) {
@@ -88,11 +101,16 @@ double full_to_coarse(const MeshScene& full, const Triangles& coarse) {
   Tree tree(coarse.begin(), coarse.end());
   tree.accelerate_distance_queries();
   double worst2 = 0.0;
+  Nearest nearest{tree, std::nullopt};
   for (const TriangleMesh& m : full.meshes) {
+    std::vector<std::uint8_t> used(m.vertices.size(), 0);
     for (const auto& t : m.triangles) {
       const Vec3 c = (m.vertices[t[0]] + m.vertices[t[1]] + m.vertices[t[2]]) / 3.0;
-      worst2 = std::max(worst2, tree.squared_distance(point(c)));
-      for (const std::uint32_t i : t) worst2 = std::max(worst2, tree.squared_distance(point(m.vertices[i])));
+      worst2 = std::max(worst2, nearest(point(c)));
+      for (const std::uint32_t i : t) used[i] = 1;
+    }
+    for (std::size_t i = 0; i < used.size(); ++i) {
+      if (used[i] != 0) worst2 = std::max(worst2, nearest(point(m.vertices[i])));
     }
   }
   return std::sqrt(worst2);
@@ -108,6 +126,7 @@ double coarse_to_full(const Triangles& coarse, const Triangles& full, double spa
   Tree tree(full.begin(), full.end());
   tree.accelerate_distance_queries();
   double worst = 0.0;
+  Nearest nearest{tree, std::nullopt};
   for (const K::Triangle_3& t : coarse) {
     const Vec3 a(t[0].x(), t[0].y(), t[0].z()), b(t[1].x(), t[1].y(), t[1].z()), c(t[2].x(), t[2].y(), t[2].z());
     const double longest = std::max({(b - a).norm(), (c - b).norm(), (a - c).norm()});
@@ -116,7 +135,7 @@ double coarse_to_full(const Triangles& coarse, const Triangles& full, double spa
     for (int i = 0; i <= k; ++i) {
       for (int j = 0; i + j <= k; ++j) {
         const Vec3 p = a + (b - a) * (static_cast<double>(i) / k) + (c - a) * (static_cast<double>(j) / k);
-        worst2 = std::max(worst2, tree.squared_distance(point(p)));
+        worst2 = std::max(worst2, nearest(point(p)));
       }
     }
     worst = std::max(worst, std::sqrt(worst2) + longest / k / std::sqrt(3.0));
