@@ -66,7 +66,8 @@ bool on_border(const Vec3& v, const Aabb2& border) {
 
 using K = CGAL::Exact_predicates_inexact_constructions_kernel;
 using Triangles = std::vector<K::Triangle_3>;
-using Tree = CGAL::AABB_tree<CGAL::AABB_traits<K, CGAL::AABB_triangle_primitive<K, Triangles::const_iterator>>>;
+using Tree =
+    CGAL::AABB_tree<CGAL::AABB_traits<K, CGAL::AABB_triangle_primitive<K, Triangles::const_iterator>>>;
 
 K::Point_3 point(const Vec3& v) {
   return {v.x(), v.y(), v.z()};
@@ -128,7 +129,8 @@ double coarse_to_full(const Triangles& coarse, const Triangles& full, double spa
   double worst = 0.0;
   Nearest nearest{tree, std::nullopt};
   for (const K::Triangle_3& t : coarse) {
-    const Vec3 a(t[0].x(), t[0].y(), t[0].z()), b(t[1].x(), t[1].y(), t[1].z()), c(t[2].x(), t[2].y(), t[2].z());
+    const Vec3 a(t[0].x(), t[0].y(), t[0].z()), b(t[1].x(), t[1].y(), t[1].z()),
+        c(t[2].x(), t[2].y(), t[2].z());
     const double longest = std::max({(b - a).norm(), (c - b).norm(), (a - c).norm()});
     const int k = std::max(1, static_cast<int>(std::ceil(longest / spacing)));
     double worst2 = 0.0;
@@ -216,7 +218,8 @@ SceneLod coarsen_scene(const MeshScene& full, double cell_m, const Aabb2& border
     std::unordered_map<std::uint32_t, std::uint32_t> index;  // cluster -> vertex of `out`
     std::unordered_set<Key, KeyHash> seen;                   // sorted cluster triples
     for (std::size_t vi = 0; vi < m.vertices.size(); ++vi) {
-      lod.max_vertex_shift_m = std::max(lod.max_vertex_shift_m, (m.vertices[vi] - clusters[of[mi][vi]].at).norm());
+      lod.max_vertex_shift_m =
+          std::max(lod.max_vertex_shift_m, (m.vertices[vi] - clusters[of[mi][vi]].at).norm());
     }
     for (const auto& t : m.triangles) {
       std::array<std::uint32_t, 3> c{of[mi][t[0]], of[mi][t[1]], of[mi][t[2]]};

@@ -31,8 +31,8 @@ namespace relief::detail {
 struct SceneLod {
   MeshScene scene;  ///< the coarse meshes (no normals or UVs), same frame and metadata
   std::size_t full_triangles = 0, coarse_triangles = 0;
-  double max_vertex_shift_m = 0.0;   ///< vertex to its cell's point (a loose bound coarse -> full)
-  double coarse_to_full_m = 0.0;     ///< bound on the distance coarse -> full (see above)
+  double max_vertex_shift_m = 0.0;    ///< vertex to its cell's point (a loose bound coarse -> full)
+  double coarse_to_full_m = 0.0;      ///< bound on the distance coarse -> full (see above)
   double max_full_to_coarse_m = 0.0;  ///< sampled distance full -> coarse
   [[nodiscard]] double error_m() const {
     return coarse_to_full_m > max_full_to_coarse_m ? coarse_to_full_m : max_full_to_coarse_m;

@@ -77,7 +77,9 @@ TEST(TilePlan, RefusesATileSizeOrHaloThatIsNotAPositiveNumber) {
 
 // The coarse level of a scene tile (scene_lod.h) on a height field whose surface the test knows:
 // a hill in 2.5 m cells, a road strip on it and a marking on the road.
-double hill(double x, double y) { return 6.0 * std::sin(x / 35.0) * std::cos(y / 50.0) + 0.02 * x; }
+double hill(double x, double y) {
+  return 6.0 * std::sin(x / 35.0) * std::cos(y / 50.0) + 0.02 * x;
+}
 
 TriangleMesh grid_mesh(const std::string& name, SurfaceKind kind, const Vec2& o, int nx, int ny, double step,
                        double dz) {
@@ -130,7 +132,8 @@ TEST(SceneLod, ClustersAHillWithinItsMeasuredError) {
   full.metadata["k"] = "v";
   full.meshes.push_back(grid_mesh("Terrain", SurfaceKind::terrain, Vec2(0.0, 0.0), kN, kN, kStep, 0.0));
   full.meshes.push_back(grid_mesh("Road_Road", SurfaceKind::road, Vec2(0.0, 90.0), kN, 4, kStep, 0.05));
-  full.meshes.push_back(grid_mesh("Road_Marking", SurfaceKind::marking, Vec2(50.0, 94.0), 40, 1, kStep, 0.06));
+  full.meshes.push_back(
+      grid_mesh("Road_Marking", SurfaceKind::marking, Vec2(50.0, 94.0), 40, 1, kStep, 0.06));
   Aabb2 core;
   core.extend(Vec2(0.0, 0.0));
   core.extend(Vec2(200.0, 200.0));
@@ -152,8 +155,8 @@ TEST(SceneLod, ClustersAHillWithinItsMeasuredError) {
   EXPECT_EQ(lod.coarse_triangles, coarse_triangles);
   // 13 600 triangles in; 20 x 20 cells (and the pinned border's vertices) leave about 1 100.
   std::cout << "hill: " << lod.coarse_triangles << " of " << lod.full_triangles << " triangles, shift "
-            << lod.max_vertex_shift_m << " m, coarse to full " << lod.coarse_to_full_m << " m, full to coarse "
-            << lod.max_full_to_coarse_m << " m\n";
+            << lod.max_vertex_shift_m << " m, coarse to full " << lod.coarse_to_full_m
+            << " m, full to coarse " << lod.max_full_to_coarse_m << " m\n";
   EXPECT_LT(lod.coarse_triangles * 8, lod.full_triangles);
   EXPECT_GT(lod.coarse_triangles, 600u);
   // A vertex moves within its cell at most; the error is the larger of the two measures.
@@ -206,8 +209,8 @@ TEST(SceneLod, ClustersAHillWithinItsMeasuredError) {
   for (const TriangleMesh& m : full.meshes) {
     for (const auto& t : m.triangles) {
       for (const std::uint32_t i : t) brute = std::max(brute, distance(m.vertices[i], lod.scene.meshes));
-      brute = std::max(brute, distance((m.vertices[t[0]] + m.vertices[t[1]] + m.vertices[t[2]]) / 3.0,
-                                       lod.scene.meshes));
+      brute = std::max(
+          brute, distance((m.vertices[t[0]] + m.vertices[t[1]] + m.vertices[t[2]]) / 3.0, lod.scene.meshes));
     }
   }
   EXPECT_NEAR(lod.max_full_to_coarse_m, brute, 1e-9);

@@ -77,7 +77,7 @@ struct TilesArgs {
   bool force = false;
   int jobs = 1;
   int retries = 1;
-  std::string compare;  ///< merge: a whole build's .xodr
+  std::string compare;      ///< merge: a whole build's .xodr
   double lod_cell_m = 0.0;  ///< merge: the coarse level's cell (0: tile size / 32)
 };
 
@@ -245,8 +245,9 @@ Runner add_tiles_command(CLI::App& app) {
   merge->add_option("--compare", args->compare,
                     "a whole build's .xodr (relief build --origin at the plan's centre): measure the merge "
                     "against it");
-  merge->add_option("--lod-cell", args->lod_cell_m,
-                    "the coarse level's clustering cell, m (default: the tile size / 32)")
+  merge
+      ->add_option("--lod-cell", args->lod_cell_m,
+                   "the coarse level's clustering cell, m (default: the tile size / 32)")
       ->check(finite_positive());
 
   return [args, plan, build, merge] {
