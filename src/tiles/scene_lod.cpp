@@ -20,7 +20,15 @@
 namespace relief::detail {
 namespace {
 
-using Key = std::array<std::int64_t, 4>;  // cell (i, j, k, 0), or a pinned vertex (bits of x, y, z, 1)
+// A cell (i, j, k, 0), a pinned vertex (bits of x, y, z, 1), a cell of the finer road grid
+// (i, j, k, 2).
+using Key = std::array<std::int64_t, 4>;
+constexpr double kRoadCellMaxM = 8.0;
+
+Key bits(const Vec3& v) {
+  return {std::bit_cast<std::int64_t>(v.x()), std::bit_cast<std::int64_t>(v.y()),
+          std::bit_cast<std::int64_t>(v.z()), 1};
+}
 struct KeyHash {
   std::size_t operator()(const Key& k) const {
     std::size_t h = 0x9e3779b97f4a7c15ULL;
@@ -35,6 +43,7 @@ struct Cluster {
   Vec3 sum = Vec3::Zero();                      // of the positions
   std::size_t count = 0;
   Vec3 cell_min = Vec3::Zero();
+  double cell_m = 0.0;
   bool pinned = false;
   Vec3 at = Vec3::Zero();  // the representative
 };
@@ -42,7 +51,7 @@ struct Cluster {
 // The point of the cluster where its quadric is least, near the mean of its vertices where the
 // quadric is flat in some direction (singular values below 1e-3 of the largest are dropped),
 // clamped to the cell.
-Vec3 representative(const Cluster& c, double cell_m) {
+Vec3 representative(const Cluster& c) {
   const Vec3 mean = c.sum / static_cast<double>(c.count);
   if (c.pinned) return mean;
   Vec3 x = mean;
@@ -54,7 +63,7 @@ Vec3 representative(const Cluster& c, double cell_m) {
     for (int i = 0; i < 3; ++i) y(i) = s(i) > 1e-3 * s(0) ? y(i) / s(i) : 0.0;
     x = mean + svd.matrixV() * y;
   }
-  return x.cwiseMax(c.cell_min).cwiseMin(c.cell_min + Vec3::Constant(cell_m));
+  return x.cwiseMax(c.cell_min).cwiseMin(c.cell_min + Vec3::Constant(c.cell_m));
 }
 
 bool on_border(const Vec3& v, const Aabb2& border) {
@@ -163,6 +172,19 @@ SceneLod coarsen_scene(const MeshScene& full, double cell_m, const Aabb2& border
   const Vec3 origin = border.empty() ? Vec3::Zero() : Vec3(border.min.x(), border.min.y(), 0.0);
   std::unordered_map<Key, std::uint32_t, KeyHash> ids;
   std::vector<Cluster> clusters;
+  // The road surfaces' grid: the cell halved until it is at most kRoadCellMaxM, so that a road
+  // is not narrower than its cells (they still divide the terrain's cells and the tile). The
+  // terrain's vertices on a road's edge (the border of its hole there, the same bits) take the
+  // road's grid too, so that road and terrain still meet.
+  double road_cell_m = cell_m;
+  while (road_cell_m > kRoadCellMaxM) road_cell_m /= 2.0;
+  std::unordered_set<Key, KeyHash> road_points;
+  if (road_cell_m < cell_m) {
+    for (const TriangleMesh& m : full.meshes) {
+      if (m.kind == SurfaceKind::marking || m.kind == SurfaceKind::terrain) continue;
+      for (const Vec3& v : m.vertices) road_points.insert(bits(v));
+    }
+  }
   // The cluster of every vertex, per mesh (markings have none).
   std::vector<std::vector<std::uint32_t>> of(full.meshes.size());
   SceneLod lod;
@@ -176,16 +198,19 @@ SceneLod coarsen_scene(const MeshScene& full, double cell_m, const Aabb2& border
     for (std::size_t vi = 0; vi < m.vertices.size(); ++vi) {
       const Vec3& v = m.vertices[vi];
       const bool pinned = on_border(v, border);
-      const Vec3 cell = ((v - origin) / cell_m).array().floor();
-      const Key key = pinned ? Key{std::bit_cast<std::int64_t>(v.x()), std::bit_cast<std::int64_t>(v.y()),
-                                   std::bit_cast<std::int64_t>(v.z()), 1}
+      const bool road_grid =
+          road_cell_m < cell_m && (m.kind != SurfaceKind::terrain || road_points.contains(bits(v)));
+      const double size = road_grid ? road_cell_m : cell_m;
+      const Vec3 cell = ((v - origin) / size).array().floor();
+      const Key key = pinned ? bits(v)
                              : Key{static_cast<std::int64_t>(cell.x()), static_cast<std::int64_t>(cell.y()),
-                                   static_cast<std::int64_t>(cell.z()), 0};
+                                   static_cast<std::int64_t>(cell.z()), road_grid ? 2 : 0};
       const auto [it, added] = ids.try_emplace(key, static_cast<std::uint32_t>(clusters.size()));
       if (added) {
         clusters.emplace_back();
         clusters.back().pinned = pinned;
-        clusters.back().cell_min = origin + cell * cell_m;
+        clusters.back().cell_min = origin + cell * size;
+        clusters.back().cell_m = size;
       }
       Cluster& c = clusters[it->second];
       c.sum += v;
@@ -207,7 +232,7 @@ SceneLod coarsen_scene(const MeshScene& full, double cell_m, const Aabb2& border
       }
     }
   }
-  for (Cluster& c : clusters) c.at = representative(c, cell_m);
+  for (Cluster& c : clusters) c.at = representative(c);
 
   for (std::size_t mi = 0; mi < full.meshes.size(); ++mi) {
     const TriangleMesh& m = full.meshes[mi];

@@ -4,9 +4,12 @@
 // "Out-of-core simplification of large polygonal models"): every vertex falls in a cell of a
 // cubic grid, the cell's vertices become one, placed where the sum of its triangles' plane
 // quadrics is least (clamped to the cell), and triangles whose corners fall in fewer than three
-// cells disappear. Linear in the input (hash maps), indifferent to non-manifold input. One grid
-// for all meshes of the scene, so that a road's edge and the terrain beside it meet in the same
-// cells at the same points. Markings are left out (they lie on the road, a centimetre above it).
+// cells disappear. Linear in the input (hash maps), indifferent to non-manifold input. The road
+// surfaces (every mesh but the terrain) take a finer grid when the cell is over 8 m (the cell
+// halved until it is at most 8 m), so that a road is not narrower than its cells and stays; the
+// terrain's vertices on a road's edge (the border of the terrain's hole there, the same bits)
+// take the road's grid too, so that road and terrain meet at the same points. Markings are left
+// out (they lie on the road, a centimetre above it).
 // Vertices on the tile's core border keep their exact position (their own cell), so that two
 // neighbouring coarse tiles still share their seam's vertices.
 //

@@ -235,6 +235,45 @@ TEST(SceneLod, ClustersAHillWithinItsMeasuredError) {
   EXPECT_THROW((void)detail::coarsen_scene(full, 0.0, core), InvalidInput);
 }
 
+// A 10 m road across a hill in a hole of the terrain (sharing its edge's vertices, as relief's
+// terrain does), clustered in 64 m cells: the road takes a grid of 8 m and stays, and the
+// terrain's vertices on its edge take the road's grid, so that the two still meet.
+TEST(SceneLod, KeepsARoadNarrowerThanTheCellAndItsSeamWithTheTerrain) {
+  constexpr int kN = 80;
+  constexpr double kStep = 2.5;
+  MeshScene full;
+  TriangleMesh terrain = grid_mesh("Terrain", SurfaceKind::terrain, Vec2(0.0, 0.0), kN, kN, kStep, 0.0);
+  std::vector<std::uint8_t> keep(terrain.triangles.size());
+  for (std::size_t t = 0; t < keep.size(); ++t) {
+    const double y = terrain.vertices[terrain.triangles[t][0]].y();
+    keep[t] = y < 90.0 || y >= 100.0 ? 1 : 0;  // the hole: rows 36 to 39, y in [90, 100]
+  }
+  full.meshes.push_back(submesh(terrain, keep));
+  full.meshes.push_back(grid_mesh("Road_Road", SurfaceKind::road, Vec2(0.0, 90.0), kN, 4, kStep, 0.0));
+  Aabb2 core;
+  core.extend(Vec2(0.0, 0.0));
+  core.extend(Vec2(256.0, 256.0));  // its edges x = 0 and y = 0 pin the vertices there
+  const detail::SceneLod lod = detail::coarsen_scene(full, 64.0, core);
+  ASSERT_EQ(lod.scene.meshes.size(), 2u);
+  const TriangleMesh& road = lod.scene.meshes[1];
+  ASSERT_EQ(road.name, "Road_Road");
+  std::cout << "road in 64 m cells: " << road.triangles.size() << " of " << full.meshes[1].triangles.size()
+            << " road triangles, " << lod.coarse_triangles << " of " << lod.full_triangles << ", error "
+            << lod.error_m() << " m\n";
+  // 200 m of road in 8 m cells, two or three across: about 25 x 2 x 2 triangles (59; in the
+  // terrain's 64 m cells none would be left).
+  EXPECT_GE(road.triangles.size(), 40u);
+  EXPECT_LT(road.triangles.size() * 4, full.meshes[1].triangles.size());
+  // The hill in 64 m cells and the road in 8 m ones: 11.5 m.
+  EXPECT_LT(lod.error_m(), 8.0 * std::sqrt(3.0));
+  // The seam: the coarse road's edge vertices are the coarse terrain's, to the bit.
+  std::set<std::array<double, 3>> terrain_points;
+  for (const Vec3& v : lod.scene.meshes[0].vertices) terrain_points.insert({v.x(), v.y(), v.z()});
+  std::size_t shared = 0;
+  for (const Vec3& v : road.vertices) shared += terrain_points.contains({v.x(), v.y(), v.z()}) ? 1 : 0;
+  EXPECT_GE(shared, 2u * 200 / 8);
+}
+
 TEST(SceneLod, TakesNonManifoldDegenerateAndTinyInput) {
   TriangleMesh m;
   m.name = "Junk";
