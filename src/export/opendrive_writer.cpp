@@ -114,6 +114,12 @@ class XodrWriter {
   /// orders of magnitude; fixed decimals would lose d at 1e-9 over hundreds of metres).
   void attr_coefficient(const char* name, double value);
   void attr_int(const char* name, long long value) { xml_.attribute_int(name, value); }
+  void user_data(std::string_view code, std::string_view value) {
+    start("userData");
+    attr("code", code);
+    attr("value", value);
+    end("userData");
+  }
   void attr_positive(const char* name, double value);  // schema type t_grZero
   void poly(const Poly3& p);
   void check_finite(const char* name, double value) const;
@@ -241,25 +247,16 @@ void XodrWriter::header() {
     attr("text", attribution);
     end("license");
   }
-  start("userData");
-  attr("code", "attribution");
-  attr("value", attribution);
-  end("userData");
+  user_data("attribution", attribution);
   // relief's own frame (CRS and origin), so that reading the file back restores it exactly.
-  start("userData");
-  attr("code", "relief:crs");
-  attr("value", model_.frame.crs());
-  end("userData");
-  start("userData");
-  attr("code", "relief:origin");
+  user_data("relief:crs", model_.frame.crs());
   std::string origin;
   const Vec2& o = model_.frame.origin();
   if (!std::isfinite(o.x()) || !std::isfinite(o.y())) fail("the frame origin is not finite");
   append_fixed(origin, o.x(), 3);
   origin += ' ';
   append_fixed(origin, o.y(), 3);
-  attr("value", origin);
-  end("userData");
+  user_data("relief:origin", origin);
   end("header");
 }
 
@@ -325,6 +322,17 @@ void XodrWriter::road(const ModelRoad& r) {
   profile("laneOffset", "s", r.lane_offset);
   for (const LaneSection& section : r.sections) lane_section(section);
   end("lanes");
+  // Where the road came from in OSM, as additional data other readers skip: a region merged from
+  // tiles builds its SUMO network (edge types, OSM mapping) from these (tiles/).
+  if (!r.osm_way_ids.empty()) {
+    std::string ways;
+    for (const std::int64_t w : r.osm_way_ids) {
+      if (!ways.empty()) ways += ' ';
+      ways += std::to_string(w);
+    }
+    user_data("relief:osm_ways", ways);
+  }
+  if (r.highway) user_data("relief:highway", std::string(to_string(*r.highway)));
   end("road");
 }
 
@@ -484,6 +492,7 @@ void XodrWriter::junction(const JunctionModel& j) {
     }
     end("connection");
   }
+  if (j.traffic_signal) user_data("relief:traffic_signal", "true");
   end("junction");
 }
 

@@ -310,6 +310,7 @@ BuildResult build(const BuildOptions& options, Diagnostics& diagnostics, const P
   OutputSet files;
   const auto path_of = [&](const std::string& suffix) { return options.out_dir / (report.name + suffix); };
   std::optional<RoadModelBuild> built;
+  std::size_t signals_mid_road = 0;
   const bool scene_needed = options.outputs.contains(Output::mesh) ||
                             options.outputs.contains(Output::sight) || options.outputs.contains(Output::view);
   if (options.outputs.contains(Output::xodr) || options.outputs.contains(Output::sumo) || scene_needed) {
@@ -328,6 +329,12 @@ BuildResult build(const BuildOptions& options, Diagnostics& diagnostics, const P
       return build_road_model(network, profiles, model_options, diagnostics, planes);
     });
     built->model.name = report.name;
+    // The junctions traffic lights control (OSM's signals, and those the options name): the
+    // .xodr records them, SUMO gives them a light.
+    const std::set<int> signalled =
+        signalled_junctions(loaded, built->model, options.signal_snap_m, signals_mid_road);
+    for (JunctionModel& j : built->model.junctions)
+      j.traffic_signal = signalled.contains(j.id) || options.sumo.signalled_junctions.contains(j.id);
     // The elevation records' grades against the caps the fit applied (connecting roads: the
     // steeper road's they join).
     report.model_grades = timer.run("check road model grades", [&] {
@@ -344,7 +351,14 @@ BuildResult build(const BuildOptions& options, Diagnostics& diagnostics, const P
   std::optional<SumoStageInput> sumo_in;
   std::optional<SumoJob> sumo;
   if (options.outputs.contains(Output::sumo)) {
-    sumo_in.emplace(SumoStageInput{options, loaded, built->model, report.name, diagnostics});
+    sumo_in.emplace(
+        SumoStageInput{options, loaded, built->model, report.name, diagnostics, signals_mid_road});
+    if (signals_mid_road > 0) {
+      diagnostics.report(Severity::info, codes::kSumoSignalMidRoad,
+                         std::to_string(signals_mid_road) + " traffic signals are more than " +
+                             std::to_string(options.signal_snap_m) +
+                             " m from any intersection (pedestrian crossings); SUMO gets no light for them");
+    }
     sumo = start_sumo(*sumo_in);
   }
   if (options.outputs.contains(Output::geojson)) {

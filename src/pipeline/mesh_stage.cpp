@@ -17,48 +17,20 @@ namespace relief {
 namespace {
 
 // CarlaFbx's placeholders for the tiles of the grid's rectangle (0, 0)..(max X, max Y) that
-// `tiles` lacks. Tile (X, Y) spans origin + size * [X, X + 1] x [Y, Y + 1], the origin being
-// the south-west corner of tile (0, 0) (mesh_tiles.h).
+// `tiles` lacks, 50 m under the scene's lowest point. Tile (X, Y) spans origin + size * [X, X + 1]
+// x [Y, Y + 1], the origin being the south-west corner of tile (0, 0) (mesh_tiles.h).
 void add_placeholder_tiles(const MeshScene& scene, const std::vector<SceneTile>& tiles, double size_m,
                            const std::string& name, CarlaFbx& carla) {
   if (tiles.empty()) return;
   std::set<std::pair<int, int>> present;
-  int max_x = 0, max_y = 0;
-  for (const SceneTile& t : tiles) {
-    present.emplace(t.x, t.y);
-    max_x = std::max(max_x, t.x);
-    max_y = std::max(max_y, t.y);
-  }
+  for (const SceneTile& t : tiles) present.emplace(t.x, t.y);
   const Vec2 origin = tiles.front().bounds.min - size_m * Vec2(tiles.front().x, tiles.front().y);
   double z = std::numeric_limits<double>::infinity();
   for (const TriangleMesh& m : scene.meshes)
     for (const Vec3& v : m.vertices) z = std::min(z, v.z());
-  z -= 50.0;
-  constexpr double kHalfM = 0.05;
-  for (int y = 0; y <= max_y; ++y) {
-    for (int x = 0; x <= max_x; ++x) {
-      if (present.contains({x, y})) continue;
-      const Vec2 c = origin + size_m * Vec2(x + 0.5, y + 0.5);
-      MeshScene tile;
-      tile.frame = scene.frame;
-      tile.metadata = scene.metadata;
-      tile.metadata["relief:tile"] = std::to_string(x) + " " + std::to_string(y);
-      tile.metadata["relief:placeholder"] = "a tile without triangles, for CARLA's cook";
-      TriangleMesh m;
-      m.name = "Placeholder";
-      m.kind = SurfaceKind::terrain;
-      m.vertices = {{c.x() - kHalfM, c.y() - kHalfM, z},
-                    {c.x() + kHalfM, c.y() - kHalfM, z},
-                    {c.x(), c.y() + kHalfM, z}};
-      m.triangles = {{0, 1, 2}};
-      m.normals.assign(3, Vec3::UnitZ());
-      tile.meshes.push_back(std::move(m));
-      const std::string base = name + "_Tile_" + std::to_string(x) + "_" + std::to_string(y);
-      for (EncodedFile& f : encode_mesh_scene(tile, MeshFormat::fbx, base))
-        carla.files.push_back(std::move(f));
-      carla.placeholders.push_back(std::to_string(x) + " " + std::to_string(y));
-    }
-  }
+  for (EncodedFile& f :
+       carla_placeholder_tiles(present, origin, size_m, z - 50.0, scene, name, carla.placeholders))
+    carla.files.push_back(std::move(f));
 }
 
 }  // namespace
@@ -186,16 +158,9 @@ void write_carla_package_output(const MeshStageInput& in, std::string xodr, Carl
   summary.carla_package = filename;
   summary.carla_package_entries = carla_package_entries(package);
   summary.carla_placeholder_tiles = std::move(fbx.placeholders);
-  const std::vector<std::string>& gaps = summary.carla_placeholder_tiles;
-  if (!gaps.empty()) {
-    std::string listed;
-    for (std::size_t i = 0; i < gaps.size() && i < 10; ++i) listed += (i == 0 ? "" : ", ") + gaps[i];
-    in.diagnostics.report(
-        Severity::warning, codes::kCarlaTileGridGap,
-        std::to_string(gaps.size()) + " tile(s) of the " + std::to_string(package.tile_size_m) +
-            " m grid hold no triangles (X Y: " + listed + (gaps.size() > 10 ? ", ..." : "") +
-            "): the CARLA package gives each a placeholder triangle 50 m under the scene, "
-            "since CARLA's cook stops a row at its first missing tile");
+  if (!summary.carla_placeholder_tiles.empty()) {
+    in.diagnostics.report(Severity::warning, codes::kCarlaTileGridGap,
+                          carla_placeholder_message(summary.carla_placeholder_tiles, package.tile_size_m));
   }
   written.push_back(in.options.out_dir / filename);
   names.push_back(filename);

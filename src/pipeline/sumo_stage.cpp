@@ -1,7 +1,5 @@
 #include "pipeline/sumo_stage.h"
 
-#include <unistd.h>
-
 #include <chrono>
 #include <cmath>
 #include <fstream>
@@ -51,18 +49,6 @@ std::set<int> signalled_junctions(const LoadedNetwork& loaded, const RoadModel& 
   return out;
 }
 
-ScratchDir::ScratchDir(const std::filesystem::path& parent)
-    : path_(parent / (".relief-sumo-" + std::to_string(::getpid()))) {
-  std::error_code ec;
-  std::filesystem::create_directories(path_, ec);
-  if (ec) throw IoError("cannot create '" + path_.string() + "': " + ec.message());
-}
-
-ScratchDir::~ScratchDir() {
-  std::error_code ec;
-  std::filesystem::remove_all(path_, ec);
-}
-
 SumoJob start_sumo(const SumoStageInput& in) {
   SumoJob job;
   job.summary.file = in.name + ".net.xml";
@@ -70,40 +56,10 @@ SumoJob start_sumo(const SumoStageInput& in) {
   // The plain network, netconvert (another process) and the check of its net run on their own
   // thread, beside the meshes; diagnostics are kept there and reported in finish_sumo.
   job.scratch = std::make_unique<ScratchDir>(in.options.out_dir);
-  job.netconvert = std::async(std::launch::async, [&options = in.options, &loaded = in.loaded,
-                                                   &model = in.model, dir = job.scratch->path(),
-                                                   name = in.name] {
-    const auto seconds_since = [](std::chrono::steady_clock::time_point t) {
-      return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
-    };
+  job.netconvert = std::async(std::launch::async, [&options = in.options, &model = in.model,
+                                                   dir = job.scratch->path(), name = in.name] {
     NetconvertResult r;
-    const auto t_build = std::chrono::steady_clock::now();
-    std::vector<SumoRoadInfo> info(model.roads.size());
-    for (std::size_t i = 0; i < model.roads.size(); ++i) {
-      const int source = model.roads[i].source_road;
-      if (source >= 0)
-        info[i].highway = loaded.network.roads[static_cast<std::size_t>(source)].attributes.highway;
-    }
-    // The caller's signalled junctions, joined by those of the OSM signals.
-    SumoOptions so = options.sumo;
-    so.signalled_junctions.merge(
-        signalled_junctions(loaded, model, options.signal_snap_m, r.signals_mid_road));
-    if (r.signals_mid_road > 0) {
-      r.diagnostics.report(
-          Severity::info, codes::kSumoSignalMidRoad,
-          std::to_string(r.signals_mid_road) + " traffic signals are more than " +
-              std::to_string(options.signal_snap_m) +
-              " m from any intersection (pedestrian crossings); SUMO gets no light for them");
-    }
-    r.plain = std::make_shared<const SumoPlainNetwork>(build_sumo_network(model, info, so, r.diagnostics));
-    r.build_seconds = seconds_since(t_build);
-    const auto t0 = std::chrono::steady_clock::now();
-    r.run = run_netconvert(*r.plain, dir, name);
-    r.seconds = seconds_since(t0);
-    const auto t1 = std::chrono::steady_clock::now();
-    r.drape = drape_sumo_net(r.run.net_xml, model, name + ".net.xml");
-    r.check = check_sumo_net(r.run.net_xml, model, name + ".net.xml");
-    r.check_seconds = seconds_since(t1);
+    r.net = build_sumo_net(model, options.sumo, dir, name, r.diagnostics);
     return r;
   });
   return job;
@@ -117,18 +73,18 @@ SumoSummary finish_sumo(const SumoStageInput& in, SumoJob& job, OutputSet& files
   const auto t_wait = std::chrono::steady_clock::now();
   const NetconvertResult result = job.netconvert.get();
   for (const Diagnostic& d : result.diagnostics.kept()) in.diagnostics.report(d);
-  const SumoPlainNetwork& plain = *result.plain;
-  summary.signals_mid_road = result.signals_mid_road;
+  const SumoPlainNetwork& plain = result.net.plain;
+  summary.signals_mid_road = in.signals_mid_road;
   summary.nodes = plain.stats.nodes;
   summary.edges = plain.stats.edges;
   summary.connections = plain.stats.connections;
   summary.restricted_edges = plain.stats.restricted_edges;
   summary.internal_lanes_by_netconvert = plain.stats.internal_lanes_by_netconvert;
   summary.max_profile_grade_percent = plain.stats.max_edge_grade_percent;
-  const NetconvertRun& nc = result.run;
-  timer.add("build SUMO network (beside the meshes)", result.build_seconds);
-  timer.add("netconvert (beside the meshes)", result.seconds);
-  timer.add("drape and check SUMO network (after netconvert, beside the meshes)", result.check_seconds);
+  const NetconvertRun& nc = result.net.run;
+  timer.add("build SUMO network (beside the meshes)", result.net.build_seconds);
+  timer.add("netconvert (beside the meshes)", result.net.netconvert_seconds);
+  timer.add("drape and check SUMO network (after netconvert, beside the meshes)", result.net.check_seconds);
   timer.add("wait for netconvert",
             std::chrono::duration<double>(std::chrono::steady_clock::now() - t_wait).count());
   summary.netconvert_warnings = nc.warnings;
@@ -150,7 +106,7 @@ SumoSummary finish_sumo(const SumoStageInput& in, SumoJob& job, OutputSet& files
   add_with(in.name + ".sumo_mapping.json", write_sumo_mapping);
 
   {
-    const SumoNetCheck& check = result.check;
+    const SumoNetCheck& check = result.net.check;
     summary.junctions = check.junctions;
     summary.traffic_lights = check.traffic_lights;
     summary.lanes = check.lanes;
@@ -160,16 +116,16 @@ SumoSummary finish_sumo(const SumoStageInput& in, SumoJob& job, OutputSet& files
     summary.z_p99_m = check.z_p99_m;
     summary.z_max_lane = check.z_max_lane;
     summary.netconvert_lanes_z_max_m = check.netconvert_shape_z_max_m;
-    summary.draped_points_moved = result.drape.points_moved;
-    summary.drape_max_move_m = result.drape.max_move_m;
-    summary.drape_max_move_lane = result.drape.max_move_lane;
-    summary.draped_points_added = result.drape.points_added;
-    summary.handover_ends_extended = result.drape.ends_extended;
-    summary.handover_max_extension_m = result.drape.max_extension_m;
-    summary.handover_max_extension_lane = result.drape.max_extension_lane;
-    summary.handover_ends_snapped = result.drape.ends_snapped;
-    summary.handover_max_snap_m = result.drape.max_snap_m;
-    summary.handover_max_snap_lane = result.drape.max_snap_lane;
+    summary.draped_points_moved = result.net.drape.points_moved;
+    summary.drape_max_move_m = result.net.drape.max_move_m;
+    summary.drape_max_move_lane = result.net.drape.max_move_lane;
+    summary.draped_points_added = result.net.drape.points_added;
+    summary.handover_ends_extended = result.net.drape.ends_extended;
+    summary.handover_max_extension_m = result.net.drape.max_extension_m;
+    summary.handover_max_extension_lane = result.net.drape.max_extension_lane;
+    summary.handover_ends_snapped = result.net.drape.ends_snapped;
+    summary.handover_max_snap_m = result.net.drape.max_snap_m;
+    summary.handover_max_snap_lane = result.net.drape.max_snap_lane;
     summary.xy_max_m = check.xy_max_m;
     summary.xy_max_lane = check.xy_max_lane;
     summary.max_handover_step_m = check.max_handover_step_m;

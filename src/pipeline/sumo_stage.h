@@ -11,10 +11,9 @@
 
 #include "pipeline/stages.h"
 #include "relief/core/atomic_file.h"
+#include "relief/core/scratch_dir.h"
 #include "relief/export/report_writer.h"
-#include "relief/export/sumo_checks.h"
-#include "relief/export/sumo_drape.h"
-#include "relief/export/sumo_tools.h"
+#include "relief/export/sumo_net_build.h"
 #include "relief/roads/road_model.h"
 
 namespace relief {
@@ -25,34 +24,14 @@ struct SumoStageInput {
   const RoadModel& model;
   const std::string& name;
   Diagnostics& diagnostics;
+  std::size_t signals_mid_road = 0;  ///< OSM signals controlling no junction (signalled_junctions)
 };
 
-/// A scratch directory beside the outputs (netconvert and randomTrips need files), removed
-/// when it goes out of scope.
-class ScratchDir {
- public:
-  explicit ScratchDir(const std::filesystem::path& parent);
-  ~ScratchDir();
-  ScratchDir(const ScratchDir&) = delete;
-  ScratchDir& operator=(const ScratchDir&) = delete;
-  [[nodiscard]] const std::filesystem::path& path() const { return path_; }
-
- private:
-  std::filesystem::path path_;
-};
-
-/// What the SUMO thread makes: the plain network, netconvert's run on it, then the check of
-/// its .net.xml; the diagnostics of the plain network are kept here (every one) for the caller.
+/// What the SUMO thread makes (export/sumo_net_build.h), with its diagnostics (every one) kept
+/// for the caller.
 struct NetconvertResult {
-  std::shared_ptr<const SumoPlainNetwork> plain;
+  SumoNetBuild net;
   Diagnostics diagnostics{std::numeric_limits<std::size_t>::max()};
-  std::size_t signals_mid_road = 0;
-  double build_seconds = 0.0;  ///< the plain network's
-  NetconvertRun run;
-  double seconds = 0.0;  ///< netconvert's wall time
-  SumoDrape drape;  ///< netconvert's lanes laid onto the OpenDRIVE surface
-  SumoNetCheck check;
-  double check_seconds = 0.0;
 };
 
 /// The SUMO stage under way.

@@ -341,6 +341,18 @@ ModelRoad XodrReader::road(const pugi::xml_node& node) {
   if (r.sections.empty()) fail("<lanes> has no <laneSection>");
   std::stable_sort(r.sections.begin(), r.sections.end(),
                    [](const LaneSection& a, const LaneSection& b) { return a.s < b.s; });
+  for (const pugi::xml_node u : node.children("userData")) {
+    const std::string_view code = u.attribute("code").value();
+    if (code == "relief:osm_ways") {
+      std::istringstream in(u.attribute("value").value());
+      in.imbue(std::locale::classic());
+      for (std::int64_t way = 0; in >> way;) r.osm_way_ids.push_back(way);
+      if (!in.eof()) fail_attribute(u, "value", "is not a list of OSM way ids");
+    } else if (code == "relief:highway") {
+      r.highway = parse_highway_class(trimmed(u.attribute("value").value()));
+      if (!r.highway) fail_attribute(u, "value", "is not an OSM highway class relief builds");
+    }
+  }
   return r;
 }
 
@@ -361,6 +373,10 @@ JunctionModel XodrReader::junction(const pugi::xml_node& node) {
     for (const pugi::xml_node ll : n.children("laneLink"))
       c.lane_links.emplace_back(integer(ll, "from"), integer(ll, "to"));
     j.connections.push_back(std::move(c));
+  }
+  for (const pugi::xml_node u : node.children("userData")) {
+    if (std::string_view(u.attribute("code").value()) == "relief:traffic_signal")
+      j.traffic_signal = std::string_view(u.attribute("value").value()) == "true";
   }
   return j;
 }

@@ -169,6 +169,7 @@ void add_model_roads(const JunctionEnds& ends, const std::vector<std::array<doub
     m.name = road.attributes.name;
     m.source_road = road.id;
     m.osm_way_ids = road.osm_way_ids;
+    m.highway = road.attributes.highway;
     m.type = road_type(road.attributes.highway);
     m.speed_mps = road.attributes.maxspeed_mps ? *road.attributes.maxspeed_mps
                                                : default_speed_mps(road.attributes.highway);

@@ -1,3 +1,5 @@
+#include <sys/resource.h>
+
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -59,6 +61,8 @@ TileBuildResult build_tile(const std::filesystem::path& dir, const TileManifest&
   const auto started = std::chrono::steady_clock::now();
   std::filesystem::create_directories(here);
   std::filesystem::remove(here / detail::kTileRecordFile);  // a tile that fails keeps none
+  // The outputs of an earlier build, and the temporaries of one that was killed, go.
+  std::filesystem::remove_all(here / "out");
 
   const std::filesystem::path window = here / "window.osm.pbf";
   const detail::WindowCounts counts =
@@ -98,6 +102,8 @@ TileBuildResult build_tile(const std::filesystem::path& dir, const TileManifest&
   }
   record.status = record.failed_gates.empty() ? "built" : "gates_failed";
   record.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  rusage usage{};
+  if (getrusage(RUSAGE_SELF, &usage) == 0) record.peak_rss_mb = static_cast<double>(usage.ru_maxrss) / 1024.0;
   detail::write_tile_record(here, record, built.report);
   result.status = record.status;
   result.seconds = record.seconds;

@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <fstream>
@@ -14,9 +15,11 @@
 #include "relief/roads/opendrive_reader.h"
 #include "relief/roads/road_model_checks.h"
 #include "relief/tiles/tiles.h"
+#include "tiles/carla_merge.h"
 #include "tiles/model_alignment.h"
 #include "tiles/scene_lod.h"
 #include "tiles/scene_seams.h"
+#include "tiles/sumo_merge.h"
 #include "tiles/tile_record.h"
 #include "tiles/tileset_writer.h"
 #include "tiles/xodr_merge.h"
@@ -58,8 +61,11 @@ TileMergeResult merge_tiles(const std::filesystem::path& dir, const TileMergeOpt
   std::vector<MeshScene> scenes;
   std::vector<std::string> scene_names;
   std::vector<Aabb2> scene_cores;
+  std::vector<std::pair<int, int>> scene_tiles;
   std::vector<std::vector<MeshFormat>> scene_formats;
   OutputSet files;
+  double seconds = 0.0, peak_rss_mb = 0.0;
+  std::string peak_tile;
   for (const TileSpec& spec : manifest.tiles) {
     const std::filesystem::path here = tile_dir(dir, spec.x, spec.y);
     const std::optional<detail::TileRecord> record = detail::read_tile_record(here);
@@ -69,6 +75,11 @@ TileMergeResult merge_tiles(const std::filesystem::path& dir, const TileMergeOpt
                          " --tile " + std::to_string(spec.x) + "," + std::to_string(spec.y) + " (or --all)");
     }
     ++result.tiles;
+    seconds += record->seconds;
+    if (record->peak_rss_mb > peak_rss_mb) {
+      peak_rss_mb = record->peak_rss_mb;
+      peak_tile = tile_name(spec);
+    }
     for (const std::string& g : record->failed_gates)
       result.failed_gates.push_back(tile_name(spec) + ": " + g);
     nlohmann::json t = read_json(here / detail::kTileRecordFile);
@@ -84,6 +95,7 @@ TileMergeResult merge_tiles(const std::filesystem::path& dir, const TileMergeOpt
       scenes.push_back(read_mesh_file(glb));
       scene_names.push_back(manifest.name + "_Tile_" + tile_name(spec));
       scene_cores.push_back(spec.core);
+      scene_tiles.emplace_back(spec.x, spec.y);
       scene_formats.push_back({MeshFormat::glb});
       if (std::filesystem::exists(out / (manifest.name + ".fbx")))
         scene_formats.back().push_back(MeshFormat::fbx);
@@ -95,14 +107,28 @@ TileMergeResult merge_tiles(const std::filesystem::path& dir, const TileMergeOpt
   const detail::SeamWeld weld = detail::weld_seams(scenes);
   const double lod_cell_m = options.lod_cell_m > 0.0 ? options.lod_cell_m : manifest.tile_size_m / 32.0;
   nlohmann::json lod_json = nlohmann::json::array();
+  // CARLA's large map takes the FBX tiles as they are written.
+  std::size_t fbx_tiles = 0;
+  for (const std::vector<MeshFormat>& formats : scene_formats)
+    fbx_tiles += std::count(formats.begin(), formats.end(), MeshFormat::fbx);
+  const std::string carla_refusal = detail::carla_large_map_refusal(manifest, fbx_tiles);
+  std::vector<EncodedFile> carla_fbx;
+  std::vector<std::pair<int, int>> carla_tiles;
+  double lowest_z = std::numeric_limits<double>::infinity();
   for (std::size_t i = 0; i < scenes.size(); ++i) {
     for (const MeshFormat format : scene_formats[i]) {
       for (EncodedFile& f : encode_mesh_scene(scenes[i], format, scene_names[i])) {
         const std::filesystem::path to = merged / f.filename;
         files.add(to, [&f](std::ostream& o) { o << f.bytes; });
         result.written.push_back(to);
+        if (format == MeshFormat::fbx && carla_refusal.empty()) {
+          carla_fbx.push_back(std::move(f));
+          carla_tiles.push_back(scene_tiles[i]);
+        }
       }
     }
+    for (const TriangleMesh& m : scenes[i].meshes)
+      for (const Vec3& v : m.vertices) lowest_z = std::min(lowest_z, v.z());
     ++result.scene_tiles;
     detail::TilesetTile tile;
     tile.uri = scene_names[i] + ".glb";
@@ -136,6 +162,8 @@ TileMergeResult merge_tiles(const std::filesystem::path& dir, const TileMergeOpt
   report["tile_size_m"] = manifest.tile_size_m;
   report["halo_m"] = manifest.halo_m;
   report["tiles"] = tiles_json;
+  report["tile_builds"] = {
+      {"seconds", seconds}, {"largest_peak_rss_mb", peak_rss_mb}, {"largest_tile", peak_tile}};
   if (!models.empty()) {
     detail::ModelMergeResult m = detail::merge_models(models);
     result.roads = m.model.roads.size();
@@ -176,9 +204,22 @@ TileMergeResult merge_tiles(const std::filesystem::path& dir, const TileMergeOpt
                                {"max_z_m", c.deviation.max_z_m},
                                {"worst_road", c.deviation.worst_road}};
     }
+    if (options.sumo_net) {
+      report["sumo"] = detail::merge_sumo_net(m.model, options.sumo, options.gates, merged, manifest.name,
+                                              files, result.written, result.failed_gates, diagnostics);
+    }
     const std::filesystem::path xodr = merged / (manifest.name + ".xodr");
-    files.add(xodr, [&m](std::ostream& o) { write_opendrive(o, m.model); });
+    std::ostringstream xodr_text;
+    write_opendrive(xodr_text, m.model);
+    files.add(xodr, [&xodr_text](std::ostream& o) { o << xodr_text.view(); });
     result.written.push_back(xodr);
+    if (carla_refusal.empty()) {
+      report["carla"] = detail::write_carla_large_map(
+          manifest, std::move(xodr_text).str(), std::move(carla_fbx), carla_tiles, lowest_z, scenes.front(),
+          merged, files, result.written, diagnostics);
+    } else {
+      report["carla"] = {{"package", nullptr}, {"why_not", carla_refusal}};
+    }
   }
   if (!tileset.empty()) {
     const std::string text = detail::tileset_json(manifest.frame, tileset);

@@ -19,6 +19,7 @@ std::optional<TileRecord> read_tile_record(const std::filesystem::path& tile_dir
     r.y = j.at("y").get<int>();
     r.status = j.at("status").get<std::string>();
     r.seconds = j.at("seconds").get<double>();
+    r.peak_rss_mb = j.value("peak_rss_mb", 0.0);
     r.window_ways = j.at("window").at("ways").get<std::size_t>();
     r.window_nodes = j.at("window").at("nodes").get<std::size_t>();
     r.failed_gates = j.at("failed_gates").get<std::vector<std::string>>();
@@ -37,6 +38,7 @@ void write_tile_record(const std::filesystem::path& tile_dir, const TileRecord& 
   j["y"] = record.y;
   j["status"] = record.status;
   j["seconds"] = record.seconds;
+  j["peak_rss_mb"] = record.peak_rss_mb;
   j["window"] = {{"ways", record.window_ways}, {"nodes", record.window_nodes}};
   j["failed_gates"] = record.failed_gates;
   j["halo_gates"] = record.halo_gates;

@@ -18,6 +18,9 @@ struct TileRecord {
   int x = 0, y = 0;
   std::string status;  ///< "built" or "gates_failed"
   double seconds = 0.0;
+  /// The building process's peak resident memory, MB (with `tiles build --all` each tile has a
+  /// process of its own: the tile's peak).
+  double peak_rss_mb = 0.0;
   std::size_t window_ways = 0, window_nodes = 0;
   std::vector<std::string> failed_gates;  ///< failed in the core (or at no known place)
   /// Failed at a place in the halo only: reported, not the tile's (its owner checks the place).

@@ -633,7 +633,7 @@ if [ -d "$potrero" ]; then
   check "tiles up to date says so" grep -q "skipped" "$RELIEF_TMP/err"
   origin=$(python3 -c "import json,sys; print('%.12f,%.12f' % tuple(json.load(open(sys.argv[1]))['frame']['centre_lon_lat']))" "$t/manifest.json")
   check "tiles whole build" run 0 "$t/whole" build --osm "$potrero/sf-potrero.osm.gz" --dem "$pdem" --origin "$origin" \
-    --out "$t/whole" --outputs xodr,mesh,report --mesh-formats glb --no-compare --quiet
+    --out "$t/whole" --outputs xodr,sumo,mesh,report --mesh-formats glb --no-compare --quiet
   check "tiles merge" run 0 "$t" tiles merge "$t" --compare "$t/whole/sf-potrero.xodr"
   check "tiles merged like the whole build" python3 - "$t" <<'PY'
 import json, os, sys
@@ -652,6 +652,20 @@ assert w["unmatched"] == 0 and r["opendrive"]["roads"] == w["roads"], w
 assert w["max_xy_m"] <= 1e-9 and w["max_z_m"] <= 1e-3, w
 assert r["seams"]["shared_vertices"] > 0 and r["seams"]["max_dz_m"] <= 1e-3, r["seams"]
 assert r["joined"]["Road_Road"]["self_intersecting_pairs"] == 0, r["joined"]
+# The region's SUMO network: the whole build's, with every lane on the merged surface.
+s, ws = r["sumo"], json.load(open(os.path.join(t, "whole", "report.json")))["sumo"]
+for key in ("edges", "lanes", "internal_lanes", "junctions", "traffic_lights", "connections"):
+    assert s[key] == ws[key], (key, s[key], ws[key])
+assert s["lanes_without_z"] == 0 and s["height_steps"] == 0 and s["z_max_m"] <= 0.05, s
+assert os.path.isfile(os.path.join(t, "merged", "sf-potrero.sumo_mapping.json"))
+# CARLA's large map: the grid's rectangle of FBX tiles (placeholders where a tile is empty).
+c = r["carla"]
+entries = c["entries"]
+fbx = sorted(e for e in entries if e.endswith(".fbx"))
+nx = 1 + max(int(e.rsplit("_", 2)[1]) for e in fbx)
+ny = 1 + max(int(e.rsplit("_", 1)[1][:-4]) for e in fbx)
+assert len(fbx) == nx * ny == c["tiles"] + len(c["placeholder_tiles"]), (len(fbx), nx, ny, c)
+assert "sf-potrero/sf-potrero.xodr" in entries and c["tile_size_m"] == 250, c
 ts = json.load(open(os.path.join(t, "merged", "tileset.json")))
 assert ts["asset"]["version"] == "1.1" and len(ts["root"]["transform"]) == 16, ts["asset"]
 kids = ts["root"]["children"]

@@ -245,6 +245,29 @@ TEST(OpenDriveReader, RestoresReliefsFrameFromItsUserData) {
   EXPECT_EQ(m.frame.origin(), Vec2(550000.0, 4180000.0));
 }
 
+// The OSM records relief writes as userData (a region merged from tiles builds SUMO from them).
+TEST(OpenDriveReader, RestoresOsmWaysHighwayAndTrafficLightsFromUserData) {
+  const std::string xml = R"(<OpenDRIVE><header revMajor="1" revMinor="7"/>
+  <road id="1" junction="-1" length="1"><planView><geometry s="0" x="0" y="0" hdg="0" length="1"><line/></geometry></planView>
+  <lanes><laneSection s="0"><center><lane id="0" type="none"/></center></laneSection></lanes>
+  <userData code="relief:osm_ways" value="4000000001 17"/><userData code="relief:highway" value="motorway_link"/></road>
+  <road id="2" junction="-1" length="1"><planView><geometry s="0" x="0" y="0" hdg="0" length="1"><line/></geometry></planView>
+  <lanes><laneSection s="0"><center><lane id="0" type="none"/></center></laneSection></lanes></road>
+  <junction id="3"><connection id="0" incomingRoad="1" connectingRoad="2" contactPoint="start"/>
+  <userData code="relief:traffic_signal" value="true"/></junction>
+  <junction id="4"><connection id="0" incomingRoad="2" connectingRoad="1" contactPoint="start"/></junction>
+  </OpenDRIVE>)";
+  const RoadModel m = parse_opendrive(xml);
+  ASSERT_EQ(m.roads.size(), 2u);
+  EXPECT_EQ(m.roads[0].osm_way_ids, (std::vector<std::int64_t>{4000000001, 17}));
+  EXPECT_EQ(m.roads[0].highway, HighwayClass::motorway_link);
+  EXPECT_TRUE(m.roads[1].osm_way_ids.empty());
+  EXPECT_FALSE(m.roads[1].highway.has_value());
+  ASSERT_EQ(m.junctions.size(), 2u);
+  EXPECT_TRUE(m.junctions[0].traffic_signal);
+  EXPECT_FALSE(m.junctions[1].traffic_signal);
+}
+
 // ---------------------------------------------------------------------------------------------
 // Errors.
 
@@ -342,6 +365,16 @@ TEST(OpenDriveReader, BadNumbersAreInvalidInputNamingRoadAndElement) {
       R"(<lanes><laneSection s="0"><center><lane id="0" type="none"/></center><right>
       <lane id="-1" type="driving"><width sOffset="0" a="3,5" b="0" c="0" d="0"/></lane></right></laneSection></lanes>)";
   EXPECT_NE(invalid_input_message(minimal_road(bad_width)).find("<width> attribute 'a'"), std::string::npos);
+}
+
+TEST(OpenDriveReader, MalformedOsmRecordsAreInvalidInputNamingTheRoad) {
+  const std::string ways = invalid_input_message(
+      minimal_road(std::string(kPlan) + kLanes + R"(<userData code="relief:osm_ways" value="12 x"/>)"));
+  EXPECT_NE(ways.find("road 7"), std::string::npos) << ways;
+  EXPECT_NE(ways.find("OSM way ids"), std::string::npos) << ways;
+  const std::string highway = invalid_input_message(
+      minimal_road(std::string(kPlan) + kLanes + R"(<userData code="relief:highway" value="runway"/>)"));
+  EXPECT_NE(highway.find("highway class"), std::string::npos) << highway;
 }
 
 TEST(OpenDriveReader, UnsupportedRecordsAreInvalidInput) {

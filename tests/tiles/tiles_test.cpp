@@ -1,13 +1,22 @@
 // Region tiles (issue 17): a plan's manifest, and a region built tile by tile and merged against
 // the whole build of the same region in the same frame. The merge must give the same roads and
 // junctions, the same plan to the bit, heights within 1 mm, and seams that close: the tiles'
-// Road_Road joined is one surface without self-intersections, like the whole build's.
+// Road_Road joined is one surface without self-intersections, like the whole build's. The
+// region's SUMO network, built from the merged model, has the whole build's lanes.
 #include <gtest/gtest.h>
 #include <Eigen/Geometry>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
+#include <array>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <limits>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <pugixml.hpp>
+#include <sstream>
 
 #include <map>
 #include <optional>
@@ -381,7 +390,52 @@ struct Region {
   TileManifest manifest;
   TileMergeResult merge;
   nlohmann::json report;
+  std::filesystem::path merged_net, whole_net;
 };
+
+struct NetLane {
+  std::string id;
+  std::vector<Vec3> shape;
+};
+
+// Every lane of a .net.xml (internal ones too) by its ends rounded to 0.1 m (ids differ between
+// a merge and a whole build: the merge renumbers roads).
+std::map<std::array<long, 4>, NetLane> lanes_by_ends(const std::filesystem::path& net) {
+  pugi::xml_document doc;
+  EXPECT_TRUE(doc.load_file(net.c_str())) << net;
+  std::map<std::array<long, 4>, NetLane> out;
+  for (const pugi::xml_node edge : doc.child("net").children("edge")) {
+    for (const pugi::xml_node lane : edge.children("lane")) {
+      NetLane l{lane.attribute("id").value(), {}};
+      std::istringstream in(lane.attribute("shape").value());
+      for (std::string point; in >> point;) {
+        Vec3 p = Vec3::Zero();
+        char comma = 0;
+        std::istringstream ps(point);
+        ps >> p.x() >> comma >> p.y() >> comma >> p.z();
+        l.shape.push_back(p);
+      }
+      const auto r = [](double v) { return std::lround(v * 10.0); };
+      const Vec3 a = l.shape.front(), b = l.shape.back();
+      out[{r(a.x()), r(a.y()), r(b.x()), r(b.y())}] = std::move(l);
+    }
+  }
+  return out;
+}
+
+// The plan distance from `p` to `line`, and the height difference there.
+std::pair<double, double> distance_to(const Vec3& p, const std::vector<Vec3>& line) {
+  std::pair<double, double> best{std::numeric_limits<double>::infinity(), 0.0};
+  for (std::size_t i = 0; i + 1 < line.size(); ++i) {
+    const Vec3 d = line[i + 1] - line[i];
+    const double len2 = d.head<2>().squaredNorm();
+    const double t = len2 > 0.0 ? std::clamp((p - line[i]).head<2>().dot(d.head<2>()) / len2, 0.0, 1.0) : 0.0;
+    const Vec3 q = line[i] + t * d;
+    const double xy = (p - q).head<2>().norm();
+    if (xy < best.first) best = {xy, std::abs(p.z() - q.z())};
+  }
+  return best;
+}
 
 // Plans `osm` in tiles, builds every tile in this process, builds the whole region in the plan's
 // frame and merges the tiles against it.
@@ -408,6 +462,15 @@ Region tile_and_merge(const std::filesystem::path& osm, const std::string& dem, 
     EXPECT_EQ(b.status, "built") << t.x << "," << t.y;
     EXPECT_TRUE(b.failed_gates.empty()) << t.x << "," << t.y << ": " << b.failed_gates.front();
   }
+  // A killed build's temporaries go with the next build of the tile.
+  {
+    const TileSpec& first = r.manifest.tiles.front();
+    const std::filesystem::path stale = tile_dir(dir, first.x, first.y) / "out" / "old.xodr.tmp-99999";
+    std::ofstream(stale) << "half written";
+    Diagnostics forced;
+    EXPECT_EQ(build_tile(dir, r.manifest, first.x, first.y, options, forced, /*force=*/true).status, "built");
+    EXPECT_FALSE(std::filesystem::exists(stale));
+  }
   // Up to date: nothing is built again.
   Diagnostics again;
   EXPECT_EQ(
@@ -420,6 +483,7 @@ Region tile_and_merge(const std::filesystem::path& osm, const std::string& dem, 
   whole.out_dir = dir / "whole";
   whole.name = r.manifest.name;
   whole.frame_centre = r.manifest.frame_centre;
+  whole.outputs.insert(Output::sumo);
   (void)build(whole, d);
   TileMergeOptions merge;
   merge.whole_xodr = whole.out_dir / (r.manifest.name + ".xodr");
@@ -431,6 +495,10 @@ Region tile_and_merge(const std::filesystem::path& osm, const std::string& dem, 
   for (const auto& m : mesh.at("meshes")) {
     if (m.at("name") == "Road_Road") r.report["whole_road_road"] = m;
   }
+  std::ifstream whole_report(whole.out_dir / "report.json");
+  r.report["whole_sumo"] = nlohmann::json::parse(whole_report).at("sumo");
+  r.merged_net = dir / "merged" / (r.manifest.name + ".net.xml");
+  r.whole_net = whole.out_dir / (r.manifest.name + ".net.xml");
   return r;
 }
 
@@ -510,6 +578,51 @@ void expect_like_the_whole_build(const Region& r, double max_dz_m = 1e-3) {
   EXPECT_EQ(road.at("boundary_loops"), r.report.at("whole_road_road").at("boundary_loops"));
   EXPECT_EQ(road.at("holes"), r.report.at("whole_road_road").at("holes"));
   expect_tileset_holds_its_tiles(r);
+
+  // The SUMO network: the whole build's lanes, on the merged surface.
+  const auto& sumo = r.report.at("sumo");
+  const auto& whole_sumo = r.report.at("whole_sumo");
+  std::cout << "  sumo " << sumo << "\n";
+  for (const char* key : {"edges", "lanes", "internal_lanes", "junctions", "traffic_lights", "connections"})
+    EXPECT_EQ(sumo.at(key), whole_sumo.at(key)) << key;
+  EXPECT_EQ(sumo.at("lanes_without_z").get<int>(), 0);
+  EXPECT_EQ(sumo.at("height_steps").get<int>(), 0);
+  EXPECT_LE(sumo.at("z_max_m").get<double>(), 0.05);
+  // Lanes matched by their ends. The two networks are the same curves, each simplified to 1 cm
+  // from heights that differ by up to max_dz_m, so their points are compared with the other
+  // lane's line, not point by point. netconvert splits a few internal lanes at a conflict point
+  // of its own choosing, which may fall elsewhere: only those may go unmatched.
+  const auto merged = lanes_by_ends(r.merged_net);
+  const auto whole = lanes_by_ends(r.whole_net);
+  EXPECT_EQ(merged.size(), whole.size());
+  std::size_t unmatched = 0, unmatched_internal = 0, internal = 0;
+  double max_xy = 0.0, max_z = 0.0;
+  for (const auto& [key, lane] : whole) {
+    const bool is_internal = lane.id.starts_with(":");
+    internal += is_internal ? 1 : 0;
+    const auto it = merged.find(key);
+    if (it == merged.end()) {
+      ++(is_internal ? unmatched_internal : unmatched);
+      continue;
+    }
+    for (const auto& [from, to] :
+         {std::pair(&lane.shape, &it->second.shape), std::pair(&it->second.shape, &lane.shape)}) {
+      for (const Vec3& p : *from) {
+        const auto [xy, z] = distance_to(p, *to);
+        max_xy = std::max(max_xy, xy);
+        max_z = std::max(max_z, z);
+      }
+    }
+  }
+  std::cout << "  sumo lanes: " << whole.size() << " in the whole build (" << internal << " internal); "
+            << unmatched << " lanes and " << unmatched_internal
+            << " internal lanes unmatched; largest distance " << max_xy << " m in plan, " << max_z
+            << " m in height\n";
+  EXPECT_EQ(unmatched, 0u);
+  EXPECT_LE(static_cast<double>(unmatched_internal), 0.005 * static_cast<double>(internal));
+  // Two 1 cm simplifications of the same curve, printed in centimetres.
+  EXPECT_LE(max_xy, 0.025);
+  EXPECT_LE(max_z, max_dz_m + 0.0101);
 }
 
 TEST(Tiles, OldTownMergesLikeTheWholeBuild) {

@@ -79,6 +79,7 @@ struct TilesArgs {
   int retries = 1;
   std::string compare;      ///< merge: a whole build's .xodr
   double lod_cell_m = 0.0;  ///< merge: the coarse level's cell (0: tile size / 32)
+  bool no_sumo = false;     ///< merge: no SUMO network
 };
 
 int run_plan(const TilesArgs& a, const CLI::App& cmd) {
@@ -124,7 +125,9 @@ int run_one(const std::filesystem::path& dir, const TileManifest& manifest, int 
 // Every tile, `jobs` at a time, each in its own process (its memory is its window's); a tile that
 // fails is tried again `retries` times, the others go on.
 int run_all(const TilesArgs& a, const TileManifest& manifest) {
-  const std::string self = std::filesystem::read_symlink("/proc/self/exe").string();
+  // This very program, also when its file was replaced (rebuilt) while the tiles run: the
+  // kernel's link to the running image, not the path it was started from.
+  const std::string self = "/proc/self/exe";
   std::atomic<std::size_t> next{0};
   std::mutex mutex;
   std::size_t done = 0, gates_failed = 0;
@@ -189,6 +192,12 @@ int run_merge(const TilesArgs& a) {
   TileMergeOptions options;
   if (!a.compare.empty()) options.whole_xodr = a.compare;
   options.lod_cell_m = a.lod_cell_m;
+  {
+    const BuildCommandArgs parsed = parse_build_args(read_manifest(a.dir).build_args);
+    options.sumo = parsed.options.sumo;
+    options.gates = parsed.options.gates;
+  }
+  options.sumo_net = !a.no_sumo;
   print_diagnostics_live(diagnostics, /*quiet=*/true);
   const TileMergeResult r = merge_tiles(a.dir, options, diagnostics);
   std::cout << "merged " << r.tiles << " tiles: " << r.roads << " roads, " << r.junctions << " junctions, "
@@ -249,6 +258,8 @@ Runner add_tiles_command(CLI::App& app) {
       ->add_option("--lod-cell", args->lod_cell_m,
                    "the coarse level's clustering cell, m (default: the tile size / 32)")
       ->check(finite_positive());
+  merge->add_flag("--no-sumo", args->no_sumo,
+                  "no SUMO network (it needs netconvert; the region's in one run)");
 
   return [args, plan, build, merge] {
     return run_reporting_errors([&] {

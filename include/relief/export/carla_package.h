@@ -26,8 +26,10 @@
 // `mtime_s`), written and gzip-compressed (libdeflate) by relief: equal inputs give equal bytes.
 
 #include <cstdint>
+#include <set>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "relief/export/mesh_writer.h"
@@ -69,6 +71,20 @@ struct CarlaPackageInput {
 /// and stops at the first row without tile X = 0, so the tiles beyond a gap are not imported.
 /// Empty for a standard map. Throws InvalidInput as encode_carla_package.
 [[nodiscard]] std::vector<std::string> carla_tile_grid_gaps(const CarlaPackageInput& input);
+
+/// Placeholders for the tiles of a large map's grid rectangle (0, 0)..(max X, max Y) of
+/// `present` that it lacks (CARLA's cook stops a row at its first missing tile): for each, the FBX
+/// NAME_Tile_X_Y.fbx of one triangle named "Placeholder", 10 cm wide, at the tile's centre
+/// `grid_origin` + size * (X + 0.5, Y + 0.5) (`grid_origin`: the south-west corner of tile
+/// (0, 0)) at height `z`, in `like`'s frame with its metadata. Appends "X Y" of each to `placed`.
+[[nodiscard]] std::vector<EncodedFile> carla_placeholder_tiles(const std::set<std::pair<int, int>>& present,
+                                                               const Vec2& grid_origin, double size_m,
+                                                               double z, const MeshScene& like,
+                                                               const std::string& name,
+                                                               std::vector<std::string>& placed);
+
+/// The warning for `placed` placeholder tiles ("X Y" each) of a grid of `tile_size_m`.
+[[nodiscard]] std::string carla_placeholder_message(const std::vector<std::string>& placed, int tile_size_m);
 
 /// The package as a .tar.gz. Throws InvalidInput for a map name that is not valid, no FBX, an
 /// FBX not named NAME.fbx (standard map: exactly one) or NAME_Tile_X_Y.fbx (large map), the same

@@ -17,6 +17,7 @@
 #include "relief/geometry/cubic_profile.h"
 #include "relief/geometry/geo_frame.h"
 #include "relief/geometry/plan_view.h"
+#include "relief/roads/highway_class.h"
 
 namespace relief {
 
@@ -66,6 +67,7 @@ struct ModelRoad {
   std::optional<double> speed_mps;
   int source_road = -1;  ///< RoadNetwork road it came from (-1: connecting road)
   std::vector<std::int64_t> osm_way_ids;
+  std::optional<HighwayClass> highway;  ///< the OSM highway class (connecting roads: none)
 
   [[nodiscard]] double length() const { return plan.length(); }
 };
@@ -83,6 +85,7 @@ struct JunctionModel {
   std::string name;
   std::vector<JunctionConnection> connections;
   std::vector<int> source_junctions;  ///< RoadNetwork junctions it came from (several where joined)
+  bool traffic_signal = false;        ///< OSM signals it (SUMO gives it a traffic light)
 };
 
 struct RoadModel {

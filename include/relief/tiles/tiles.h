@@ -9,8 +9,8 @@
 //                SHA-256, the build's options)
 //   build_tile   one tile -> DIR/tiles/X_Y/ (window.osm.pbf, out/, tile.json); skipped when its
 //                key (inputs, options, grid) did not change
-//   merge_tiles  every built tile -> DIR/merged/ (one NAME.xodr, the scene tiles, tileset.json,
-//                report.json)
+//   merge_tiles  every built tile -> DIR/merged/ (one NAME.xodr, its SUMO network, the scene
+//                tiles, tileset.json, report.json)
 
 #include <array>
 #include <cstdint>
@@ -112,6 +112,12 @@ struct TileMergeOptions {
   std::optional<std::filesystem::path> whole_xodr;
   /// The coarse level's clustering cell (metres; 0: the tile size / 32, 7.8 m for 250 m tiles).
   double lod_cell_m = 0.0;
+  /// The region's SUMO network from the merged model (netconvert over its plain XML), checked by
+  /// the build's SUMO gates with `gates`' thresholds. `sumo` and `gates` are the tiles' options
+  /// (the plan's build options).
+  bool sumo_net = true;
+  SumoOptions sumo;
+  GateThresholds gates;
 };
 
 struct TileMergeResult {
@@ -132,7 +138,8 @@ struct TileMergeResult {
 };
 
 /// Merges every built tile of DIR into DIR/merged/: NAME.xodr (each tile's own roads and
-/// junctions, ids renumbered, links across tiles joined), the scene tiles NAME_Tile_X_Y.glb
+/// junctions, ids renumbered, links across tiles joined), NAME.net.xml with its plain XML and
+/// NAME.sumo_mapping.json (from the merged model, as a build makes them), the scene tiles NAME_Tile_X_Y.glb
 /// (each tile's core) and their coarse level NAME_Tile_X_Y_lod1.glb, tileset.json (OGC 3D Tiles
 /// 1.1, the coarse tiles refined by replacement with the full ones) and report.json. Throws InvalidInput when
 /// a planned tile is not built or out of date (and writes nothing then); reports
