@@ -17,6 +17,7 @@
 #include "relief/tiles/tiles.h"
 #include "tiles/carla_merge.h"
 #include "tiles/model_alignment.h"
+#include "tiles/scene_lod.h"
 #include "tiles/scene_seams.h"
 #include "tiles/sumo_merge.h"
 #include "tiles/tile_record.h"
@@ -59,6 +60,7 @@ TileMergeResult merge_tiles(const std::filesystem::path& dir, const TileMergeOpt
   std::vector<detail::TilesetTile> tileset;
   std::vector<MeshScene> scenes;
   std::vector<std::string> scene_names;
+  std::vector<Aabb2> scene_cores;
   std::vector<std::pair<int, int>> scene_tiles;
   std::vector<std::vector<MeshFormat>> scene_formats;
   OutputSet files;
@@ -92,6 +94,7 @@ TileMergeResult merge_tiles(const std::filesystem::path& dir, const TileMergeOpt
         std::filesystem::exists(glb) && glb_holds_meshes(glb)) {
       scenes.push_back(read_mesh_file(glb));
       scene_names.push_back(manifest.name + "_Tile_" + tile_name(spec));
+      scene_cores.push_back(spec.core);
       scene_tiles.emplace_back(spec.x, spec.y);
       scene_formats.push_back({MeshFormat::glb});
       if (std::filesystem::exists(out / (manifest.name + ".fbx")))
@@ -102,6 +105,8 @@ TileMergeResult merge_tiles(const std::filesystem::path& dir, const TileMergeOpt
   std::filesystem::create_directories(merged);  // every tile is built: the merge can be written
   // The scene tiles, their seams welded, then their checks as one surface.
   const detail::SeamWeld weld = detail::weld_seams(scenes);
+  const double lod_cell_m = options.lod_cell_m > 0.0 ? options.lod_cell_m : manifest.tile_size_m / 32.0;
+  nlohmann::json lod_json = nlohmann::json::array();
   // CARLA's large map takes the FBX tiles as they are written.
   std::size_t fbx_tiles = 0;
   for (const std::vector<MeshFormat>& formats : scene_formats)
@@ -125,15 +130,29 @@ TileMergeResult merge_tiles(const std::filesystem::path& dir, const TileMergeOpt
     for (const TriangleMesh& m : scenes[i].meshes)
       for (const Vec3& v : m.vertices) lowest_z = std::min(lowest_z, v.z());
     ++result.scene_tiles;
-    detail::TilesetTile tile{scene_names[i] + ".glb"};
-    tile.min = Vec3::Constant(std::numeric_limits<double>::infinity());
-    tile.max = -tile.min;
-    for (const TriangleMesh& m : scenes[i].meshes) {
-      for (const Vec3& v : m.vertices) {
-        tile.min = tile.min.cwiseMin(v);
-        tile.max = tile.max.cwiseMax(v);
-      }
+    detail::TilesetTile tile;
+    tile.uri = scene_names[i] + ".glb";
+    detail::scene_bounds(scenes[i], tile.min, tile.max);
+    // The coarse level: a glb of its own, measured against the full tile.
+    detail::SceneLod lod = detail::coarsen_scene(scenes[i], lod_cell_m, scene_cores[i]);
+    tile.coarse_uri = scene_names[i] + "_lod1.glb";
+    detail::scene_bounds(lod.scene, tile.coarse_min, tile.coarse_max);
+    tile.coarse_error_m = lod.error_m();
+    for (EncodedFile& f : encode_mesh_scene(lod.scene, MeshFormat::glb, scene_names[i] + "_lod1")) {
+      const std::filesystem::path to = merged / f.filename;
+      files.add(to, [bytes = std::move(f.bytes)](std::ostream& o) { o << bytes; });
+      result.written.push_back(to);
     }
+    result.lod_full_triangles += lod.full_triangles;
+    result.lod_coarse_triangles += lod.coarse_triangles;
+    result.lod_max_error_m = std::max(result.lod_max_error_m, tile.coarse_error_m);
+    lod_json.push_back({{"tile", scene_names[i]},
+                        {"full_triangles", lod.full_triangles},
+                        {"coarse_triangles", lod.coarse_triangles},
+                        {"max_vertex_shift_m", lod.max_vertex_shift_m},
+                        {"coarse_to_full_m", lod.coarse_to_full_m},
+                        {"max_full_to_coarse_m", lod.max_full_to_coarse_m},
+                        {"geometric_error_m", tile.coarse_error_m}});
     if (tile.min.allFinite()) tileset.push_back(tile);
   }
 
@@ -143,7 +162,8 @@ TileMergeResult merge_tiles(const std::filesystem::path& dir, const TileMergeOpt
   report["tile_size_m"] = manifest.tile_size_m;
   report["halo_m"] = manifest.halo_m;
   report["tiles"] = tiles_json;
-  report["tile_builds"] = {{"seconds", seconds}, {"largest_peak_rss_mb", peak_rss_mb}, {"largest_tile", peak_tile}};
+  report["tile_builds"] = {
+      {"seconds", seconds}, {"largest_peak_rss_mb", peak_rss_mb}, {"largest_tile", peak_tile}};
   if (!models.empty()) {
     detail::ModelMergeResult m = detail::merge_models(models);
     result.roads = m.model.roads.size();
@@ -205,11 +225,16 @@ TileMergeResult merge_tiles(const std::filesystem::path& dir, const TileMergeOpt
     }
   }
   if (!tileset.empty()) {
-    const std::string text = detail::tileset_json(manifest.frame, tileset, manifest.tile_size_m / 10.0);
+    const std::string text = detail::tileset_json(manifest.frame, tileset);
     files.add(merged / "tileset.json", [&text](std::ostream& o) { o << text; });
     result.written.push_back(merged / "tileset.json");
   }
   report["scene_tiles"] = result.scene_tiles;
+  report["lod1"] = {{"cell_m", lod_cell_m},
+                    {"full_triangles", result.lod_full_triangles},
+                    {"coarse_triangles", result.lod_coarse_triangles},
+                    {"max_geometric_error_m", result.lod_max_error_m},
+                    {"tiles", lod_json}};
   report["seams"] = {
       {"shared_vertices", weld.shared_vertices}, {"welded", weld.welded}, {"max_dz_m", weld.max_dz_m}};
   if (!scenes.empty()) {

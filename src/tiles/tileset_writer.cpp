@@ -1,6 +1,7 @@
 #include "tiles/tileset_writer.h"
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 #include <nlohmann/json.hpp>
 
@@ -40,32 +41,45 @@ std::vector<double> frame_to_ecef(const GeoFrame& frame) {
 
 nlohmann::json box(const Vec3& min, const Vec3& max) {
   const Vec3 c = 0.5 * (min + max);
-  const Vec3 h = (0.5 * (max - min)).cwiseMax(Vec3::Constant(0.01));
+  // 1 mm more each way: the glb's float vertices round within 0.1 mm at 4 km from the origin.
+  const Vec3 h = (0.5 * (max - min)).array() + 0.001;
   return {{"box", {c.x(), c.y(), c.z(), h.x(), 0.0, 0.0, 0.0, h.y(), 0.0, 0.0, 0.0, h.z()}}};
 }
 
 }  // namespace
 
-std::string tileset_json(const GeoFrame& frame, const std::vector<TilesetTile>& tiles,
-                         double geometric_error_m) {
+std::string tileset_json(const GeoFrame& frame, const std::vector<TilesetTile>& tiles) {
   Vec3 min = Vec3::Constant(std::numeric_limits<double>::infinity());
   Vec3 max = -min;
+  double children_error = 0.0;
   nlohmann::json children = nlohmann::json::array();
   for (const TilesetTile& t : tiles) {
-    min = min.cwiseMin(t.min);
-    max = max.cwiseMax(t.max);
-    children.push_back(
-        {{"boundingVolume", box(t.min, t.max)}, {"geometricError", 0.0}, {"content", {{"uri", t.uri}}}});
+    nlohmann::json full = {
+        {"boundingVolume", box(t.min, t.max)}, {"geometricError", 0.0}, {"content", {{"uri", t.uri}}}};
+    Vec3 tmin = t.min, tmax = t.max;
+    if (!t.coarse_uri.empty()) {
+      tmin = tmin.cwiseMin(t.coarse_min);
+      tmax = tmax.cwiseMax(t.coarse_max);
+      children_error = std::max(children_error, t.coarse_error_m);
+      full = {{"boundingVolume", box(tmin, tmax)},
+              {"geometricError", t.coarse_error_m},
+              {"refine", "REPLACE"},
+              {"content", {{"uri", t.coarse_uri}}},
+              {"children", nlohmann::json::array({full})}};
+    }
+    min = min.cwiseMin(tmin);
+    max = max.cwiseMax(tmax);
+    children.push_back(full);
   }
   if (tiles.empty()) min = max = Vec3::Zero();
+  const double error = std::max((max - min).norm(), children_error);
   nlohmann::json root = {{"boundingVolume", box(min, max)},
-                         {"geometricError", geometric_error_m},
+                         {"geometricError", error},
                          {"refine", "ADD"},
                          {"transform", frame_to_ecef(frame)},
                          {"children", children}};
-  const nlohmann::json j = {{"asset", {{"version", "1.1"}, {"generator", "relief"}}},
-                            {"geometricError", geometric_error_m},
-                            {"root", root}};
+  const nlohmann::json j = {
+      {"asset", {{"version", "1.1"}, {"generator", "relief"}}}, {"geometricError", error}, {"root", root}};
   return j.dump(1) + "\n";
 }
 

@@ -5,6 +5,7 @@
 // region's SUMO network, built from the merged model, has the whole build's lanes.
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -14,16 +15,22 @@
 #include <map>
 #include <nlohmann/json.hpp>
 #include <numbers>
+#include <optional>
 #include <pugixml.hpp>
+#include <random>
+#include <set>
 #include <sstream>
 
 #include "relief/core/errors.h"
+#include "relief/export/mesh_writer.h"
 #include "relief/geometry/crs_transform.h"
 #include "relief/tiles/tiles.h"
 #include "support/corpus.h"
 #include "support/osm_sketch.h"
 #include "support/synthetic.h"
 #include "support/test_data.h"
+#include "tiles/scene_lod.h"
+#include "tiles/tileset_writer.h"
 
 namespace relief {
 namespace {
@@ -78,7 +85,309 @@ TEST(TilePlan, RefusesATileSizeOrHaloThatIsNotAPositiveNumber) {
   EXPECT_THROW((void)plan_tiles(o), IoError);  // no such file
 }
 
+// The coarse level of a scene tile (scene_lod.h) on a height field whose surface the test knows:
+// a hill in 2.5 m cells, a road strip on it and a marking on the road.
+double hill(double x, double y) {
+  return 6.0 * std::sin(x / 35.0) * std::cos(y / 50.0) + 0.02 * x;
+}
+
+TriangleMesh grid_mesh(const std::string& name, SurfaceKind kind, const Vec2& o, int nx, int ny, double step,
+                       double dz) {
+  TriangleMesh m;
+  m.name = name;
+  m.kind = kind;
+  for (int j = 0; j <= ny; ++j) {
+    for (int i = 0; i <= nx; ++i) {
+      const double x = o.x() + i * step, y = o.y() + j * step;
+      m.vertices.emplace_back(x, y, hill(x, y) + dz);
+    }
+  }
+  for (int j = 0; j < ny; ++j) {
+    for (int i = 0; i < nx; ++i) {
+      const auto a = static_cast<std::uint32_t>(j * (nx + 1) + i);
+      const std::uint32_t b = a + 1, c = a + static_cast<std::uint32_t>(nx) + 2, d = c - 1;
+      m.triangles.push_back({a, b, c});
+      m.triangles.push_back({a, c, d});
+    }
+  }
+  return m;
+}
+
+// The closest point of triangle abc to p (Ericson, Real-Time Collision Detection, 5.1.5).
+Vec3 closest_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
+  const Vec3 ab = b - a, ac = c - a, ap = p - a;
+  const double d1 = ab.dot(ap), d2 = ac.dot(ap);
+  if (d1 <= 0 && d2 <= 0) return a;
+  const Vec3 bp = p - b;
+  const double d3 = ab.dot(bp), d4 = ac.dot(bp);
+  if (d3 >= 0 && d4 <= d3) return b;
+  const double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0 && d1 >= 0 && d3 <= 0) return a + d1 / (d1 - d3) * ab;
+  const Vec3 cp = p - c;
+  const double d5 = ab.dot(cp), d6 = ac.dot(cp);
+  if (d6 >= 0 && d5 <= d6) return c;
+  const double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0 && d2 >= 0 && d6 <= 0) return a + d2 / (d2 - d6) * ac;
+  const double va = d3 * d6 - d5 * d4;
+  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) return b + (d4 - d3) / ((d4 - d3) + (d5 - d6)) * (c - b);
+  const double denom = 1.0 / (va + vb + vc);
+  return a + ab * (vb * denom) + ac * (vc * denom);
+}
+
+TEST(SceneLod, ClustersAHillWithinItsMeasuredError) {
+  constexpr int kN = 80;
+  constexpr double kStep = 2.5, kCell = 10.0;  // 200 m square; 16 vertices of the hill per cell
+  MeshScene full;
+  full.frame = GeoFrame("EPSG:32610", Vec2(552917.0, 4178610.0));
+  full.metadata["k"] = "v";
+  full.meshes.push_back(grid_mesh("Terrain", SurfaceKind::terrain, Vec2(0.0, 0.0), kN, kN, kStep, 0.0));
+  full.meshes.push_back(grid_mesh("Road_Road", SurfaceKind::road, Vec2(0.0, 90.0), kN, 4, kStep, 0.05));
+  full.meshes.push_back(
+      grid_mesh("Road_Marking", SurfaceKind::marking, Vec2(50.0, 94.0), 40, 1, kStep, 0.06));
+  Aabb2 core;
+  core.extend(Vec2(0.0, 0.0));
+  core.extend(Vec2(200.0, 200.0));
+  const detail::SceneLod lod = detail::coarsen_scene(full, kCell, core);
+
+  std::size_t full_triangles = 0;
+  for (const TriangleMesh& m : full.meshes) full_triangles += m.triangles.size();
+  EXPECT_EQ(lod.full_triangles, full_triangles);
+  std::size_t coarse_triangles = 0;
+  for (const TriangleMesh& m : lod.scene.meshes) {
+    coarse_triangles += m.triangles.size();
+    EXPECT_NE(m.kind, SurfaceKind::marking) << m.name;  // markings are left out
+    EXPECT_TRUE(m.normals.empty() && m.uvs.empty());
+  }
+  ASSERT_EQ(lod.scene.meshes.size(), 2u);
+  EXPECT_EQ(lod.scene.meshes[0].name, "Terrain");
+  EXPECT_EQ(lod.scene.meshes[1].name, "Road_Road");
+  EXPECT_EQ(lod.scene.metadata, full.metadata);
+  EXPECT_EQ(lod.coarse_triangles, coarse_triangles);
+  // 13 600 triangles in; 20 x 20 cells (and the pinned border's vertices) leave about 1 100.
+  std::cout << "hill: " << lod.coarse_triangles << " of " << lod.full_triangles << " triangles, shift "
+            << lod.max_vertex_shift_m << " m, coarse to full " << lod.coarse_to_full_m
+            << " m, full to coarse " << lod.max_full_to_coarse_m << " m\n";
+  EXPECT_LT(lod.coarse_triangles * 8, lod.full_triangles);
+  EXPECT_GT(lod.coarse_triangles, 600u);
+  // A vertex moves within its cell at most; the error is the larger of the two measures.
+  EXPECT_GT(lod.max_vertex_shift_m, 0.0);
+  EXPECT_LE(lod.max_vertex_shift_m, kCell * std::sqrt(3.0));
+  EXPECT_EQ(lod.error_m(), std::max(lod.coarse_to_full_m, lod.max_full_to_coarse_m));
+  // The hill is smooth: under the metres vertices slid along it (the bound's grid adds 1.44 m).
+  EXPECT_LT(lod.error_m(), 2.0);
+  EXPECT_LT(lod.error_m() * 2, lod.max_vertex_shift_m);
+
+  // Brute force, the full surface's triangles one by one (their boxes skip most).
+  const auto distance = [](const Vec3& p, const std::vector<TriangleMesh>& meshes) {
+    double best = std::numeric_limits<double>::infinity();
+    for (const TriangleMesh& m : meshes) {
+      for (const auto& t : m.triangles) {
+        const Vec3 &a = m.vertices[t[0]], &b = m.vertices[t[1]], &c = m.vertices[t[2]];
+        const Vec3 lo = a.cwiseMin(b).cwiseMin(c), hi = a.cwiseMax(b).cwiseMax(c);
+        if ((lo - p).cwiseMax(p - hi).cwiseMax(0.0).norm() >= best) continue;
+        best = std::min(best, (p - closest_on_triangle(p, a, b, c)).norm());
+      }
+    }
+    return best;
+  };
+  // Coarse to full: corners, edge midpoints, centroids and random points of every coarse
+  // triangle lie within the bound of the full surface.
+  std::mt19937 rng(17);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  double worst = 0.0;
+  for (const TriangleMesh& m : lod.scene.meshes) {
+    for (const auto& t : m.triangles) {
+      ASSERT_TRUE(t[0] != t[1] && t[1] != t[2] && t[0] != t[2]);
+      const Vec3 &a = m.vertices.at(t[0]), &b = m.vertices.at(t[1]), &c = m.vertices.at(t[2]);
+      EXPECT_GT((b - a).cross(c - a).z(), 0.0);  // still facing up
+      double u = unit(rng), v = unit(rng);
+      if (u + v > 1.0) u = 1.0 - u, v = 1.0 - v;
+      for (const Vec3& p : {a, b, c, Vec3((a + b) / 2), Vec3((b + c) / 2), Vec3((a + c) / 2),
+                            Vec3((a + b + c) / 3), Vec3(a + u * (b - a) + v * (c - a))}) {
+        worst = std::max(worst, distance(p, full.meshes));
+      }
+    }
+  }
+  EXPECT_LE(worst, lod.coarse_to_full_m + 1e-9);
+  std::cout << "hill: brute force coarse to full " << worst << " m\n";
+  EXPECT_GT(worst, 0.01);
+  // The bound is close: its grid is cell / 4 apart, 1.44 m of slack at most.
+  EXPECT_LE(lod.coarse_to_full_m, worst + kCell / 4.0 / std::sqrt(3.0) + 0.2);
+
+  // Full to coarse, by brute force over every corner and centroid: what the AABB tree measured.
+  double brute = 0.0;
+  for (const TriangleMesh& m : full.meshes) {
+    for (const auto& t : m.triangles) {
+      for (const std::uint32_t i : t) brute = std::max(brute, distance(m.vertices[i], lod.scene.meshes));
+      brute = std::max(
+          brute, distance((m.vertices[t[0]] + m.vertices[t[1]] + m.vertices[t[2]]) / 3.0, lod.scene.meshes));
+    }
+  }
+  EXPECT_NEAR(lod.max_full_to_coarse_m, brute, 1e-9);
+  EXPECT_GT(brute, 0.01);
+
+  // The core's border keeps its vertices, to the bit, so that neighbouring coarse tiles meet.
+  std::set<std::array<double, 3>> coarse_points;
+  for (const TriangleMesh& m : lod.scene.meshes) {
+    for (const Vec3& v : m.vertices) coarse_points.insert({v.x(), v.y(), v.z()});
+  }
+  std::size_t border = 0;
+  for (const Vec3& v : full.meshes[0].vertices) {
+    if (v.x() == 0.0 || v.y() == 0.0 || v.x() == 200.0 || v.y() == 200.0) {
+      ++border;
+      EXPECT_TRUE(coarse_points.contains({v.x(), v.y(), v.z()})) << v.transpose();
+    }
+  }
+  EXPECT_EQ(border, 4u * kN);
+  // Without a border, the same grid loses more.
+  const detail::SceneLod free = detail::coarsen_scene(full, kCell, Aabb2{});
+  EXPECT_LT(free.coarse_triangles, lod.coarse_triangles);
+  EXPECT_THROW((void)detail::coarsen_scene(full, 0.0, core), InvalidInput);
+}
+
+// A 10 m road across a hill in a hole of the terrain (sharing its edge's vertices, as relief's
+// terrain does), clustered in 64 m cells: the road takes a grid of 8 m and stays, and the
+// terrain's vertices on its edge take the road's grid, so that the two still meet.
+TEST(SceneLod, KeepsARoadNarrowerThanTheCellAndItsSeamWithTheTerrain) {
+  constexpr int kN = 80;
+  constexpr double kStep = 2.5;
+  MeshScene full;
+  TriangleMesh terrain = grid_mesh("Terrain", SurfaceKind::terrain, Vec2(0.0, 0.0), kN, kN, kStep, 0.0);
+  std::vector<std::uint8_t> keep(terrain.triangles.size());
+  for (std::size_t t = 0; t < keep.size(); ++t) {
+    const double y = terrain.vertices[terrain.triangles[t][0]].y();
+    keep[t] = y < 90.0 || y >= 100.0 ? 1 : 0;  // the hole: rows 36 to 39, y in [90, 100]
+  }
+  full.meshes.push_back(submesh(terrain, keep));
+  full.meshes.push_back(grid_mesh("Road_Road", SurfaceKind::road, Vec2(0.0, 90.0), kN, 4, kStep, 0.0));
+  Aabb2 core;
+  core.extend(Vec2(0.0, 0.0));
+  core.extend(Vec2(256.0, 256.0));  // its edges x = 0 and y = 0 pin the vertices there
+  const detail::SceneLod lod = detail::coarsen_scene(full, 64.0, core);
+  ASSERT_EQ(lod.scene.meshes.size(), 2u);
+  const TriangleMesh& road = lod.scene.meshes[1];
+  ASSERT_EQ(road.name, "Road_Road");
+  std::cout << "road in 64 m cells: " << road.triangles.size() << " of " << full.meshes[1].triangles.size()
+            << " road triangles, " << lod.coarse_triangles << " of " << lod.full_triangles << ", error "
+            << lod.error_m() << " m\n";
+  // 200 m of road in 8 m cells, two or three across: about 25 x 2 x 2 triangles (59; in the
+  // terrain's 64 m cells none would be left).
+  EXPECT_GE(road.triangles.size(), 40u);
+  EXPECT_LT(road.triangles.size() * 4, full.meshes[1].triangles.size());
+  // The hill in 64 m cells and the road in 8 m ones: 11.5 m.
+  EXPECT_LT(lod.error_m(), 8.0 * std::sqrt(3.0));
+  // The seam: the coarse road's edge vertices are the coarse terrain's, to the bit.
+  std::set<std::array<double, 3>> terrain_points;
+  for (const Vec3& v : lod.scene.meshes[0].vertices) terrain_points.insert({v.x(), v.y(), v.z()});
+  std::size_t shared = 0;
+  for (const Vec3& v : road.vertices) shared += terrain_points.contains({v.x(), v.y(), v.z()}) ? 1 : 0;
+  EXPECT_GE(shared, 2u * 200 / 8);
+}
+
+TEST(SceneLod, TakesNonManifoldDegenerateAndTinyInput) {
+  TriangleMesh m;
+  m.name = "Junk";
+  m.vertices = {{0, 0, 0}, {30, 0, 0}, {30, 30, 0}, {0, 30, 0}, {15, 15, 20}, {15, -15, -20}, {50, 50, 50}};
+  m.triangles = {{0, 1, 2}, {0, 2, 3}, {0, 2, 4}, {0, 2, 5},  // edge 0-2 in four triangles
+                 {0, 1, 2}, {2, 1, 0},                        // the same again, both ways
+                 {0, 0, 1}, {3, 3, 3}};                       // degenerate
+  MeshScene full;
+  full.meshes = {m};
+  const detail::SceneLod lod = detail::coarsen_scene(full, 4.0, Aabb2{});
+  EXPECT_EQ(lod.full_triangles, 8u);
+  ASSERT_EQ(lod.scene.meshes.size(), 1u);
+  // Every corner in a cell of its own (4 m cells, 15 m apart): each distinct triangle kept once.
+  EXPECT_EQ(lod.coarse_triangles, 4u);
+  for (const auto& t : lod.scene.meshes[0].triangles) {
+    for (const std::uint32_t i : t) EXPECT_LT(i, lod.scene.meshes[0].vertices.size());
+  }
+  // The full surface is all kept: nothing is lost but the slack of the bound's grid.
+  EXPECT_NEAR(lod.max_full_to_coarse_m, 0.0, 1e-12);
+  EXPECT_LE(lod.error_m(), 4.0 / 4.0 / std::sqrt(3.0) + 1e-9);
+  EXPECT_EQ(lod.max_vertex_shift_m, 0.0);  // every corner lies on its planes: the quadric keeps it
+  // A tile of two markings and one small triangle that a 100 m cell collapses: the full scene
+  // without markings stands for it (no empty glb); the triangle's unused fourth vertex is no
+  // part of the surface.
+  MeshScene tiny;
+  tiny.meshes.push_back(grid_mesh("Road_Marking", SurfaceKind::marking, Vec2(1.25, 1.0), 1, 1, 0.1, 0.01));
+  tiny.meshes.push_back(grid_mesh("Terrain", SurfaceKind::terrain, Vec2(1.0, 1.0), 1, 1, 0.5, 0.0));
+  tiny.meshes.back().triangles.pop_back();
+  const detail::SceneLod small = detail::coarsen_scene(tiny, 100.0, Aabb2{});
+  ASSERT_EQ(small.scene.meshes.size(), 1u);
+  EXPECT_EQ(small.scene.meshes[0].name, "Terrain");
+  EXPECT_EQ(small.coarse_triangles, 1u);
+  EXPECT_EQ(small.max_vertex_shift_m, 0.0);
+  EXPECT_LT(small.max_full_to_coarse_m, 0.02);  // the markings, 1 cm above the terrain
+  EXPECT_GT(small.max_full_to_coarse_m, 0.005);
+}
+
+// Boxes of tileset.json: centre and half axes along x, y, z.
+struct Box {
+  Vec3 centre, half;
+};
+Box box_of(const nlohmann::json& tile) {
+  const auto& b = tile.at("boundingVolume").at("box");
+  EXPECT_EQ(b[4].get<double>(), 0.0);
+  return {Vec3(b[0], b[1], b[2]), Vec3(b[3], b[7], b[11])};
+}
+bool holds(const Box& outer, const Vec3& p, double tol = 1e-9) {
+  return ((p - outer.centre).cwiseAbs() - outer.half).maxCoeff() <= tol;
+}
+bool holds(const Box& outer, const Box& inner) {
+  return holds(outer, inner.centre + inner.half) && holds(outer, inner.centre - inner.half);
+}
+
+TEST(Tileset, CoarseTilesRefineByReplacementAndBoxesHoldTheirContent) {
+  detail::TilesetTile a;
+  a.uri = "r_Tile_0_0.glb";
+  a.min = Vec3(0, 0, 10);
+  a.max = Vec3(250, 250, 40);
+  a.coarse_uri = "r_Tile_0_0_lod1.glb";
+  a.coarse_min = Vec3(-3, 2, 9);  // a cluster's point may leave the full box
+  a.coarse_max = Vec3(251, 250, 41);
+  a.coarse_error_m = 4.5;
+  detail::TilesetTile b;
+  b.uri = "r_Tile_1_0.glb";
+  b.min = Vec3(250, 0, 12);
+  b.max = Vec3(500, 100, 30);
+  const nlohmann::json j =
+      nlohmann::json::parse(detail::tileset_json(GeoFrame("EPSG:32610", Vec2(552917.0, 4178610.0)), {a, b}));
+  EXPECT_EQ(j.at("asset").at("version"), "1.1");
+  const auto& root = j.at("root");
+  EXPECT_EQ(root.at("transform").size(), 16u);
+  EXPECT_FALSE(root.contains("content"));
+  ASSERT_EQ(root.at("children").size(), 2u);
+  const auto& coarse = root.at("children")[0];
+  EXPECT_EQ(coarse.at("refine"), "REPLACE");
+  EXPECT_EQ(coarse.at("content").at("uri"), "r_Tile_0_0_lod1.glb");
+  EXPECT_EQ(coarse.at("geometricError").get<double>(), 4.5);
+  ASSERT_EQ(coarse.at("children").size(), 1u);
+  const auto& full = coarse.at("children")[0];
+  EXPECT_EQ(full.at("content").at("uri"), "r_Tile_0_0.glb");
+  EXPECT_EQ(full.at("geometricError").get<double>(), 0.0);
+  EXPECT_FALSE(full.contains("children"));
+  const auto& plain = root.at("children")[1];
+  EXPECT_EQ(plain.at("content").at("uri"), "r_Tile_1_0.glb");
+  EXPECT_EQ(plain.at("geometricError").get<double>(), 0.0);
+  EXPECT_FALSE(plain.contains("children"));
+  // Boxes: the content's corners and the children's boxes inside, with the 1 mm of float room.
+  const Box rb = box_of(root), cb = box_of(coarse), fb = box_of(full), pb = box_of(plain);
+  for (const Vec3& p : {a.min, a.max, a.coarse_min, a.coarse_max}) EXPECT_TRUE(holds(cb, p)) << p.transpose();
+  EXPECT_FALSE(holds(fb, a.coarse_min));  // the full tile's box is the full content's
+  for (const Vec3& p : {a.min, a.max}) EXPECT_TRUE(holds(fb, p));
+  for (const Vec3& p : {b.min, b.max}) EXPECT_TRUE(holds(pb, p));
+  EXPECT_NEAR(fb.half.x(), 125.001, 1e-9);
+  EXPECT_TRUE(holds(cb, fb));
+  EXPECT_TRUE(holds(rb, cb));
+  EXPECT_TRUE(holds(rb, pb));
+  // The root's error: what is missing when nothing is drawn, the region's diagonal.
+  const double diagonal = (Vec3(500, 250, 41) - Vec3(-3, 0, 9)).norm();
+  EXPECT_NEAR(root.at("geometricError").get<double>(), diagonal, 1e-9);
+  EXPECT_EQ(j.at("geometricError"), root.at("geometricError"));
+}
+
 struct Region {
+  std::filesystem::path dir;
   TileManifest manifest;
   TileMergeResult merge;
   nlohmann::json report;
@@ -141,6 +450,7 @@ Region tile_and_merge(const std::filesystem::path& osm, const std::string& dem, 
   plan.halo_m = halo_m;
   plan.build_args = {"(in-process)"};
   Region r;
+  r.dir = dir;
   r.manifest = plan_tiles(plan);
   write_manifest(dir, r.manifest);
   BuildOptions options;
@@ -194,6 +504,57 @@ Region tile_and_merge(const std::filesystem::path& osm, const std::string& dem, 
   return r;
 }
 
+// tileset.json of the merge: every scene tile a coarse glb refined by replacement with the full
+// one, read back: the coarse has fewer triangles and no markings, every vertex of each lies in
+// its node's box, each box in its parent's, the errors those report.json measured.
+void expect_tileset_holds_its_tiles(const Region& r) {
+  std::ifstream in(r.dir / "merged" / "tileset.json");
+  const nlohmann::json ts = nlohmann::json::parse(in);
+  const auto& root = ts.at("root");
+  const Box rb = box_of(root);
+  std::map<std::string, nlohmann::json> lod;
+  for (const auto& t : r.report.at("lod1").at("tiles")) lod[t.at("tile").get<std::string>()] = t;
+  ASSERT_EQ(root.at("children").size(), r.merge.scene_tiles);
+  ASSERT_GT(r.merge.scene_tiles, 0u);
+  std::size_t full_sum = 0, coarse_sum = 0;
+  const auto triangles = [](const MeshScene& s) {
+    std::size_t n = 0;
+    for (const TriangleMesh& m : s.meshes) n += m.triangles.size();
+    return n;
+  };
+  for (const auto& node : root.at("children")) {
+    ASSERT_EQ(node.at("refine"), "REPLACE");
+    ASSERT_EQ(node.at("children").size(), 1u);
+    const auto& leaf = node.at("children")[0];
+    EXPECT_EQ(leaf.at("geometricError").get<double>(), 0.0);
+    const std::string full_uri = leaf.at("content").at("uri");
+    const std::string stem = full_uri.substr(0, full_uri.size() - 4);
+    EXPECT_EQ(node.at("content").at("uri"), stem + "_lod1.glb");
+    EXPECT_EQ(node.at("geometricError").get<double>(), lod.at(stem).at("geometric_error_m").get<double>());
+    EXPECT_GT(node.at("geometricError").get<double>(), 0.0);
+    EXPECT_LE(node.at("geometricError").get<double>(), root.at("geometricError").get<double>());
+    const Box nb = box_of(node), lb = box_of(leaf);
+    EXPECT_TRUE(holds(rb, nb));
+    EXPECT_TRUE(holds(nb, lb));
+    const MeshScene full = read_mesh_file(r.dir / "merged" / full_uri);
+    const MeshScene coarse = read_mesh_file(r.dir / "merged" / (stem + "_lod1.glb"));
+    for (const auto& [scene, box] : {std::pair{&full, lb}, std::pair{&coarse, nb}}) {
+      for (const TriangleMesh& m : scene->meshes) {
+        for (const Vec3& v : m.vertices) ASSERT_TRUE(holds(box, v, 1e-6)) << stem << " " << v.transpose();
+      }
+    }
+    for (const TriangleMesh& m : coarse.meshes) EXPECT_NE(m.kind, SurfaceKind::marking) << stem;
+    EXPECT_EQ(triangles(coarse), lod.at(stem).at("coarse_triangles").get<std::size_t>());
+    EXPECT_LE(triangles(coarse), triangles(full));
+    full_sum += triangles(full);
+    coarse_sum += triangles(coarse);
+  }
+  std::cout << "  lod1 " << coarse_sum << " of " << full_sum << " triangles, error up to "
+            << r.merge.lod_max_error_m << " m\n";
+  EXPECT_EQ(full_sum, r.merge.lod_full_triangles);
+  EXPECT_LT(coarse_sum * 2, full_sum);
+}
+
 // `max_dz_m`: the heights' agreement with the whole build (1 mm where the fit's optimum is well
 // determined; a few roads of a mountain network come out up to a centimetre apart).
 void expect_like_the_whole_build(const Region& r, double max_dz_m = 1e-3) {
@@ -218,6 +579,7 @@ void expect_like_the_whole_build(const Region& r, double max_dz_m = 1e-3) {
   // The joined surface has the whole build's boundary: the seams are closed.
   EXPECT_EQ(road.at("boundary_loops"), r.report.at("whole_road_road").at("boundary_loops"));
   EXPECT_EQ(road.at("holes"), r.report.at("whole_road_road").at("holes"));
+  expect_tileset_holds_its_tiles(r);
 
   // The SUMO network: the whole build's lanes, on the merged surface.
   const auto& sumo = r.report.at("sumo");

@@ -77,8 +77,9 @@ struct TilesArgs {
   bool force = false;
   int jobs = 1;
   int retries = 1;
-  std::string compare;   ///< merge: a whole build's .xodr
-  bool no_sumo = false;  ///< merge: no SUMO network
+  std::string compare;      ///< merge: a whole build's .xodr
+  double lod_cell_m = 0.0;  ///< merge: the coarse level's cell (0: tile size / 32)
+  bool no_sumo = false;     ///< merge: no SUMO network
 };
 
 int run_plan(const TilesArgs& a, const CLI::App& cmd) {
@@ -193,6 +194,7 @@ int run_merge(const TilesArgs& a) {
   Diagnostics diagnostics;
   TileMergeOptions options;
   if (!a.compare.empty()) options.whole_xodr = a.compare;
+  options.lod_cell_m = a.lod_cell_m;
   {
     const BuildCommandArgs parsed = parse_build_args(read_manifest(a.dir).build_args);
     options.sumo = parsed.options.sumo;
@@ -203,6 +205,10 @@ int run_merge(const TilesArgs& a) {
   const TileMergeResult r = merge_tiles(a.dir, options, diagnostics);
   std::cout << "merged " << r.tiles << " tiles: " << r.roads << " roads, " << r.junctions << " junctions, "
             << r.scene_tiles << " scene tiles\n";
+  if (r.scene_tiles > 0) {
+    std::cout << "coarse level (lod1): " << r.lod_coarse_triangles << " of " << r.lod_full_triangles
+              << " triangles, geometric error up to " << r.lod_max_error_m << " m\n";
+  }
   if (options.whole_xodr) {
     std::cout << "against the whole build: " << r.whole_roads - r.whole_unmatched << " of " << r.whole_roads
               << " roads matched; surface within " << r.whole_max_xy_m << " m in plan, " << r.whole_max_z_m
@@ -251,6 +257,10 @@ Runner add_tiles_command(CLI::App& app) {
   merge->add_option("--compare", args->compare,
                     "a whole build's .xodr (relief build --origin at the plan's centre): measure the merge "
                     "against it");
+  merge
+      ->add_option("--lod-cell", args->lod_cell_m,
+                   "the coarse level's clustering cell, m (default: the tile size / 32)")
+      ->check(finite_positive());
   merge->add_flag("--no-sumo", args->no_sumo,
                   "no SUMO network (it needs netconvert; the region's in one run)");
 

@@ -111,6 +111,8 @@ struct TileMergeOptions {
   /// The .xodr of a whole build of the region in the same frame (relief build --origin at the
   /// manifest's centre), to measure the merge against (report.json "whole_build").
   std::optional<std::filesystem::path> whole_xodr;
+  /// The coarse level's clustering cell (metres; 0: the tile size / 32, 7.8 m for 250 m tiles).
+  double lod_cell_m = 0.0;
   /// The region's SUMO network from the merged model (netconvert over its plain XML), checked by
   /// the build's SUMO gates with `gates`' thresholds. `sumo` and `gates` are the tiles' options
   /// (the plan's build options).
@@ -131,12 +133,17 @@ struct TileMergeResult {
   std::size_t whole_roads = 0, whole_unmatched = 0;
   double whole_max_xy_m = 0.0, whole_max_z_m = 0.0;
   std::size_t whole_roads_over_1mm = 0;  ///< matched roads whose heights differ by more than 1 mm
+  /// The coarse level of the scene tiles (NAME_Tile_X_Y_lod1.glb), summed over the tiles, and
+  /// the largest measured error of one (its geometricError in tileset.json).
+  std::size_t lod_full_triangles = 0, lod_coarse_triangles = 0;
+  double lod_max_error_m = 0.0;
 };
 
 /// Merges every built tile of DIR into DIR/merged/: NAME.xodr (each tile's own roads and
 /// junctions, ids renumbered, links across tiles joined), NAME.net.xml with its plain XML and
 /// NAME.sumo_mapping.json (from the merged model, as a build makes them), the scene tiles NAME_Tile_X_Y.glb
-/// (each tile's core), tileset.json (OGC 3D Tiles 1.1) and report.json. Throws InvalidInput when
+/// (each tile's core) and their coarse level NAME_Tile_X_Y_lod1.glb, tileset.json (OGC 3D Tiles
+/// 1.1, the coarse tiles refined by replacement with the full ones) and report.json. Throws InvalidInput when
 /// a planned tile is not built or out of date (and writes nothing then); reports
 /// "tiles.link_unresolved" for each link no tile answers.
 [[nodiscard]] TileMergeResult merge_tiles(const std::filesystem::path& dir, const TileMergeOptions& options,
