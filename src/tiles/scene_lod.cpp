@@ -52,11 +52,11 @@ struct Cluster {
 // quadric is flat in some direction (singular values below 1e-3 of the largest are dropped),
 // clamped to the cell.
 Vec3 representative(const Cluster& c) {
-  const Vec3 mean = c.sum / static_cast<double>(c.count);
+  Vec3 mean = c.sum / static_cast<double>(c.count);
   if (c.pinned) return mean;
   Vec3 x = mean;
   const Eigen::JacobiSVD<Eigen::Matrix3d> svd(c.a, Eigen::ComputeFullU | Eigen::ComputeFullV);
-  const Vec3 s = svd.singularValues();
+  const Vec3& s = svd.singularValues();
   if (s(0) > 0.0) {
     const Vec3 r = -(c.a * mean + c.b);  // the gradient's negative half at the mean
     Vec3 y = svd.matrixU().transpose() * r;
