@@ -12,6 +12,9 @@ set(relief_tools_tests
   "^Build\\.(SyntheticPlaneHasExactGrades|CallersSignalledJunctionsJoinTheOsmOnes|PotreroWithReferenceDem)$"
   "^Build\\.BrokenDemWithVoidsIsFilledAndReported$"
   "^(Corpus|Fuzz|Regions|Sumo)\\."
+  # region tiles merged (the merge builds the region's SUMO network: netconvert)
+  "^Tiles\\.(OldTownMergesLikeTheWholeBuild|AStructureChainLongerThanTheHaloMergesLikeTheWholeBuild)$"
+  "^TilesRealData\\."
   # a relief build with the SUMO output, then SUMO in this process (libsumo)
   "^(Cosim|SumoSession)\\."
   # a relief build, then randomTrips.py, duarouter, routeSampler.py and SUMO
@@ -29,8 +32,7 @@ set(relief_realdata_tests
   "^Build\\.(FailedRunLeavesNoOutputs|PotreroIdwDiffersFromBilinear)$"
   "^Info\\.DescribesPotreroWithoutWriting$"
   "^MeshPipeline\\.(PotreroTilesAddUpToTheScene|PotreroCarlaPackageHoldsTheFilesWritten)$"
-  "^MeshPipeline\\.PotreroCarlaLargeMapFillsTheTileGrid$"
-  "^TilesRealData\\.")
+  "^MeshPipeline\\.PotreroCarlaLargeMapFillsTheTileGrid$")
 
 foreach(module IN LISTS relief_test_modules)
   foreach(test IN LISTS relief_${module}_tests_TESTS)
