@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <numbers>
 #include <numeric>
@@ -195,26 +196,37 @@ class NearPoints {
 
 }  // namespace
 
-std::vector<LonLat> road_node_positions(const std::filesystem::path& osm_path,
-                                        const OsmReadOptions& options) {
-  std::vector<std::int64_t> ids;
+RoadWays read_road_ways(const std::filesystem::path& osm_path, const OsmReadOptions& options) {
+  RoadWays out;
+  std::vector<std::int64_t> refs;
   for_each<osmium::Way>(osm_path, osmium::osm_entity_bits::way, [&](const osmium::Way& way) {
     if (!is_built(way, options)) return;
-    for (const osmium::NodeRef& ref : way.nodes()) ids.push_back(ref.ref());
+    out.way_ids.push_back(way.id());
+    out.offsets.push_back(refs.size());
+    for (const osmium::NodeRef& ref : way.nodes()) refs.push_back(ref.ref());
   });
+  out.offsets.push_back(refs.size());
+  std::vector<std::int64_t> ids = refs;
   sort_unique(ids);
-  std::vector<LonLat> positions;
-  positions.reserve(ids.size());
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  std::vector<LonLat> at(ids.size(), LonLat{nan, nan});
   for_each<osmium::Node>(osm_path, osmium::osm_entity_bits::node, [&](const osmium::Node& node) {
-    if (node.location().valid() && contains(ids, node.id())) {
-      positions.push_back({node.location().lon(), node.location().lat()});
-    }
+    const auto it = std::lower_bound(ids.begin(), ids.end(), node.id());
+    if (it != ids.end() && *it == node.id() && node.location().valid())
+      at[static_cast<std::size_t>(it - ids.begin())] = {node.location().lon(), node.location().lat()};
   });
-  return positions;
+  out.points.reserve(refs.size());
+  for (const std::int64_t ref : refs)
+    out.points.push_back(
+        at[static_cast<std::size_t>(std::lower_bound(ids.begin(), ids.end(), ref) - ids.begin())]);
+  for (const LonLat& p : at)
+    if (std::isfinite(p.lon_deg)) out.nodes.push_back(p);
+  return out;
 }
 
 WindowCounts extract_window(const std::filesystem::path& osm_path, const LonLatBox& window, double halo_m,
-                            const OsmReadOptions& options, const std::filesystem::path& out) {
+                            const std::vector<std::int64_t>& crossing_ways, const OsmReadOptions& options,
+                            const std::filesystem::path& out) {
   // The region's structure chains (a pass over the ways).
   StructureChains chains(osm_path, options);
   // The nodes inside the window; the structure nodes' positions (a pass over the nodes).
@@ -247,14 +259,15 @@ WindowCounts extract_window(const std::filesystem::path& osm_path, const LonLatB
     for_each<osmium::Way>(osm_path, osmium::osm_entity_bits::way, [&](const osmium::Way& way) {
       if (!is_built(way, options)) return;
       const auto& refs = way.nodes();
-      if (std::none_of(refs.begin(), refs.end(),
-                       [&](const osmium::NodeRef& r) { return contains(zone, r.ref()); }))
+      const bool crossing = contains(crossing_ways, way.id());
+      if (!crossing && std::none_of(refs.begin(), refs.end(),
+                                    [&](const osmium::NodeRef& r) { return contains(zone, r.ref()); }))
         return;
       ways.add_item(way);
       ways.commit();
       ++counts.ways;
-      if (std::none_of(refs.begin(), refs.end(),
-                       [&](const osmium::NodeRef& r) { return contains(inside, r.ref()); }))
+      if (!crossing && std::none_of(refs.begin(), refs.end(),
+                                    [&](const osmium::NodeRef& r) { return contains(inside, r.ref()); }))
         ++counts.chain_ways;
       for (const osmium::NodeRef& ref : refs) {
         if (const auto c = chains.chain_at(ref.ref()); c && !taken[*c]) reached.push_back(*c);
@@ -275,9 +288,41 @@ WindowCounts extract_window(const std::filesystem::path& osm_path, const LonLatB
   zone = {};
   // The ways' nodes.
   std::vector<std::int64_t> needed;
-  for (const osmium::Way& way : ways.select<osmium::Way>())
+  std::vector<std::int64_t> way_ids;
+  for (const osmium::Way& way : ways.select<osmium::Way>()) {
+    way_ids.push_back(way.id());
     for (const osmium::NodeRef& ref : way.nodes()) needed.push_back(ref.ref());
+  }
   sort_unique(needed);
+  sort_unique(way_ids);
+  // The ways that share a node with a taken way, in two rings: a road ends where another way
+  // joins it, so a taken way is split into the same roads as in a whole build only with every
+  // way that joins it (the first ring: else a long road a window sees one end of is one road
+  // there and two elsewhere, and no tile owns the piece), and its junctions are the same kind and
+  // join into the same clusters only with what joins those ways too (the second ring: the stubs
+  // of a divided street's crossing, junction_clusters.h).
+  constexpr int kNeighbourRings = 2;
+  for (int ring = 0; ring < kNeighbourRings; ++ring) {
+    std::vector<std::int64_t> added, added_ways;
+    for_each<osmium::Way>(osm_path, osmium::osm_entity_bits::way, [&](const osmium::Way& way) {
+      if (contains(way_ids, way.id()) || !is_built(way, options)) return;
+      const auto& refs = way.nodes();
+      if (std::none_of(refs.begin(), refs.end(),
+                       [&](const osmium::NodeRef& r) { return contains(needed, r.ref()); }))
+        return;
+      ways.add_item(way);
+      ways.commit();
+      ++counts.ways;
+      ++counts.neighbour_ways;
+      added_ways.push_back(way.id());
+      for (const osmium::NodeRef& ref : refs) added.push_back(ref.ref());
+    });
+    if (added.empty()) break;
+    way_ids.insert(way_ids.end(), added_ways.begin(), added_ways.end());
+    sort_unique(way_ids);
+    needed.insert(needed.end(), added.begin(), added.end());
+    sort_unique(needed);
+  }
   // Those nodes with their tags (traffic signals), in the file's order.
   osmium::memory::Buffer nodes(1 << 20, osmium::memory::Buffer::auto_grow::yes);
   for_each<osmium::Node>(osm_path, osmium::osm_entity_bits::node, [&](const osmium::Node& node) {

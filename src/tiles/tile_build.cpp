@@ -65,8 +65,8 @@ TileBuildResult build_tile(const std::filesystem::path& dir, const TileManifest&
   std::filesystem::remove_all(here / "out");
 
   const std::filesystem::path window = here / "window.osm.pbf";
-  const detail::WindowCounts counts =
-      detail::extract_window(osm_input(manifest).path, spec->window, manifest.halo_m, options.osm, window);
+  const detail::WindowCounts counts = detail::extract_window(
+      osm_input(manifest).path, spec->window, manifest.halo_m, spec->crossing_ways, options.osm, window);
 
   options.osm_path = window;
   options.out_dir = here / "out";
@@ -88,6 +88,7 @@ TileBuildResult build_tile(const std::filesystem::path& dir, const TileManifest&
   record.window_ways = counts.ways;
   record.window_nodes = counts.nodes;
   record.window_chain_ways = counts.chain_ways;
+  record.window_neighbour_ways = counts.neighbour_ways;
   // A gate that fails at a place outside the core is the halo's: the window ends there, cutting
   // the network short, and the tile that owns the place checks it with its whole context.
   for (const Gate& g : failed_gates(built.report.gates)) {

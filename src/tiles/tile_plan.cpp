@@ -1,7 +1,10 @@
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <set>
+#include <span>
 #include <sstream>
 
 #include "relief/core/atomic_file.h"
@@ -11,11 +14,12 @@
 #include "relief/geometry/crs_transform.h"
 #include "relief/tiles/tiles.h"
 #include "tiles/osm_window.h"
+#include "tiles/segment_cells.h"
 
 namespace relief {
 namespace {
 
-constexpr int kManifestVersion = 1;
+constexpr int kManifestVersion = 2;
 constexpr const char* kManifestFile = "manifest.json";
 
 LonLatBox bounds_of(const std::vector<LonLat>& points) {
@@ -90,7 +94,8 @@ std::string TileManifest::to_json() const {
          {"y", t.y},
          {"core", box_json(t.core)},
          {"window_lon_lat", {t.window.min_lon, t.window.min_lat, t.window.max_lon, t.window.max_lat}},
-         {"road_nodes", t.road_nodes}});
+         {"road_nodes", t.road_nodes},
+         {"crossing_ways", t.crossing_ways}});
   }
   return j.dump(1) + "\n";
 }
@@ -126,6 +131,7 @@ TileManifest TileManifest::from_json(std::string_view text, std::string_view sou
       const auto& w = t.at("window_lon_lat");
       s.window = {w[0].get<double>(), w[1].get<double>(), w[2].get<double>(), w[3].get<double>()};
       s.road_nodes = t.at("road_nodes").get<std::size_t>();
+      s.crossing_ways = t.at("crossing_ways").get<std::vector<std::int64_t>>();
       m.tiles.push_back(s);
     }
     return m;
@@ -170,8 +176,11 @@ std::string tile_key(const TileManifest& manifest, const TileSpec& tile) {
   j["frame"] = {manifest.frame.crs(), manifest.frame.origin().x(), manifest.frame.origin().y()};
   j["grid"] = {manifest.tile_size_m, manifest.halo_m, manifest.grid_origin.x(), manifest.grid_origin.y()};
   j["tile"] = {tile.x, tile.y};
+  j["crossing_ways"] = tile.crossing_ways;
   // What a window holds (osm_window.h): a tile built under another rule is built again.
-  j["window"] = "ways in the window; their structure chains, with the ways within the halo of them";
+  j["window"] =
+      "ways in the window; their structure chains, with the ways within the halo of them; "
+      "two rings of the ways that join them; the ways crossing the window";
   j["inputs"] = nlohmann::json::array();
   for (const TileInput& in : manifest.inputs) j["inputs"].push_back(in.sha256);
   j["build_args"] = manifest.build_args;
@@ -189,31 +198,60 @@ TileManifest plan_tiles(const TilePlanOptions& options) {
   if (!std::filesystem::is_regular_file(options.osm_path, ec)) {
     throw IoError("cannot open OSM file " + options.osm_path.string() + ": no such file");
   }
-  std::vector<LonLat> nodes = detail::road_node_positions(options.osm_path, options.osm);
-  if (nodes.empty())
+  detail::RoadWays roads = detail::read_road_ways(options.osm_path, options.osm);
+  if (roads.nodes.empty())
     throw InvalidInput("OSM file " + options.osm_path.string() + " contains no roads relief builds");
 
   TileManifest m;
   m.name = options.name.empty() ? default_name(options.osm_path) : options.name;
-  m.frame_centre = bounds_of(nodes).centre();
+  m.frame_centre = bounds_of(roads.nodes).centre();
   m.frame = options.crs ? GeoFrame::in_crs(*options.crs, m.frame_centre) : GeoFrame::utm_at(m.frame_centre);
   m.tile_size_m = options.tile_size_m;
   m.halo_m = options.halo_m;
   m.build_args = options.build_args;
 
   // Project in one batch, count per grid cell (multiples of the tile size in the local frame).
-  std::vector<Vec2> local(nodes.size());
-  for (std::size_t i = 0; i < nodes.size(); ++i) local[i] = Vec2(nodes[i].lon_deg, nodes[i].lat_deg);
-  nodes = {};
   const CrsTransform to_frame("EPSG:4326", m.frame.crs());
-  to_frame.apply(std::span<Vec2>(local));
+  const auto project = [&](std::vector<LonLat>& points) {
+    std::vector<Vec2> local(points.size());
+    for (std::size_t i = 0; i < points.size(); ++i) local[i] = Vec2(points[i].lon_deg, points[i].lat_deg);
+    points = {};
+    to_frame.apply(std::span<Vec2>(local));
+    for (Vec2& p : local) p = m.frame.to_local(p);
+    return local;
+  };
+  const double size = m.tile_size_m;
+  const auto cell_of = [&](double v) { return static_cast<long long>(std::floor(v / size)); };
   std::map<std::pair<long long, long long>, std::size_t> cells;  // (row, column) -> nodes
-  for (Vec2& p : local) {
-    p = m.frame.to_local(p);
-    if (!p.allFinite()) continue;
-    ++cells[{static_cast<long long>(std::floor(p.y() / m.tile_size_m)),
-             static_cast<long long>(std::floor(p.x() / m.tile_size_m))}];
+  for (const Vec2& p : project(roads.nodes)) {
+    if (p.allFinite()) ++cells[{cell_of(p.y()), cell_of(p.x())}];
   }
+  // A tile owns a road by its reference line's midpoint, which may lie where the road has no
+  // node (a long segment across a cell): every cell a segment passes within 1 m of is a tile.
+  // A segment that crosses a window without a node in it (longer than the halo) is listed for
+  // that tile, whose window takes its way.
+  const std::vector<Vec2> points = project(roads.points);
+  std::map<std::pair<long long, long long>, std::vector<std::int64_t>> crossing;  // (row, column) -> ways
+  const double halo = m.halo_m;
+  for (std::size_t w = 0; w < roads.way_ids.size(); ++w) {
+    std::set<std::pair<long long, long long>> crossed, with_node;
+    for (std::size_t k = roads.offsets[w]; k < roads.offsets[w + 1]; ++k) {
+      const Vec2& p = points[k];
+      if (!p.allFinite()) continue;
+      for (long long r = cell_of(p.y() - halo); r <= cell_of(p.y() + halo); ++r)
+        for (long long c = cell_of(p.x() - halo); c <= cell_of(p.x() + halo); ++c) with_node.insert({r, c});
+      if (k + 1 == roads.offsets[w + 1] || !points[k + 1].allFinite()) continue;
+      detail::cells_near_segment(p, points[k + 1], size, 1.0, [&](long long c, long long r) {
+        cells.try_emplace({r, c}, 0);
+      });
+      detail::cells_near_segment(p, points[k + 1], size, halo, [&](long long c, long long r) {
+        crossed.insert({r, c});
+      });
+    }
+    for (const auto& cell : crossed)
+      if (!with_node.contains(cell)) crossing[cell].push_back(roads.way_ids[w]);
+  }
+  roads = {};
   long long min_row = cells.begin()->first.first, min_col = cells.begin()->first.second;
   for (const auto& [cell, count] : cells) min_col = std::min(min_col, cell.second);
   m.grid_origin = m.tile_size_m * Vec2(static_cast<double>(min_col), static_cast<double>(min_row));
@@ -229,6 +267,10 @@ TileManifest plan_tiles(const TilePlanOptions& options) {
     window.max += Vec2::Constant(m.halo_m);
     t.window = lon_lat_box(to_wgs84, m.frame, window, 0.01 * m.halo_m + 1.0);
     t.road_nodes = count;
+    if (const auto it = crossing.find(cell); it != crossing.end()) {
+      t.crossing_ways = it->second;
+      std::sort(t.crossing_ways.begin(), t.crossing_ways.end());
+    }
     m.tiles.push_back(t);
   }
   m.inputs.push_back({options.osm_path.string(), sha256_of_file(options.osm_path), "osm"});

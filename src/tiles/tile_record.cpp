@@ -23,6 +23,7 @@ std::optional<TileRecord> read_tile_record(const std::filesystem::path& tile_dir
     r.window_ways = j.at("window").at("ways").get<std::size_t>();
     r.window_nodes = j.at("window").at("nodes").get<std::size_t>();
     r.window_chain_ways = j.at("window").value("chain_ways", std::size_t{0});
+    r.window_neighbour_ways = j.at("window").value("neighbour_ways", std::size_t{0});
     r.failed_gates = j.at("failed_gates").get<std::vector<std::string>>();
     r.halo_gates = j.at("halo_gates").get<std::vector<std::string>>();
     return r;
@@ -40,8 +41,10 @@ void write_tile_record(const std::filesystem::path& tile_dir, const TileRecord& 
   j["status"] = record.status;
   j["seconds"] = record.seconds;
   j["peak_rss_mb"] = record.peak_rss_mb;
-  j["window"] = {
-      {"ways", record.window_ways}, {"nodes", record.window_nodes}, {"chain_ways", record.window_chain_ways}};
+  j["window"] = {{"ways", record.window_ways},
+                 {"nodes", record.window_nodes},
+                 {"chain_ways", record.window_chain_ways},
+                 {"neighbour_ways", record.window_neighbour_ways}};
   j["failed_gates"] = record.failed_gates;
   j["halo_gates"] = record.halo_gates;
   j["gates"] = nlohmann::json::object();

@@ -23,6 +23,7 @@ struct TileRecord {
   double peak_rss_mb = 0.0;
   std::size_t window_ways = 0, window_nodes = 0;
   std::size_t window_chain_ways = 0;      ///< of window_ways: taken for structure chains beyond the window
+  std::size_t window_neighbour_ways = 0;  ///< of window_ways: taken because they join a taken way
   std::vector<std::string> failed_gates;  ///< failed in the core (or at no known place)
   /// Failed at a place in the halo only: reported, not the tile's (its owner checks the place).
   std::vector<std::string> halo_gates;

@@ -681,13 +681,59 @@ TEST(Tiles, AStructureChainLongerThanTheHaloMergesLikeTheWholeBuild) {
   EXPECT_GT(chain_ways, 0u);
 }
 
+// A road is split where another way joins it. A 1 km primary road with a node every 50 m and a
+// street joining it in its middle (x = 0, from 150 m north), in 200 m tiles with a 50 m halo:
+// every window that holds the road's western half but not the junction (x < -50) sees the road
+// unsplit, and the tile whose core holds the western road's midpoint (x = -250) is one of them.
+// Without the ways that join a taken way that tile built a 1 km road whose midpoint is not its
+// own, no tile owned the western road, and the merge failed on a link no tile answers.
+TEST(Tiles, ARoadSplitBeyondTheWindowIsOwnedByTheTileOfItsMidpoint) {
+  const GeoFrame frame = test::synthetic_frame();
+  const Vec2 west = CrsTransform(frame.crs(), "EPSG:4326").apply(frame.origin() + Vec2(-500.0, 100.0));
+  test::OsmSketch sketch(R"(
+      V                                       W
+
+
+
+                          a
+
+
+      A-B-C-D-E-F-G-H-I-J-K-L-M-N-O-P-Q-R-S-T-U
+  )",
+                         25.0, {west.x(), west.y()});
+  sketch.way("ABCDEFGHIJKLMNOPQRSTU", {{"highway", "primary"}, {"lanes", "2"}});
+  sketch.way("aK", {{"highway", "residential"}});
+  // And a road 1 km long with no node between its ends, 350 m north: the tile of its midpoint
+  // has no road node in it (the plan makes a tile wherever a road passes) and no node of it in
+  // its window (the plan lists the way as crossing that window).
+  sketch.way("VW", {{"highway", "tertiary"}});
+  const std::filesystem::path input = test::scratch_dir("split_input");
+  const std::filesystem::path osm = sketch.write(input / "split.osm");
+  // A gentle plane, 2 % east and 1 % north.
+  const std::string dem = test::write_local_dem(
+      "split_plane", 800.0, 10.0, [](double x, double y) { return 100.0 + 0.02 * x + 0.01 * y; });
+  const std::filesystem::path dir = test::scratch_dir("split_tiles");
+  const Region r = tile_and_merge(osm, dem, 200.0, dir, 50.0);
+  expect_like_the_whole_build(r);
+  std::size_t neighbour_ways = 0, crossing_tiles = 0, tiles_without_nodes = 0;
+  for (const TileSpec& t : r.manifest.tiles) {
+    std::ifstream in(tile_dir(dir, t.x, t.y) / "tile.json");
+    neighbour_ways += nlohmann::json::parse(in).at("window").at("neighbour_ways").get<std::size_t>();
+    crossing_tiles += t.crossing_ways.empty() ? 0 : 1;
+    tiles_without_nodes += t.road_nodes == 0 ? 1 : 0;
+  }
+  EXPECT_GT(neighbour_ways, 0u);
+  EXPECT_GT(crossing_tiles, 0u);
+  EXPECT_GT(tiles_without_nodes, 0u);
+}
+
 TEST(TilesRealData, NortheastIn500mTilesMergesLikeTheWholeBuild) {
   RELIEF_REQUIRE_SHARED_DATA();
   const Region r = tile_and_merge(test::shared_data("sf-ne/sf_ne_drive_2017.osm.gz"),
                                   test::shared_data("sf-ne/sf_ne_usgs24k_30m_nad27utm10_m.tif").string(),
                                   500.0, test::scratch_dir("northeast"));
   expect_like_the_whole_build(r);
-  EXPECT_EQ(r.manifest.tiles.size(), 52u);
+  EXPECT_EQ(r.manifest.tiles.size(), 53u);  // one of them without a road node: a segment crosses it
 }
 
 // A mountain country in 2 km tiles: 37 tiles, 15 616 roads. Five roads (of Vordersilumstrasse's

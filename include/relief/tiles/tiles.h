@@ -36,6 +36,9 @@ struct TileSpec {
   Aabb2 core;                  ///< local frame, [min, max) (what the tile owns)
   LonLatBox window;            ///< core plus halo, in WGS84 (what the tile reads)
   std::size_t road_nodes = 0;  ///< OSM road nodes in the core (the plan's count)
+  /// Road ways that cross the window without a node in it (sorted OSM ids): a segment longer
+  /// than the halo. The window takes them too.
+  std::vector<std::int64_t> crossing_ways;
 };
 
 struct TileManifest {
