@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "geometry/soft_qp_fixed.h"
 #include "relief/core/errors.h"
 
 namespace relief {
@@ -163,6 +164,11 @@ class NormalMatrix {
 void validate(const SoftQp& problem) {
   const Eigen::Index n = problem.P.rows();
   const Eigen::Index m = problem.A.rows();
+  if (!problem.fixed.empty() && problem.fixed.size() != static_cast<std::size_t>(n))
+    throw InvalidInput("soft QP: inconsistent sizes");
+  for (const double v : problem.fixed) {
+    if (std::isinf(v)) throw InvalidInput("soft QP: a variable is held at an infinite value");
+  }
   if (problem.P.cols() != n || problem.q.size() != n || problem.A.cols() != n || problem.lower.size() != m ||
       problem.upper.size() != m || problem.price.size() != m ||
       (!problem.always.empty() && problem.always.size() != static_cast<std::size_t>(m)) ||
@@ -910,6 +916,8 @@ SoftQpResult multiplier_method(const SoftQp& problem, NormalMatrix& normal, cons
 
 SoftQpResult solve_soft_qp(const SoftQp& problem, const SoftQpOptions& options) {
   validate(problem);
+  if (std::any_of(problem.fixed.begin(), problem.fixed.end(), [](double v) { return !std::isnan(v); }))
+    return detail::solve_with_fixed_variables(problem, options);
   const Permutation order = options.ordering ? *options.ordering : amd_order(problem.P, problem.A);
   if (order.size() != problem.P.rows()) throw InvalidInput("soft QP: the ordering has the wrong size");
   NormalMatrix normal(problem.P, problem.A, order);

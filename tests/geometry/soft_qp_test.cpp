@@ -186,13 +186,65 @@ TEST(SoftQp, RandomChainsMeetTheKktConditions) {
     short_ipm.max_iterations = 3;
     const SoftQpResult m = solve_soft_qp(qp, short_ipm);
     ASSERT_TRUE(m.converged) << m.status;
-    EXPECT_EQ(m.method.rfind("method of multipliers after the interior point iteration limit", 0), 0u) << m.method;
+    EXPECT_EQ(m.method.rfind("method of multipliers after the interior point iteration limit", 0), 0u)
+        << m.method;
     expect_kkt(qp, m, 1e-6);
     // The one optimum (P is positive definite) within 1 mm (measured: at most 0.26 mm, each
     // method stopping at its own tolerance).
     EXPECT_NEAR((m.x - r.x).lpNorm<Eigen::Infinity>(), 0.0, 1e-3);
   }
   std::cout << "random chains: " << rounds_over_one << " of 40 needed more than one screening round\n";
+}
+
+// A held variable is a constant: x0 wants 10 but a dear row keeps it within 1 of x1, held at 5;
+// a row over held variables alone is not solved but its violation is reported.
+TEST(SoftQp, HeldVariablesAreConstantsTheRowsAroundThemRespect) {
+  SoftQp qp = separable({10.0, 0.0, -3.0}, {{0, 0, 1.0}, {0, 1, -1.0}, {1, 1, 1.0}}, {-kInf, -kInf},
+                        {1.0, 2.0}, {1e6, 1.0});
+  qp.fixed = {std::nan(""), 5.0, std::nan("")};
+  const SoftQpResult r = solve_soft_qp(qp);
+  ASSERT_TRUE(r.converged) << r.status;
+  EXPECT_EQ(r.x[1], 5.0);  // exactly
+  EXPECT_NEAR(r.x[0], 6.0, 1e-7);
+  EXPECT_NEAR(r.x[2], -3.0, 1e-9);
+  EXPECT_NEAR(r.violation[0], 0.0, 1e-7);
+  EXPECT_NEAR(r.multiplier[0], -8.0, 1e-5);  // the force 2 (x0 - 10) the row bears, at its upper bound
+  EXPECT_NEAR(r.violation[1], 3.0, 1e-12);
+  EXPECT_EQ(r.multiplier[1], 0.0);
+  EXPECT_NEAR(r.row_values[1], 5.0, 1e-12);
+  // Every variable held: nothing to solve.
+  qp.fixed = {1.0, 2.0, 3.0};
+  const SoftQpResult all = solve_soft_qp(qp);
+  EXPECT_TRUE(all.converged);
+  EXPECT_EQ(all.x, Vec((Vec(3) << 1.0, 2.0, 3.0).finished()));
+  qp.fixed = {1.0, std::numeric_limits<double>::infinity(), 3.0};
+  EXPECT_THROW((void)solve_soft_qp(qp), InvalidInput);
+  qp.fixed = {1.0};
+  EXPECT_THROW((void)solve_soft_qp(qp), InvalidInput);
+}
+
+// Holding variables at the optimum's own values leaves the optimum where it was: on random
+// road-like chains with every seventh station held, in the caller's ordering (reversed).
+TEST(SoftQp, HoldingVariablesAtTheOptimumKeepsIt) {
+  for (int seed = 1; seed <= 10; ++seed) {
+    std::mt19937 rng(static_cast<unsigned>(seed));
+    SoftQp qp = random_chain(rng, 80 + seed * 5);
+    const SoftQpResult free = solve_soft_qp(qp);
+    ASSERT_TRUE(free.converged);
+    const auto n = static_cast<int>(qp.P.rows());
+    qp.fixed.assign(static_cast<std::size_t>(n), std::nan(""));
+    for (int v = 0; v < n; v += 7) qp.fixed[static_cast<std::size_t>(v)] = free.x[v];
+    SoftQpOptions options;
+    Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> reversed(n);
+    for (int v = 0; v < n; ++v) reversed.indices()[v] = n - 1 - v;
+    options.ordering = reversed;
+    const SoftQpResult held = solve_soft_qp(qp, options);
+    SCOPED_TRACE("seed " + std::to_string(seed));
+    ASSERT_TRUE(held.converged) << held.status;
+    EXPECT_LE((held.x - free.x).lpNorm<Eigen::Infinity>(), 1e-4);
+    EXPECT_NEAR(held.objective, free.objective, 1e-6 * (1.0 + std::abs(free.objective)));
+    for (int v = 0; v < n; v += 7) EXPECT_EQ(held.x[v], free.x[v]);
+  }
 }
 
 TEST(SoftQp, AMethodOfMultipliersOutOfIterationsSaysSoAndKeepsItsLastRound) {

@@ -57,6 +57,11 @@ struct SoftQp {
   /// group violated, the whole group joins the next round (rows of one road bind together: a
   /// kink pushed out of one row moves to the next).
   std::vector<int> group;
+  /// Optional, n entries: the value a variable is held at (NaN: free). The solver eliminates the
+  /// held variables (their terms move into q and into the rows' bounds; a row left without a free
+  /// variable is dropped from the solve, its value and violation still reported) and solves for
+  /// the others: a hard equality that no price can move.
+  std::vector<double> fixed;
 };
 
 struct SoftQpOptions {
