@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <functional>
 #include <limits>
 #include <map>
@@ -36,6 +37,7 @@ constexpr double kPinnedStiffness = 30.0;  // data weight factor there (a prefer
 constexpr int kJunctionPlaneDirections = 8;
 constexpr double kJunctionRoomMargin_m = 2.0;  // a junction's room: its widest half-width plus this
 constexpr double kPlaneLevelWeight = 0.01;     // per (grade)^2, see fit_profiles
+constexpr double kSpanWeight = 1e-3;           // per metre of structure, towards its span (fit_profiles)
 
 // Prices of the soft limits per metre of violation, one level per priority (FitLimit order):
 // each level is 10x the next, and the lowest is far above any force the data term can exert
@@ -100,6 +102,37 @@ class VariableMap {
   std::vector<std::size_t> gradient_index_;
   std::size_t count_ = 0;
 };
+
+// SoftQp::fixed from the holds: every held sample's variable (a road end's is its junction's: the
+// first road that holds it sets it) and every held plane. Returns how many variables are held.
+std::size_t hold_variables(const RoadNetwork& network, const std::vector<RoadProfile>& raw,
+                           const VariableMap& vars, const FitHolds& holds, SoftQp& qp) {
+  if (holds.empty()) return 0;
+  if ((!holds.road_z.empty() && holds.road_z.size() != raw.size()) ||
+      (!holds.junction_gradient.empty() && holds.junction_gradient.size() != network.junctions.size()))
+    throw InvalidInput("fit_profiles: holds need one entry per road and per junction");
+  qp.fixed.assign(vars.count(), std::numeric_limits<double>::quiet_NaN());
+  std::size_t held = 0;
+  const auto hold = [&](std::size_t v, double z) {
+    if (!std::isfinite(z) || !std::isnan(qp.fixed[v])) return;
+    qp.fixed[v] = z;
+    ++held;
+  };
+  for (std::size_t r = 0; r < holds.road_z.size(); ++r) {
+    const std::vector<double>& z = holds.road_z[r];
+    if (z.empty()) continue;
+    if (z.size() != raw[r].size())
+      throw InvalidInput("fit_profiles: a held road has another number of samples");
+    for (std::size_t i = 0; i < z.size(); ++i) hold(vars.of(r, i, z.size()), z[i]);
+  }
+  for (std::size_t j = 0; j < holds.junction_gradient.size(); ++j) {
+    const std::optional<Vec2>& g = holds.junction_gradient[j];
+    if (!g || network.junctions[j].ends.size() < 2) continue;
+    hold(vars.gradient(static_cast<int>(j)), g->x());
+    hold(vars.gradient(static_cast<int>(j)) + 1, g->y());
+  }
+  return held;
+}
 
 // Second divided difference z'' at the middle of three stations spaced h1, h2.
 std::array<double, 3> curvature_row(double h1, double h2) {
@@ -597,6 +630,25 @@ ProfileFitResult fit_profiles(const RoadNetwork& network, const std::vector<Road
         weight[v] > kFreeWeight ? (target_weight[v] + kFreeWeight * initial[v]) / weight[v] : initial[v];
   }
   span_targets(raw, vars, weight, kFreeWeight, target);
+  // The span pulls every station off the ground towards it, kSpanWeight per metre of road: with
+  // the smoothing alone a long deck or tunnel has shapes that cost next to nothing (the lowest
+  // bending mode of 1.6 km under a 200 m cutoff), which the solver's relative tolerances leave
+  // anywhere: a 4 m hump inside a generated 1.6 km tunnel, and two overlapping problems (region
+  // tiles) 0.2-0.8 m apart there. The pull fixes those shapes at a price no limit or smoothing
+  // notices (a metre off the span over a kilometre costs as much as 1 m of ground misfit over 1 m).
+  std::vector<double> span_weight(n, 0.0);
+  for (std::size_t r = 0; r < raw.size(); ++r) {
+    const RoadProfile& p = raw[r];
+    if (!p.has_height) continue;
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      const std::size_t v = vars.of(r, i, p.size());
+      if (weight[static_cast<Eigen::Index>(v)] > kFreeWeight) continue;
+      const double left = i > 0 ? p.s[i] - p.s[i - 1] : 0.0;
+      const double right = i + 1 < p.size() ? p.s[i + 1] - p.s[i] : 0.0;
+      span_weight[v] += kSpanWeight * 0.5 * (left + right);
+    }
+  }
+  for (std::size_t v = 0; v < n; ++v) weight[static_cast<Eigen::Index>(v)] += span_weight[v];
 
   // Smoothness: lambda * sum (z'')^2 ds, with lambda from the cutoff wavelength; and the rows of
   // the vertical curve bounds on the same triples, scaled to metres (times the mean spacing^2).
@@ -814,6 +866,7 @@ ProfileFitResult fit_profiles(const RoadNetwork& network, const std::vector<Road
   result.variables = n;
   result.constraints = rows.size();
   rows.move_into(qp, n);
+  result.held_variables = hold_variables(network, raw, vars, options.holds, qp);
   SoftQpOptions solver;
   solver.max_iterations = options.max_iterations;
   solver.gap_tolerance = 1e-12;

@@ -40,6 +40,17 @@ enum class GradePolicy {
 [[nodiscard]] std::optional<GradePolicy> parse_grade_policy(std::string_view text);
 [[nodiscard]] std::string_view to_string(GradePolicy policy);
 
+/// Heights and junction planes the fit holds at given values instead of solving for them (region
+/// tiles: what a neighbouring tile fitted, so that both build the same surface where they meet).
+/// Hard: no limit can move them (SoftQp::fixed); a limit they leave violated is reported.
+struct FitHolds {
+  /// Per network road, per sample: the height held (NaN: free). Empty, or an empty road: free.
+  std::vector<std::vector<double>> road_z;
+  /// Per network junction: the gradient of its plane held. Empty, or nullopt: free.
+  std::vector<std::optional<Vec2>> junction_gradient;
+  [[nodiscard]] bool empty() const { return road_z.empty() && junction_gradient.empty(); }
+};
+
 struct ProfileFitOptions {
   GradePolicy policy = GradePolicy::fidelity;
   GradeLimits limits = GradeLimits::paper();  ///< the class table (design policy)
@@ -71,6 +82,7 @@ struct ProfileFitOptions {
   int max_iterations = 200;  ///< interior-point iterations per screening round (soft_qp.h)
   /// Called with one line per solver iteration when set (for diagnosis).
   std::function<void(const std::string&)> trace;
+  FitHolds holds;
 };
 
 /// The limits of the fit, in their order of priority.
@@ -105,6 +117,7 @@ struct ProfileFitResult {
   double max_violation_m = 0.0;          ///< largest limit violation left, as height (m)
   std::vector<FitViolation> violations;  ///< worst place per road and limit, by priority then size
   std::size_t variables = 0;
+  std::size_t held_variables = 0;  ///< of `variables`: held at FitHolds' values
   std::size_t constraints = 0;
 };
 
