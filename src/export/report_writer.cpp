@@ -185,6 +185,7 @@ std::string report_json(const RunReport& r) {
                        {"converged", r.fit->converged},
                        {"solver", r.fit->solver},
                        {"variables", r.fit->variables},
+                       {"held_variables", r.fit->held_variables},
                        {"constraints", r.fit->constraints},
                        {"max_violation_m", r.fit->max_violation_m},
                        {"clearance_m", r.fit->clearance_m},

@@ -239,9 +239,11 @@ BuildResult build(const BuildOptions& options, Diagnostics& diagnostics, const P
   std::optional<ProfileFitResult> fit;
   if (wanted(ProfileMethod::relief)) {
     fit = timer.run("fit profiles", [&] {
+      ProfileFitOptions fit_options = options.fit;
+      if (options.hold_profiles) fit_options.holds = options.hold_profiles(network, raw);
       // Where the road model will cut the roads for their junctions (plan only), so that the
       // fit bounds the grades across each junction there.
-      return fit_profiles(network, raw, options.fit, diagnostics,
+      return fit_profiles(network, raw, fit_options, diagnostics,
                           junction_end_trims(network, raw, options.road_model));
     });
     fit_seconds = timer.timings().back().second;
@@ -251,6 +253,7 @@ BuildResult build(const BuildOptions& options, Diagnostics& diagnostics, const P
     summary.converged = fit->converged;
     summary.solver = fit->solver_status;
     summary.variables = fit->variables;
+    summary.held_variables = fit->held_variables;
     summary.constraints = fit->constraints;
     summary.max_violation_m = fit->max_violation_m;
     summary.clearance_m = options.fit.clearance_m;
@@ -329,6 +332,7 @@ BuildResult build(const BuildOptions& options, Diagnostics& diagnostics, const P
       return build_road_model(network, profiles, model_options, diagnostics, planes);
     });
     built->model.name = report.name;
+    if (options.fitted && fit) options.fitted(network, *fit, built->model);
     // The junctions traffic lights control (OSM's signals, and those the options name): the
     // .xodr records them, SUMO gives them a light.
     const std::set<int> signalled =

@@ -14,6 +14,7 @@
 #include "relief/export/quality_gates.h"
 #include "relief/tiles/tiles.h"
 #include "tiles/osm_window.h"
+#include "tiles/tile_holds.h"
 #include "tiles/tile_record.h"
 
 namespace relief {
@@ -46,7 +47,10 @@ TileBuildResult build_tile(const std::filesystem::path& dir, const TileManifest&
                       " is not in the plan (only tiles with roads in their core are)");
   }
   const std::filesystem::path here = tile_dir(dir, x, y);
-  const std::string key = tile_key(manifest, *spec);
+  // The dependencies' holds, in the order of their phases (an earlier tile's value stands where
+  // two give one); their keys are in this tile's, so it is built again when one is.
+  const detail::DependencyState deps = detail::dependency_state(dir, manifest, *spec);
+  const std::string& key = deps.key;
   TileBuildResult result;
   if (!force) {
     if (const std::optional<detail::TileRecord> record = detail::read_tile_record(here)) {
@@ -63,10 +67,12 @@ TileBuildResult build_tile(const std::filesystem::path& dir, const TileManifest&
   std::filesystem::remove(here / detail::kTileRecordFile);  // a tile that fails keeps none
   // The outputs of an earlier build, and the temporaries of one that was killed, go.
   std::filesystem::remove_all(here / "out");
+  std::filesystem::remove(here / detail::kHoldsFile);
 
   const std::filesystem::path window = here / "window.osm.pbf";
-  const detail::WindowCounts counts = detail::extract_window(
-      osm_input(manifest).path, spec->window, manifest.halo_m, spec->crossing_ways, options.osm, window);
+  const detail::WindowCounts counts =
+      detail::extract_window(osm_input(manifest).path, spec->core_lon_lat, spec->window, manifest.halo_m,
+                             spec->crossing_ways, options.osm, window);
 
   options.osm_path = window;
   options.out_dir = here / "out";
@@ -79,7 +85,18 @@ TileBuildResult build_tile(const std::filesystem::path& dir, const TileManifest&
   options.mesh_core_row = std::llround(spec->core.min.y() / manifest.tile_size_m);
   options.mesh_tile_size_m = 0.0;
   options.carla_package = false;
+  detail::TileHolds holds;
+  for (const TileSpec* d : deps.built)
+    detail::add_holds(holds, detail::read_holds(tile_dir(dir, d->x, d->y) / detail::kHoldsFile));
+  std::size_t mismatched = 0;
+  options.hold_profiles = [&](const RoadNetwork& network, const std::vector<RoadProfile>& raw) {
+    return detail::index_holds(network, raw, holds, mismatched);
+  };
+  options.fitted = [&](const RoadNetwork& network, const ProfileFitResult& fit, const RoadModel& model) {
+    detail::write_holds(here / detail::kHoldsFile, detail::tile_holds(network, fit, model, spec->core));
+  };
   const BuildResult built = build(options, diagnostics);
+  if (!std::filesystem::exists(here / detail::kHoldsFile)) detail::write_holds(here / detail::kHoldsFile, {});
 
   detail::TileRecord record;
   record.key = key;
@@ -89,6 +106,10 @@ TileBuildResult build_tile(const std::filesystem::path& dir, const TileManifest&
   record.window_nodes = counts.nodes;
   record.window_chain_ways = counts.chain_ways;
   record.window_neighbour_ways = counts.neighbour_ways;
+  record.holds_from = deps.built_names;
+  record.holds_missing = deps.missing_names;
+  record.held_variables = built.report.fit ? built.report.fit->held_variables : 0;
+  record.holds_mismatched = mismatched;
   // A gate that fails at a place outside the core is the halo's: the window ends there, cutting
   // the network short, and the tile that owns the place checks it with its whole context.
   for (const Gate& g : failed_gates(built.report.gates)) {

@@ -69,7 +69,7 @@ TileMergeResult merge_tiles(const std::filesystem::path& dir, const TileMergeOpt
   for (const TileSpec& spec : manifest.tiles) {
     const std::filesystem::path here = tile_dir(dir, spec.x, spec.y);
     const std::optional<detail::TileRecord> record = detail::read_tile_record(here);
-    if (!record || record->key != tile_key(manifest, spec)) {
+    if (!record || record->key != detail::dependency_state(dir, manifest, spec).key) {
       throw InvalidInput("tile " + std::to_string(spec.x) + "," + std::to_string(spec.y) + " is " +
                          (record ? "out of date" : "not built") + ": run relief tiles build " + dir.string() +
                          " --tile " + std::to_string(spec.x) + "," + std::to_string(spec.y) + " (or --all)");

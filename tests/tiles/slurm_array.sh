@@ -10,16 +10,24 @@
 # which exits 0 (built, or already up to date: "skipped"), 4 (built, but a quality gate failed:
 # still a finished tile) or anything else (failed: no DIR/tiles/X_Y/tile.json is left).
 #
+# The tiles are built in four phases (the manifest's "phase"): a tile holds the heights its
+# neighbours of earlier phases fitted where their roads meet its own, so each phase's array waits
+# for the one before (afterany: a failed tile is recorded by the tiles after it, not fatal).
 # Submit:
 #     relief tiles plan --osm REGION.osm.pbf --dem DEM.tif --tile-size 2000 --out /shared/region
-#     N=$(/usr/bin/python3 -c 'import json,sys; print(len(json.load(open(sys.argv[1]))["tiles"]))' \
-#           /shared/region/manifest.json)
-#     jobid=$(sbatch --parsable --array=0-$((N - 1))%200 --export=ALL,DIR=/shared/region \
-#               tests/tiles/slurm_array.sh)
+#     dep=""
+#     for phase in 0 1 2 3; do
+#       N=$(/usr/bin/python3 -c 'import json,sys; print(sum(t["phase"] == int(sys.argv[2])
+#             for t in json.load(open(sys.argv[1]))["tiles"]))' /shared/region/manifest.json $phase)
+#       [[ $N -gt 0 ]] || continue
+#       dep=$(sbatch --parsable ${dep:+--dependency=afterany:$dep} --array=0-$((N - 1))%200 \
+#               --export=ALL,DIR=/shared/region,PHASE=$phase tests/tiles/slurm_array.sh)
+#     done
 # then merge once every array task has ended (whatever their exit; the merge names missing tiles):
-#     sbatch --dependency=afterany:$jobid --wrap 'relief tiles merge /shared/region'
-# Failed tiles: submit the array again (tiles already built are skipped in a fraction of a
-# second), or only the failed indices: sbatch --array=3,17 ...; or build them on one machine with
+#     sbatch --dependency=afterany:$dep --wrap 'relief tiles merge /shared/region'
+# Failed tiles: submit their phase's array again (tiles already built are skipped in a fraction
+# of a second; a tile whose neighbour was built since is built again), or build them on one
+# machine with
 #     relief tiles build /shared/region --all --jobs 8
 #
 #SBATCH --job-name=relief-tiles
@@ -32,17 +40,18 @@ set -euo pipefail
 
 : "${DIR:?set DIR to the tiles folder (relief tiles plan --out DIR), e.g. sbatch --export=ALL,DIR=...}"
 : "${SLURM_ARRAY_TASK_ID:?run this as a Slurm array job: sbatch --array=0-N ...}"
+: "${PHASE:?set PHASE to the phase this array builds (0 to 3), e.g. sbatch --export=ALL,DIR=...,PHASE=0}"
 RELIEF=${RELIEF:-relief}
 
-# Array index -> tile X,Y: the manifest's tiles in their order.
+# Array index -> tile X,Y: the manifest's tiles of this phase in their order.
 TILE=$(/usr/bin/python3 -c '
 import json, sys
-tiles = json.load(open(sys.argv[1] + "/manifest.json"))["tiles"]
+tiles = [t for t in json.load(open(sys.argv[1] + "/manifest.json"))["tiles"] if t["phase"] == int(sys.argv[3])]
 i = int(sys.argv[2])
 if not 0 <= i < len(tiles):
-    sys.exit("array index %d: the plan has %d tiles (0..%d)" % (i, len(tiles), len(tiles) - 1))
+    sys.exit("array index %d: phase %s has %d tiles (0..%d)" % (i, sys.argv[3], len(tiles), len(tiles) - 1))
 print("%d,%d" % (tiles[i]["x"], tiles[i]["y"]))
-' "$DIR" "$SLURM_ARRAY_TASK_ID")
+' "$DIR" "$SLURM_ARRAY_TASK_ID" "$PHASE")
 
 echo "relief-tiles: array task $SLURM_ARRAY_TASK_ID -> tile $TILE on $(hostname)"
 rc=0

@@ -122,19 +122,22 @@ int run_one(const std::filesystem::path& dir, const TileManifest& manifest, int 
   return r.failed_gates.empty() ? kOk : kGateFailed;
 }
 
-// Every tile, `jobs` at a time, each in its own process (its memory is its window's); a tile that
-// fails is tried again `retries` times, the others go on.
+// Every tile, phase after phase (tile_phase: a tile holds what its neighbours of earlier phases
+// fitted), `jobs` at a time within a phase, each in its own process (its memory is its
+// window's); a tile that fails is tried again `retries` times, the others go on.
 int run_all(const TilesArgs& a, const TileManifest& manifest) {
   // This very program, also when its file was replaced (rebuilt) while the tiles run: the
   // kernel's link to the running image, not the path it was started from.
   const std::string self = "/proc/self/exe";
+  const std::vector<const TileSpec*> order = build_order(manifest);
   std::atomic<std::size_t> next{0};
+  std::size_t phase_end = 0;
   std::mutex mutex;
   std::size_t done = 0, gates_failed = 0;
   std::vector<std::string> failed;
   const auto worker = [&] {
-    for (std::size_t i = next++; i < manifest.tiles.size(); i = next++) {
-      const TileSpec& t = manifest.tiles[i];
+    for (std::size_t i = next++; i < phase_end; i = next++) {
+      const TileSpec& t = *order[i];
       const std::string tile = std::to_string(t.x) + "," + std::to_string(t.y);
       std::vector<std::string> argv = {self, "tiles", "build", a.dir, "--tile", tile};
       if (a.force) argv.emplace_back("--force");
@@ -163,9 +166,15 @@ int run_all(const TilesArgs& a, const TileManifest& manifest) {
       std::cerr << "tiles: [" << done << "/" << manifest.tiles.size() << "] " << line << "\n";
     }
   };
-  std::vector<std::thread> threads;
-  for (int j = 0; j < std::max(1, a.jobs); ++j) threads.emplace_back(worker);
-  for (std::thread& t : threads) t.join();
+  for (std::size_t begin = 0; begin < order.size(); begin = phase_end) {
+    phase_end = begin;
+    while (phase_end < order.size() && tile_phase(*order[phase_end]) == tile_phase(*order[begin]))
+      ++phase_end;
+    next = begin;
+    std::vector<std::thread> threads;
+    for (int j = 0; j < std::max(1, a.jobs); ++j) threads.emplace_back(worker);
+    for (std::thread& t : threads) t.join();
+  }
   std::cout << manifest.tiles.size() - failed.size() << " of " << manifest.tiles.size() << " tiles built";
   if (gates_failed > 0) std::cout << ", " << gates_failed << " with failed gates";
   std::cout << "\n";

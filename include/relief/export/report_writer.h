@@ -46,6 +46,7 @@ struct FitSummary {
   bool converged = false;
   std::string solver;  ///< the solver's status and method
   std::size_t variables = 0;
+  std::size_t held_variables = 0;  ///< of `variables`: held at a neighbouring tile's values
   std::size_t constraints = 0;
   double max_violation_m = 0.0;
   double clearance_m = 0.0;

@@ -4,6 +4,7 @@
 // DEM, validate, write.
 
 #include <filesystem>
+#include <functional>
 #include <optional>
 #include <set>
 #include <string>
@@ -95,6 +96,11 @@ struct BuildOptions {
   bool carla_package = false;
   /// Output `sight`: every lane's sight distance on the scene (relief/sight/sight_distance.h).
   SightOptions sight;
+  /// Region tiles (relief/tiles): called once the elevation is sampled, returns what the fit
+  /// holds (ProfileFitOptions::holds, which it replaces); and called once the road model is built
+  /// with the network, the fit and the model (relief's fit only). Unset: neither.
+  std::function<FitHolds(const RoadNetwork&, const std::vector<RoadProfile>& raw)> hold_profiles;
+  std::function<void(const RoadNetwork&, const ProfileFitResult&, const RoadModel&)> fitted;
 };
 
 struct BuildResult {

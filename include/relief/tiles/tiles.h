@@ -35,6 +35,7 @@ struct TileSpec {
   int x = 0, y = 0;            ///< column (east) and row (north), from 0 at the south-west tile
   Aabb2 core;                  ///< local frame, [min, max) (what the tile owns)
   LonLatBox window;            ///< core plus halo, in WGS84 (what the tile reads)
+  LonLatBox core_lon_lat;      ///< the core in WGS84 (widened by 1 m)
   std::size_t road_nodes = 0;  ///< OSM road nodes in the core (the plan's count)
   /// Road ways that cross the window without a node in it (sorted OSM ids): a segment longer
   /// than the halo. The window takes them too.
@@ -91,6 +92,20 @@ void write_manifest(const std::filesystem::path& dir, const TileManifest& manife
 /// halo and the tile. A tile whose tile.json carries the same key and status "built" is done.
 [[nodiscard]] std::string tile_key(const TileManifest& manifest, const TileSpec& tile);
 
+/// The tile's phase, (x mod 2) + 2 (y mod 2): 0 to 3. No two of a tile's eight neighbours share
+/// its phase; `--all` builds the phases in order, the tiles of one phase at once.
+[[nodiscard]] int tile_phase(const TileSpec& tile);
+
+/// The tiles of the plan among `tile`'s eight neighbours with an earlier phase: the tiles whose
+/// fitted heights it holds where their elements meet its own (tile_holds.h), so that the two
+/// build the same surface there, exactly.
+[[nodiscard]] std::vector<const TileSpec*> tile_dependencies(const TileManifest& manifest,
+                                                             const TileSpec& tile);
+
+/// The plan's tiles phase after phase (stable within a phase): the order every tile finds its
+/// dependencies built in.
+[[nodiscard]] std::vector<const TileSpec*> build_order(const TileManifest& manifest);
+
 struct TileBuildResult {
   std::string status;  ///< "built", "gates_failed" (built, a gate failed), "skipped" (up to date)
   double seconds = 0.0;
@@ -105,7 +120,11 @@ struct TileBuildResult {
 /// of them: osm_window.h) to DIR/tiles/X_Y/window.osm.pbf in streaming passes, runs
 /// build() on it in the manifest's frame (`options` as parsed from manifest.build_args; its
 /// osm_path, out_dir, name, crs, frame_centre and the scene's core are set here) and writes
-/// tile.json. Throws what build() throws; a tile that throws keeps no tile.json.
+/// tile.json. Its fit holds what its dependencies (tile_dependencies) fitted where their
+/// elements meet its own, from their DIR/tiles/X_Y/holds.bin, and it writes its own for the
+/// tiles after it; a dependency not built yet is recorded in tile.json (`holds.missing`) and
+/// its key, so the tile is built again once it is. Throws what build() throws; a tile that throws
+/// keeps no tile.json.
 [[nodiscard]] TileBuildResult build_tile(const std::filesystem::path& dir, const TileManifest& manifest,
                                          int x, int y, BuildOptions options, Diagnostics& diagnostics,
                                          bool force = false);

@@ -1,0 +1,189 @@
+#include "tiles/tile_holds.h"
+
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <limits>
+#include <string>
+
+#include "relief/core/atomic_file.h"
+#include "relief/core/errors.h"
+#include "tiles/xodr_merge.h"
+
+namespace relief::detail {
+namespace {
+
+constexpr char kMagic[] = "relief-tile-holds 1\n";
+
+bool in_core(const Aabb2& core, const Vec2& p) {
+  return p.x() >= core.min.x() && p.x() < core.max.x() && p.y() >= core.min.y() && p.y() < core.max.y();
+}
+
+template <typename T>
+void put(std::string& out, const T& value) {
+  out.append(reinterpret_cast<const char*>(&value), sizeof(T));
+}
+
+class Reader {
+ public:
+  Reader(std::string data, std::filesystem::path path) : data_(std::move(data)), path_(std::move(path)) {}
+  template <typename T>
+  T get() {
+    if (pos_ + sizeof(T) > data_.size()) throw InvalidInput(path_.string() + ": truncated tile holds");
+    T value;
+    std::memcpy(&value, data_.data() + pos_, sizeof(T));
+    pos_ += sizeof(T);
+    return value;
+  }
+  void expect(std::string_view text) {
+    if (data_.compare(0, text.size(), text) != 0)
+      throw InvalidInput(path_.string() + ": not a tile holds file");
+    pos_ = text.size();
+  }
+  [[nodiscard]] bool done() const { return pos_ == data_.size(); }
+
+ private:
+  std::string data_;
+  std::filesystem::path path_;
+  std::size_t pos_ = 0;
+};
+
+}  // namespace
+
+RoadKey road_key(const Road& road) {
+  const std::vector<std::int64_t>& n = road.osm_node_ids;
+  if (n.size() < 2) return {};
+  return {n.front(), n[1], n[n.size() - 2], n.back()};
+}
+
+std::size_t TileHolds::samples() const {
+  std::size_t count = 0;
+  for (const auto& [key, z] : road_z)
+    for (const double v : z) count += std::isnan(v) ? 0 : 1;
+  return count;
+}
+
+TileHolds tile_holds(const RoadNetwork& network, const ProfileFitResult& fit, const RoadModel& model,
+                     const Aabb2& core) {
+  // What the tile owns, by the network's roads and junctions.
+  std::vector<std::uint8_t> owned_road(network.roads.size(), 0), owned_junction(network.junctions.size(), 0);
+  for (const ModelRoad& r : model.roads) {
+    if (r.junction == -1 && r.source_road >= 0 && in_core(core, road_anchor(r)))
+      owned_road[static_cast<std::size_t>(r.source_road)] = 1;
+  }
+  for (const JunctionModel& j : model.junctions) {
+    if (!in_core(core, junction_anchor(model, j))) continue;
+    for (const int source : j.source_junctions) owned_junction[static_cast<std::size_t>(source)] = 1;
+  }
+  // At every junction it owns or one of its roads ends at: the plane, and the stations within
+  // reach of the junction of every road there it owns (of every road, at a junction it owns).
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  std::vector<std::vector<double>> held(network.roads.size());
+  TileHolds out;
+  for (const Junction& junction : network.junctions) {
+    const bool owns_junction = owned_junction[static_cast<std::size_t>(junction.id)] != 0;
+    bool touched = owns_junction;
+    for (const RoadEnd& end : junction.ends) {
+      if (!owns_junction && !owned_road[static_cast<std::size_t>(end.road)]) continue;
+      const RoadProfile& p = fit.profiles[static_cast<std::size_t>(end.road)];
+      if (!p.has_height || p.size() == 0) continue;
+      touched = true;
+      std::vector<double>& z = held[static_cast<std::size_t>(end.road)];
+      if (z.empty()) z.assign(p.size(), nan);
+      const double length = p.s.back();
+      for (std::size_t i = 0; i < p.size(); ++i) {
+        if ((end.at_start ? p.s[i] : length - p.s[i]) <= kJunctionHoldReachM) z[i] = p.z[i];
+      }
+    }
+    if (touched && junction.ends.size() >= 2 &&
+        static_cast<std::size_t>(junction.id) < fit.junction_gradient.size())
+      out.junction_gradient.emplace(junction.osm_node_id,
+                                    fit.junction_gradient[static_cast<std::size_t>(junction.id)]);
+  }
+  for (std::size_t r = 0; r < held.size(); ++r) {
+    if (!held[r].empty()) out.road_z.emplace(road_key(network.roads[r]), std::move(held[r]));
+  }
+  return out;
+}
+
+void add_holds(TileHolds& into, const TileHolds& from) {
+  for (const auto& [key, z] : from.road_z) {
+    auto [it, added] = into.road_z.try_emplace(key, z);
+    if (added || it->second.size() != z.size()) continue;
+    for (std::size_t i = 0; i < z.size(); ++i)
+      if (std::isnan(it->second[i])) it->second[i] = z[i];
+  }
+  for (const auto& [id, g] : from.junction_gradient) into.junction_gradient.try_emplace(id, g);
+}
+
+FitHolds index_holds(const RoadNetwork& network, const std::vector<RoadProfile>& raw, const TileHolds& holds,
+                     std::size_t& mismatched) {
+  FitHolds out;
+  mismatched = 0;
+  if (holds.road_z.empty() && holds.junction_gradient.empty()) return out;
+  out.road_z.resize(network.roads.size());
+  out.junction_gradient.resize(network.junctions.size());
+  for (const Road& road : network.roads) {
+    const auto it = holds.road_z.find(road_key(road));
+    if (it == holds.road_z.end()) continue;
+    if (it->second.size() != raw[static_cast<std::size_t>(road.id)].size()) {
+      ++mismatched;
+      continue;
+    }
+    out.road_z[static_cast<std::size_t>(road.id)] = it->second;
+  }
+  for (const Junction& j : network.junctions) {
+    if (const auto it = holds.junction_gradient.find(j.osm_node_id); it != holds.junction_gradient.end())
+      out.junction_gradient[static_cast<std::size_t>(j.id)] = it->second;
+  }
+  return out;
+}
+
+void write_holds(const std::filesystem::path& path, const TileHolds& holds) {
+  std::string out(kMagic);
+  put<std::uint64_t>(out, holds.road_z.size());
+  for (const auto& [key, z] : holds.road_z) {
+    for (const std::int64_t id : {key.first, key.second, key.penultimate, key.last}) put(out, id);
+    put<std::uint64_t>(out, z.size());
+    for (const double v : z) put(out, v);
+  }
+  put<std::uint64_t>(out, holds.junction_gradient.size());
+  for (const auto& [id, g] : holds.junction_gradient) {
+    put(out, id);
+    put(out, g.x());
+    put(out, g.y());
+  }
+  write_file_atomically(path, out);
+}
+
+TileHolds read_holds(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw IoError("cannot read " + path.string());
+  std::string data((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  Reader r(std::move(data), path);
+  r.expect(kMagic);
+  TileHolds holds;
+  const auto roads = r.get<std::uint64_t>();
+  for (std::uint64_t k = 0; k < roads; ++k) {
+    RoadKey key;
+    key.first = r.get<std::int64_t>();
+    key.second = r.get<std::int64_t>();
+    key.penultimate = r.get<std::int64_t>();
+    key.last = r.get<std::int64_t>();
+    const auto n = r.get<std::uint64_t>();
+    std::vector<double> z(n);
+    for (double& v : z) v = r.get<double>();
+    holds.road_z.emplace(key, std::move(z));
+  }
+  const auto junctions = r.get<std::uint64_t>();
+  for (std::uint64_t k = 0; k < junctions; ++k) {
+    const auto id = r.get<std::int64_t>();
+    const auto gx = r.get<double>();
+    const auto gy = r.get<double>();
+    holds.junction_gradient.emplace(id, Vec2(gx, gy));
+  }
+  if (!r.done()) throw InvalidInput(path.string() + ": trailing bytes in tile holds");
+  return holds;
+}
+
+}  // namespace relief::detail
