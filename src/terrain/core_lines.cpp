@@ -255,7 +255,15 @@ class LineCutter {
     if (tin_.is_infinite(g)) g = g->neighbor(g->index(tin_.infinite_vertex()));
     if (tin_.is_infinite(g) || g->info().paved) return std::nullopt;
     if (const std::optional<double> z = dem_.height_at(p)) return *z;
-    return interpolate(g, p.x(), p.y());
+    if (!tin_.is_infinite(f)) return interpolate(g, p.x(), p.y());
+    // Beyond the hull and the DEM: the height of the hull edge's nearest point (a plane
+    // extrapolated a step out may be hundreds of metres off).
+    const int i = f->index(tin_.infinite_vertex());
+    const Point& u = f->vertex(Tin::ccw(i))->point();
+    const Point& w = f->vertex(Tin::cw(i))->point();
+    const Vec2 d(w.x() - u.x(), w.y() - u.y());
+    const double t = std::clamp((p - Vec2(u.x(), u.y())).dot(d) / d.squaredNorm(), 0.0, 1.0);
+    return u.z() + t * (w.z() - u.z());
   }
 
   bool paved(const Vec2& p) {
