@@ -189,15 +189,11 @@ class LineCutter {
     }
   }
 
-  // The pieces across the paved area, inserted last (insert_across_paved).
-  std::vector<std::pair<int, std::pair<Node, Node>>> across_paved;
-
   // Inserts the pieces across the paved area, and marks the faces they make paved.
   void insert_across_paved() {
     for (auto f = tin_.finite_faces_begin(); f != tin_.finite_faces_end(); ++f) f->info().visited = true;
-    for (const auto& [index, ends] : across_paved) {
+    for (const auto& [index, ends] : across_paved_) {
       const VertexHandle a = vertex(ends.first), b = vertex(ends.second);
-
       const Tin::Constraint_id id = tin_.insert_constraint(a, b);
       hint_ = b->face();
       out_.separators.push_back({id, ends.first.p.head<2>(), ends.second.p.head<2>(), index});
@@ -301,7 +297,7 @@ class LineCutter {
       ++out_.blocked;
       return;
     }
-    across_paved.push_back({line.index, {*open_end_, next}});
+    across_paved_.push_back({line.index, {*open_end_, next}});
   }
 
   // Whether the segment from the vertex at `from` towards `to` starts into a paved face (false
@@ -452,6 +448,7 @@ class LineCutter {
   FaceHandle hint_;
   std::vector<Segment2> near_;
   std::optional<Node> open_end_;  // the last piece's end, when it is a road edge's vertex
+  std::vector<std::pair<int, std::pair<Node, Node>>> across_paved_;  // line, ends: inserted last
 };
 
 using Key = std::pair<const void*, const void*>;

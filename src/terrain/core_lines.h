@@ -2,13 +2,14 @@
 // Private to src/terrain: the terrain of a region tile, cut along its core's edges so that
 // neighbouring tiles' terrain meets vertex for vertex. Each edge's line (x = const or y = const,
 // across the terrain) becomes a chain of constraints whose vertices depend only on the line, the
-// DEM and the road outline near it: points at whole multiples of the DEM step (and where the
-// other lines cross it), at the DEM's height moved onto the batter like any sample. Where the
-// line crosses the paved area the chain leaves it for an end of the road edge it crosses (an
-// outline vertex, which both tiles share), so the terrain meets the roads as in any build (no
-// vertex on a road edge). The TIN's own vertices keep clear of the chains, so the simplification
-// (which differs between windows) neither moves nor splits them. The faces are then told inside
-// or outside the core by the side of the chains they lie on.
+// DEM and the road outline near it: points at whole multiples of the DEM step (where the other
+// lines cross it, and 0.5, 1, 2... m from each road edge it crosses), at the DEM's height moved
+// onto the batter like any sample. Where the line crosses a road edge the chain leaves it for an
+// end of that edge (an outline vertex, which both tiles share), so the terrain meets the roads as
+// in any build (no vertex on a road edge), and goes on straight across the paved area to the next
+// edge's end. The TIN's own vertices keep clear of the chains, so the simplification (which
+// differs between windows) neither moves nor splits them. The faces are then told inside or
+// outside the core by the side of the chains they lie on.
 
 #include <cstddef>
 #include <vector>
