@@ -31,6 +31,7 @@ set(relief_realdata_tests
   "^OsmReader\\.(TruncatedRealGzipThrowsInvalidInput|PotreroAsPbfReadsLikeGzip)$"
   "^Build\\.(FailedRunLeavesNoOutputs|PotreroIdwDiffersFromBilinear)$"
   "^Info\\.DescribesPotreroWithoutWriting$"
+  "^TilesTerrain\\."
   "^MeshPipeline\\.(PotreroTilesAddUpToTheScene|PotreroCarlaPackageHoldsTheFilesWritten)$"
   "^MeshPipeline\\.PotreroCarlaLargeMapFillsTheTileGrid$")
 

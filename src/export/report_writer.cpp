@@ -333,7 +333,12 @@ std::string report_json(const RunReport& r) {
                  {"terrain_tin_vertices", m.terrain_tin_vertices},
                  {"terrain_max_vertical_error_m", round_to(m.terrain_max_vertical_error_m, 1e-4)},
                  {"terrain_max_cut_m", round_to(m.terrain_max_cut_m, 1e-3)},
-                 {"terrain_max_fill_m", round_to(m.terrain_max_fill_m, 1e-3)}};
+                 {"terrain_max_fill_m", round_to(m.terrain_max_fill_m, 1e-3)},
+                 {"terrain_core_lines", m.core_lines ? Json{{"vertices", m.core_line_vertices},
+                                                            {"detours", m.core_detours},
+                                                            {"open_crossings", m.core_blocked},
+                                                            {"leaks", m.core_leaks}}
+                                                     : Json()}};
     j["mesh"]["carla_package"] = m.carla_package.empty()
                                      ? Json()
                                      : Json{{"file", m.carla_package},

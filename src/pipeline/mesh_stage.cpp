@@ -33,11 +33,37 @@ void add_placeholder_tiles(const MeshScene& scene, const std::vector<SceneTile>&
     carla.files.push_back(std::move(f));
 }
 
+// A region tile's terrain: the triangles on the core's side of the lines cut into it (its
+// centroid would give a triangle along a detour round a road edge to the wrong tile).
+void core_terrain(const Scene& built, MeshScene& core) {
+  if (!built.terrain) return;
+  const TriangleMesh* terrain = nullptr;
+  for (const TriangleMesh& m : built.meshes.meshes)
+    if (m.name == "Terrain") terrain = &m;
+  if (terrain == nullptr || built.terrain->in_core.size() != terrain->triangles.size()) return;
+  std::erase_if(core.meshes, [](const TriangleMesh& m) { return m.name == "Terrain"; });
+  TriangleMesh owned = submesh(*terrain, built.terrain->in_core);
+  owned.name = terrain->name;
+  owned.kind = terrain->kind;
+  if (!owned.triangles.empty()) core.meshes.push_back(std::move(owned));
+}
+
 }  // namespace
 
 Scene build_scene_stage(const MeshStageInput& in, StageTimer& timer) {
   SceneOptions scene_options = in.options.scene;
   scene_options.checks = false;  // run by write_mesh_outputs, beside the file writers
+  if (in.options.mesh_core_size_m > 0.0) {
+    // A region tile: its terrain is cut along the core's edges (the same bits in every tile:
+    // whole multiples of the size), so that neighbouring tiles' terrain meets vertex for vertex.
+    const double size = in.options.mesh_core_size_m;
+    const auto column = static_cast<double>(in.options.mesh_core_column);
+    const auto row = static_cast<double>(in.options.mesh_core_row);
+    Aabb2 core;
+    core.extend(Vec2(column * size, row * size));
+    core.extend(Vec2((column + 1.0) * size, (row + 1.0) * size));
+    scene_options.terrain_options.core = core;
+  }
   return build_scene(in.model, in.network, in.dem, scene_options, in.diagnostics, timer.stage_progress());
 }
 
@@ -45,10 +71,11 @@ MeshSummary write_mesh_outputs(const MeshStageInput& in, const Scene& built, Out
                                StageTimer& timer, std::vector<std::filesystem::path>& written,
                                std::vector<std::string>& names, CarlaFbx* carla_fbx) {
   const BuildOptions& options = in.options;
-  const MeshScene core = options.mesh_core_size_m > 0.0
-                             ? scene_in_cell(built.meshes, options.mesh_core_size_m, options.mesh_core_column,
-                                             options.mesh_core_row)
-                             : MeshScene{};
+  MeshScene core = options.mesh_core_size_m > 0.0
+                       ? scene_in_cell(built.meshes, options.mesh_core_size_m, options.mesh_core_column,
+                                       options.mesh_core_row)
+                       : MeshScene{};
+  if (options.mesh_core_size_m > 0.0) core_terrain(built, core);
   const MeshScene& scene = options.mesh_core_size_m > 0.0 ? core : built.meshes;
   // The checks only read the scene, so they run beside the file writers.
   BackgroundStage<SceneChecks> check("check meshes (beside the files)", [&] { return check_scene(built); });
@@ -64,6 +91,11 @@ MeshSummary write_mesh_outputs(const MeshStageInput& in, const Scene& built, Out
   summary.ground_triangles_under_roads = built.stats.ground_triangles_under_roads;
   if (built.terrain) {
     summary.terrain_tin_vertices = built.terrain->tin_vertices;
+    summary.core_lines = !built.terrain->in_core.empty();
+    summary.core_line_vertices = built.terrain->core_line_vertices;
+    summary.core_detours = built.terrain->core_detours;
+    summary.core_blocked = built.terrain->core_blocked;
+    summary.core_leaks = built.terrain->core_leaks;
     summary.terrain_max_vertical_error_m = built.terrain->max_vertical_error_m;
     summary.terrain_max_cut_m = built.terrain->max_cut_m;
     summary.terrain_max_fill_m = built.terrain->max_fill_m;

@@ -35,8 +35,10 @@ struct FaceData {
   std::vector<std::uint32_t> points;  ///< grid samples inside the face, not yet vertices (greedy phase)
   std::uint32_t best = kNoIndex;      ///< the sample of largest error above the tolerance
   double best_error = 0.0;
-  bool paved = false;    ///< inside an odd number of outline loops
-  bool visited = false;  ///< flood fill
+  bool paved = false;     ///< inside an odd number of outline loops
+  bool visited = false;   ///< flood fill
+  std::int8_t side = -1;  ///< region tiles: 1 on a core line's high side, 0 low, -1 not told yet
+  std::int8_t core = 0;   ///< region tiles: 1 in the tile's core
 };
 
 using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;

@@ -12,6 +12,7 @@
 
 #include "relief/core/errors.h"
 #include "relief/geometry/polyline.h"
+#include "terrain/core_lines.h"
 #include "terrain/outline_index.h"
 #include "terrain/terrain_cdt.h"
 #include "terrain/tin_refinement.h"
@@ -290,7 +291,7 @@ void mark_paved_samples(const Tin& tin, GridSamples& grid) {
   }
 }
 
-TriangleMesh extract_mesh(const Tin& tin, const GridSamples& grid, TerrainBuild& build) {
+TriangleMesh extract_mesh(const Tin& tin, const GridSamples& grid, bool core, TerrainBuild& build) {
   TriangleMesh mesh;
   mesh.name = "Terrain";
   mesh.kind = SurfaceKind::terrain;
@@ -325,6 +326,7 @@ TriangleMesh extract_mesh(const Tin& tin, const GridSamples& grid, TerrainBuild&
   }
   for (auto f = tin.finite_faces_begin(); f != tin.finite_faces_end(); ++f) {
     if (f->info().paved) continue;
+    if (core) build.in_core.push_back(f->info().core == 1);
     mesh.triangles.push_back(
         {slot(f->vertex(0))->second, slot(f->vertex(1))->second, slot(f->vertex(2))->second});
   }
@@ -377,6 +379,14 @@ TerrainBuild build_terrain(const DemSampler& dem, const Aabb2& area, const std::
   }
   mark_paved(tin);
   mark_paved_samples(tin, grid);
+  // A region tile's core lines, before the simplification keeps clear of them.
+  CoreLines lines;
+  if (options.core) {
+    lines = insert_core_lines(tin, grid, dem, *options.core, step, outline, options);
+    build.core_line_vertices = lines.line_vertices;
+    build.core_detours = lines.detours;
+    build.core_blocked = lines.blocked;
+  }
 
   // 4. Simplification within the tolerance, then a check of every sample.
   insert_greedy(tin, grid, options.vertical_tolerance_m);
@@ -393,7 +403,8 @@ TerrainBuild build_terrain(const DemSampler& dem, const Aabb2& area, const std::
   const UnderDecks under = keep_under_decks(tin, decks, outline, options.deck_clearance_m);
   build.deck_edges_constrained = under.edges_constrained;
   build.vertices_under_decks = under.vertices_lowered;
-  build.terrain = extract_mesh(tin, grid, build);
+  if (options.core) build.core_leaks = mark_core_faces(tin, lines, *options.core);
+  build.terrain = extract_mesh(tin, grid, options.core.has_value(), build);
   return build;
 }
 

@@ -45,7 +45,7 @@ bool glb_holds_meshes(const std::filesystem::path& path) {
   if (!in.read(reinterpret_cast<char*>(head.data()), sizeof head)) return false;
   std::string json(head[3], '\0');
   if (!in.read(json.data(), static_cast<std::streamsize>(json.size()))) return false;
-  return json.find("\"meshes\"") != std::string::npos;
+  return json.find("\"meshes\"") != std::string::npos && json.find("\"meshes\":[]") == std::string::npos;
 }
 
 }  // namespace
@@ -248,6 +248,13 @@ TileMergeResult merge_tiles(const std::filesystem::path& dir, const TileMergeOpt
           {"boundary_loops", q->boundary_loops},
           {"holes", q->holes},
           {"non_manifold_edges", q->non_manifold_edges}};
+      // Where to look: the first self-intersecting pairs' places.
+      nlohmann::json sites = nlohmann::json::array();
+      for (std::size_t i = 0; i < q->self_intersection_sites.size() && i < 5; ++i) {
+        const Vec3& p = q->self_intersection_sites[i];
+        sites.push_back({p.x(), p.y(), p.z()});
+      }
+      report["joined"][q == &road ? "Road_Road" : "Terrain"]["first_self_intersections"] = sites;
     }
     if (road.self_intersecting_pairs > 0) {
       std::ostringstream where;

@@ -1,7 +1,8 @@
 // Region tiles (issue 17): a plan's manifest, and a region built tile by tile and merged against
 // the whole build of the same region in the same frame. The merge must give the same roads and
 // junctions, the same plan to the bit, heights within 1 mm, and seams that close: the tiles'
-// Road_Road joined is one surface without self-intersections, like the whole build's. The
+// Road_Road joined is one surface without self-intersections, like the whole build's, and so is
+// their Terrain (no self-intersection, no edge of more than two triangles). The
 // region's SUMO network, built from the merged model, has the whole build's lanes.
 #include <gtest/gtest.h>
 
@@ -24,6 +25,7 @@
 #include "relief/core/errors.h"
 #include "relief/export/mesh_writer.h"
 #include "relief/geometry/crs_transform.h"
+#include "relief/terrain/dem_sampler.h"
 #include "relief/tiles/tiles.h"
 #include "support/corpus.h"
 #include "support/osm_sketch.h"
@@ -580,6 +582,11 @@ void expect_like_the_whole_build(const Region& r, double max_dz_m = 1e-3) {
   // The joined surface has the whole build's boundary: the seams are closed.
   EXPECT_EQ(road.at("boundary_loops"), r.report.at("whole_road_road").at("boundary_loops"));
   EXPECT_EQ(road.at("holes"), r.report.at("whole_road_road").at("holes"));
+  // The tiles' terrain meets along the tile lines (terrain/core_lines.h): before, NE had 8
+  // self-intersecting pairs and 1 non-manifold edge, Liechtenstein 16 and 7.
+  const auto& terrain = r.report.at("joined").at("Terrain");
+  EXPECT_EQ(terrain.at("self_intersecting_pairs").get<int>(), 0);
+  EXPECT_EQ(terrain.at("non_manifold_edges").get<int>(), 0);
   expect_tileset_holds_its_tiles(r);
 
   // The SUMO network: the whole build's lanes, on the merged surface.
@@ -777,6 +784,89 @@ TEST(Tiles, TilesHoldWhatTheirNeighboursFittedSoTheyMeetWhereWindowsSeeTooLittle
   }
   EXPECT_GT(held, 0u);
   EXPECT_GE(holding_tiles, 4u);
+}
+
+// The terrain of region tiles: each tile's TIN is simplified over its own window, so it meets
+// its neighbours' only where both cut it along the tile line with the same vertices (before:
+// Potrero's joined Terrain had 2 self-intersecting pairs and no vertex on a line in common).
+// Potrero in 250 m tiles: along every line two tiles share, their Terrain has the same vertices
+// in plan, to the bit, at heights within 1 cm (the merge welds those), and the joined Terrain
+// neither intersects itself nor has an edge of more than two triangles.
+TEST(TilesTerrain, PotreroIn250mTilesMeetsAlongTheTileLines) {
+  RELIEF_REQUIRE_SHARED_DATA();
+  const std::string dem =
+      test::shared_data("sf-potrero/USGS_13_n38w123-subsection-small-potrero.tif").string();
+  const std::filesystem::path dir = test::scratch_dir("potrero_terrain");
+  TilePlanOptions plan;
+  plan.osm_path = test::shared_data("sf-potrero/sf-potrero.osm.gz");
+  plan.dem_paths = {dem};
+  plan.tile_size_m = 250.0;
+  plan.build_args = {"(in-process)"};
+  const TileManifest manifest = plan_tiles(plan);
+  write_manifest(dir, manifest);
+  BuildOptions options;
+  options.dem_paths = {dem};
+  options.outputs = {Output::xodr, Output::mesh, Output::report};
+  options.mesh_formats = {MeshFormat::glb};
+  options.compare_methods = false;
+  std::map<std::pair<int, int>, std::vector<Vec3>> terrain;
+  for (const TileSpec* tile : build_order(manifest)) {
+    const TileSpec& t = *tile;
+    Diagnostics d;
+    const TileBuildResult b = build_tile(dir, manifest, t.x, t.y, options, d);
+    ASSERT_EQ(b.status, "built") << t.x << "," << t.y;
+    EXPECT_TRUE(b.failed_gates.empty()) << t.x << "," << t.y << ": " << b.failed_gates.front();
+    const std::filesystem::path glb = tile_dir(dir, t.x, t.y) / "out" / (manifest.name + ".glb");
+    for (const TriangleMesh& m : read_mesh_file(glb).meshes)
+      if (m.name == "Terrain") terrain[{t.x, t.y}] = m.vertices;
+  }
+  Diagnostics d;
+  TileMergeOptions merge;
+  merge.sumo_net = false;
+  const TileMergeResult merged = merge_tiles(dir, merge, d);
+  EXPECT_TRUE(merged.failed_gates.empty()) << merged.failed_gates.front();
+  std::ifstream in(dir / "merged" / "report.json");
+  const nlohmann::json joined = nlohmann::json::parse(in).at("joined").at("Terrain");
+  std::cout << "  joined Terrain " << joined << "\n";
+  EXPECT_EQ(joined.at("self_intersecting_pairs").get<int>(), 0);
+  EXPECT_EQ(joined.at("non_manifold_edges").get<int>(), 0);
+
+  // Each tile's Terrain vertices on its east and north lines against its neighbour's.
+  Aabb2 region;
+  for (const TileSpec& t : manifest.tiles) region.extend(t.core);
+  const DemSampler dem_heights({dem}, manifest.frame, region.inflated(manifest.halo_m));
+  using Plan = std::pair<float, float>;  // as the glb holds them
+  const auto on_line = [&](const std::vector<Vec3>& vertices, int axis, double c, double lo, double hi) {
+    std::map<Plan, double> on;
+    for (const Vec3& v : vertices) {
+      if (std::abs(v[axis] - c) < 1e-4 && v[1 - axis] > lo - 1e-4 && v[1 - axis] < hi + 1e-4)
+        on[{static_cast<float>(v.x()), static_cast<float>(v.y())}] = v.z();
+    }
+    return on;
+  };
+  std::size_t lines = 0, shared = 0;
+  for (const TileSpec& a : manifest.tiles) {
+    for (const int axis : {0, 1}) {
+      const TileSpec* b = manifest.find(a.x + (axis == 0 ? 1 : 0), a.y + (axis == 1 ? 1 : 0));
+      if (b == nullptr || !terrain.contains({a.x, a.y}) || !terrain.contains({b->x, b->y})) continue;
+      const double c = a.core.max[axis], lo = a.core.min[1 - axis], hi = a.core.max[1 - axis];
+      const auto mine = on_line(terrain.at({a.x, a.y}), axis, c, lo, hi);
+      const auto theirs = on_line(terrain.at({b->x, b->y}), axis, c, lo, hi);
+      ++lines;
+      EXPECT_GT(mine.size(), 2u) << a.x << "," << a.y << " axis " << axis;
+      ASSERT_EQ(mine.size(), theirs.size()) << a.x << "," << a.y << " axis " << axis;
+      for (const auto& [p, z] : mine) {
+        const auto it = theirs.find(p);
+        ASSERT_NE(it, theirs.end()) << a.x << "," << a.y << ": (" << p.first << ", " << p.second << ")";
+        // Beyond the DEM (Potrero's is a small subsection) each tile's terrain ends at its own
+        // hull, at the hull's height.
+        if (dem_heights.height_at(Vec2(p.first, p.second))) EXPECT_NEAR(it->second, z, 0.01);
+        ++shared;
+      }
+    }
+  }
+  std::cout << "  " << lines << " tile lines, " << shared << " terrain vertices on them shared\n";
+  EXPECT_GE(lines, 10u);
 }
 
 TEST(TilesRealData, NortheastIn500mTilesMergesLikeTheWholeBuild) {

@@ -178,6 +178,12 @@ struct MeshSummary {
   std::size_t terrain_tin_vertices = 0;
   double terrain_max_vertical_error_m = 0.0;
   double terrain_max_cut_m = 0.0, terrain_max_fill_m = 0.0;
+  /// Region tiles: the core's lines cut into the terrain (TerrainOptions::core): their points,
+  /// the road edges they cross reached at an end, the crossings left open, the faces a flood
+  /// from one side of a line met from the other (0 when the lines close); `core_lines` false:
+  /// not a region tile (null in the report).
+  bool core_lines = false;
+  std::size_t core_line_vertices = 0, core_detours = 0, core_blocked = 0, core_leaks = 0;
 };
 
 /// One quality gate's outcome (quality_gates.h).

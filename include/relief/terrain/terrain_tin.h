@@ -5,6 +5,8 @@
 // that terrain and roads meet exactly (shared positions) with no hole and no overlap.
 
 #include <cstddef>
+#include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "relief/geometry/triangle_mesh.h"
@@ -24,6 +26,11 @@ struct TerrainOptions {
   /// Terrain under a bridge deck stays at least this far below it (a fill slope beside a deck,
   /// or the DEM between its samples, would otherwise rise through it); >= 0.
   double deck_clearance_m = 0.3;
+  /// Region tiles: the tile's core (local frame). Its four edges' lines are cut into the
+  /// terrain with vertices that depend only on the line, the DEM and the road outline near it,
+  /// so that neighbouring tiles' terrain meets along them vertex for vertex, and
+  /// TerrainBuild::in_core tells the triangles on the core's side (terrain/core_lines.h).
+  std::optional<Aabb2> core;
 };
 
 struct TerrainBuild {
@@ -39,6 +46,12 @@ struct TerrainBuild {
   double max_fill_m = 0.0;             ///< natural ground below the batter, largest (at the DEM samples)
   std::size_t deck_edges_constrained = 0;  ///< deck outline edges inserted as constraints
   std::size_t vertices_under_decks = 0;    ///< terrain vertices lowered under a deck
+  /// With TerrainOptions::core: per triangle of `terrain`, 1 on the core's side of its lines.
+  std::vector<std::uint8_t> in_core;
+  std::size_t core_line_vertices = 0;  ///< points of the core's lines inserted
+  std::size_t core_detours = 0;        ///< where a line crosses a road edge: to one of its ends
+  std::size_t core_blocked = 0;        ///< crossings no end of whose road edge could be reached
+  std::size_t core_leaks = 0;          ///< faces reached from both sides of the lines (0: closed)
 };
 
 /// Builds the terrain over `area` (local frame) grown by options.margin_m. `outline` are closed
