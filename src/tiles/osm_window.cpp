@@ -224,48 +224,38 @@ RoadWays read_road_ways(const std::filesystem::path& osm_path, const OsmReadOpti
   return out;
 }
 
-WindowCounts extract_window(const std::filesystem::path& osm_path, const LonLatBox& core,
-                            const LonLatBox& window, double halo_m,
+WindowCounts extract_window(const std::filesystem::path& osm_path, const LonLatBox& window, double halo_m,
                             const std::vector<std::int64_t>& crossing_ways, const OsmReadOptions& options,
                             const std::filesystem::path& out) {
   // The region's structure chains (a pass over the ways).
   StructureChains chains(osm_path, options);
-  // The nodes inside the window and the core; the structure nodes' positions (a pass over the
-  // nodes).
-  const auto in = [](const LonLatBox& box, const osmium::Location& p) {
-    return p.lon() >= box.min_lon && p.lon() <= box.max_lon && p.lat() >= box.min_lat &&
-           p.lat() <= box.max_lat;
-  };
-  std::vector<std::int64_t> inside, in_core;
+  // The nodes inside the window; the structure nodes' positions (a pass over the nodes).
+  std::vector<std::int64_t> inside;
   for_each<osmium::Node>(osm_path, osmium::osm_entity_bits::node, [&](const osmium::Node& node) {
     const osmium::Location& p = node.location();
     if (!p.valid()) return;
     chains.locate(node.id(), {p.lon(), p.lat()});
-    if (in(window, p)) inside.push_back(node.id());
-    if (in(core, p)) in_core.push_back(node.id());
+    if (p.lon() >= window.min_lon && p.lon() <= window.max_lon && p.lat() >= window.min_lat &&
+        p.lat() <= window.max_lat) {
+      inside.push_back(node.id());
+    }
   });
   sort_unique(inside);
-  sort_unique(in_core);
   // The ways with a node in the zone (first the window), whole. A structure chain one of them
   // touches (a structure way in the zone, or one's abutment) is taken whole, with the ground
   // within the halo of any of its nodes (its approaches and what fixes them), since the fit
-  // spans a structure between all its abutments; and a way with a node in the core (whose roads
-  // the tile may own, by their midpoint) gets the ground within the halo of every node of it,
-  // the context the halo gives the core, along the whole way: the zone grows by those nodes and
-  // the ways are read again. Chains that only ways of that ground touch are taken whole only
-  // with more than one level (README, tiles: two levels halve what is left on Portland at twice
-  // the cost).
+  // spans a structure between all its abutments: the zone grows by those nodes and the ways are
+  // read again. Chains that only ways of a chain's halo touch are taken whole only with more
+  // than one level (README, tiles: two levels halve what is left on Portland at twice the cost).
   constexpr int kChainLevels = 1;
   std::vector<std::int64_t> zone = inside;
   std::vector<std::uint8_t> taken(chains.size(), 0);
-  std::vector<LonLat> context;  // the nodes of the core's ways beyond the core
   osmium::memory::Buffer ways(1 << 20, osmium::memory::Buffer::auto_grow::yes);
   WindowCounts counts;
   for (int level = 0;; ++level) {
     ways = osmium::memory::Buffer(1 << 20, osmium::memory::Buffer::auto_grow::yes);
     counts = WindowCounts{};
     std::vector<std::uint32_t> reached;
-    std::vector<std::int64_t> core_way_nodes;
     for_each<osmium::Way>(osm_path, osmium::osm_entity_bits::way, [&](const osmium::Way& way) {
       if (!is_built(way, options)) return;
       const auto& refs = way.nodes();
@@ -282,28 +272,11 @@ WindowCounts extract_window(const std::filesystem::path& osm_path, const LonLatB
       for (const osmium::NodeRef& ref : refs) {
         if (const auto c = chains.chain_at(ref.ref()); c && !taken[*c]) reached.push_back(*c);
       }
-      if (level == 0 && std::any_of(refs.begin(), refs.end(),
-                                    [&](const osmium::NodeRef& r) { return contains(in_core, r.ref()); })) {
-        for (const osmium::NodeRef& ref : refs)
-          if (!contains(in_core, ref.ref())) core_way_nodes.push_back(ref.ref());
-      }
     });
-    if (level == kChainLevels) break;
-    // The core's ways' nodes beyond the core (a pass over the nodes).
-    if (level == 0 && !core_way_nodes.empty()) {
-      sort_unique(core_way_nodes);
-      for_each<osmium::Node>(osm_path, osmium::osm_entity_bits::node, [&](const osmium::Node& node) {
-        if (node.location().valid() && contains(core_way_nodes, node.id()))
-          context.push_back({node.location().lon(), node.location().lat()});
-      });
-    }
-    if (reached.empty() && context.empty()) break;
+    if (reached.empty() || level == kChainLevels) break;
     for (const std::uint32_t c : reached) taken[c] = 1;
-    // The zone: the window and every node within the halo of a taken chain's node or of a core
-    // way's node.
-    std::vector<LonLat> points = chains.positions_of(taken);
-    points.insert(points.end(), context.begin(), context.end());
-    const NearPoints near(points, halo_m);
+    // The zone: the window and every node within the halo of a taken chain's node.
+    const NearPoints near(chains.positions_of(taken), halo_m);
     zone = inside;
     for_each<osmium::Node>(osm_path, osmium::osm_entity_bits::node, [&](const osmium::Node& node) {
       const osmium::Location& p = node.location();

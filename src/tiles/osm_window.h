@@ -26,26 +26,22 @@ struct RoadWays {
 struct WindowCounts {
   std::size_t ways = 0;
   std::size_t nodes = 0;
-  std::size_t chain_ways =
-      0;  ///< of `ways`: no node in the window (a chain's, or ground near one or a core way)
+  std::size_t chain_ways = 0;      ///< of `ways`: taken for structure chains, without a node in the window
   std::size_t neighbour_ways = 0;  ///< of `ways`: taken because they join a taken way (two rings)
 };
 
 /// Writes to `out` (.osm.pbf) every way read_osm builds under `options` that has a node inside
-/// `window` or crosses it (`crossing_ways`: sorted ids, the plan's TileSpec::crossing_ways),
-/// whole, with all its nodes (and their tags); for every structure chain those ways touch (the
-/// bridge and tunnel ways connected by shared nodes, which the profile fit spans between their
-/// abutments instead of anchoring them to the DEM), the whole chain; every way with a node
-/// within `halo_m` of a node of a taken chain or of a way with a node in `core` (the context the
-/// halo gives the core, along every way the tile may own a road of); and, in two rings, every way
-/// that shares a node with a way taken (so the taken ways split into the roads and junctions a
-/// whole build makes). Streaming passes: the region's structure ways; the nodes (the window's and
-/// the core's, the structures' positions); the ways; the core ways' nodes, the nodes near them
-/// and the chains and the ways again; the ways twice more (the rings); the nodes the ways need.
-/// Memory grows with the window and its ways' surroundings and the region's structure nodes, not
-/// with the region's roads.
-WindowCounts extract_window(const std::filesystem::path& osm_path, const LonLatBox& core,
-                            const LonLatBox& window, double halo_m,
+/// `window` or crosses it, whole, with all its nodes (and their tags); and for every structure chain those
+/// ways touch (the bridge and tunnel ways connected by shared nodes, which the profile fit spans between
+/// their abutments instead of anchoring them to the DEM), the whole chain and every way with a node within
+/// `halo_m` of one of its nodes (its approaches with the context the window gives its own roads); and, in two
+/// rings, every way that shares a node with a way taken (so the taken ways split into the roads and junctions
+/// a whole build makes). Streaming passes: the region's structure ways; the nodes (the window's, the
+/// structures' positions); the ways; for the chains, the nodes near them and the ways again; the ways twice
+/// more (the rings); the nodes the ways need. Memory grows with the window, its chains' surroundings and the
+/// region's structure nodes, not with the region's roads. `crossing_ways`: ways taken although no node of
+/// theirs lies in the window (sorted ids: the plan's TileSpec::crossing_ways, whose segments cross it).
+WindowCounts extract_window(const std::filesystem::path& osm_path, const LonLatBox& window, double halo_m,
                             const std::vector<std::int64_t>& crossing_ways, const OsmReadOptions& options,
                             const std::filesystem::path& out);
 

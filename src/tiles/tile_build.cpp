@@ -70,9 +70,8 @@ TileBuildResult build_tile(const std::filesystem::path& dir, const TileManifest&
   std::filesystem::remove(here / detail::kHoldsFile);
 
   const std::filesystem::path window = here / "window.osm.pbf";
-  const detail::WindowCounts counts =
-      detail::extract_window(osm_input(manifest).path, spec->core_lon_lat, spec->window, manifest.halo_m,
-                             spec->crossing_ways, options.osm, window);
+  const detail::WindowCounts counts = detail::extract_window(
+      osm_input(manifest).path, spec->window, manifest.halo_m, spec->crossing_ways, options.osm, window);
 
   options.osm_path = window;
   options.out_dir = here / "out";

@@ -94,8 +94,6 @@ std::string TileManifest::to_json() const {
          {"y", t.y},
          {"core", box_json(t.core)},
          {"window_lon_lat", {t.window.min_lon, t.window.min_lat, t.window.max_lon, t.window.max_lat}},
-         {"core_lon_lat",
-          {t.core_lon_lat.min_lon, t.core_lon_lat.min_lat, t.core_lon_lat.max_lon, t.core_lon_lat.max_lat}},
          {"road_nodes", t.road_nodes},
          {"phase", tile_phase(t)},
          {"crossing_ways", t.crossing_ways}});
@@ -133,8 +131,6 @@ TileManifest TileManifest::from_json(std::string_view text, std::string_view sou
           Aabb2{Vec2(c[0].get<double>(), c[1].get<double>()), Vec2(c[2].get<double>(), c[3].get<double>())};
       const auto& w = t.at("window_lon_lat");
       s.window = {w[0].get<double>(), w[1].get<double>(), w[2].get<double>(), w[3].get<double>()};
-      const auto& k = t.at("core_lon_lat");
-      s.core_lon_lat = {k[0].get<double>(), k[1].get<double>(), k[2].get<double>(), k[3].get<double>()};
       s.road_nodes = t.at("road_nodes").get<std::size_t>();
       s.crossing_ways = t.at("crossing_ways").get<std::vector<std::int64_t>>();
       m.tiles.push_back(s);
@@ -185,8 +181,7 @@ std::string tile_key(const TileManifest& manifest, const TileSpec& tile) {
   // What a window holds (osm_window.h): a tile built under another rule is built again.
   j["window"] =
       "ways in the window; their structure chains, with the ways within the halo of them; "
-      "two rings of the ways that join them; the ways crossing the window; the ground within the halo "
-      "of the core's ways";
+      "two rings of the ways that join them; the ways crossing the window";
   j["inputs"] = nlohmann::json::array();
   for (const TileInput& in : manifest.inputs) j["inputs"].push_back(in.sha256);
   j["build_args"] = manifest.build_args;
@@ -295,7 +290,6 @@ TileManifest plan_tiles(const TilePlanOptions& options) {
     window.min -= Vec2::Constant(m.halo_m);
     window.max += Vec2::Constant(m.halo_m);
     t.window = lon_lat_box(to_wgs84, m.frame, window, 0.01 * m.halo_m + 1.0);
-    t.core_lon_lat = lon_lat_box(to_wgs84, m.frame, t.core, 1.0);
     t.road_nodes = count;
     if (const auto it = crossing.find(cell); it != crossing.end()) {
       t.crossing_ways = it->second;

@@ -35,7 +35,6 @@ struct TileSpec {
   int x = 0, y = 0;            ///< column (east) and row (north), from 0 at the south-west tile
   Aabb2 core;                  ///< local frame, [min, max) (what the tile owns)
   LonLatBox window;            ///< core plus halo, in WGS84 (what the tile reads)
-  LonLatBox core_lon_lat;      ///< the core in WGS84 (widened by 1 m)
   std::size_t road_nodes = 0;  ///< OSM road nodes in the core (the plan's count)
   /// Road ways that cross the window without a node in it (sorted OSM ids): a segment longer
   /// than the halo. The window takes them too.
