@@ -82,6 +82,7 @@ std::string TileManifest::to_json() const {
                 {"centre_lon_lat", {frame_centre.lon_deg, frame_centre.lat_deg}}};
   j["tile_size_m"] = tile_size_m;
   j["halo_m"] = halo_m;
+  j["hold_neighbours"] = hold_neighbours;
   j["grid_origin"] = {grid_origin.x(), grid_origin.y()};
   j["inputs"] = nlohmann::json::array();
   for (const TileInput& in : inputs)
@@ -116,6 +117,7 @@ TileManifest TileManifest::from_json(std::string_view text, std::string_view sou
     m.frame_centre = {f.at("centre_lon_lat")[0].get<double>(), f.at("centre_lon_lat")[1].get<double>()};
     m.tile_size_m = j.at("tile_size_m").get<double>();
     m.halo_m = j.at("halo_m").get<double>();
+    m.hold_neighbours = j.at("hold_neighbours").get<bool>();
     m.grid_origin = Vec2(j.at("grid_origin")[0].get<double>(), j.at("grid_origin")[1].get<double>());
     for (const auto& in : j.at("inputs")) {
       m.inputs.push_back({in.at("path").get<std::string>(), in.at("sha256").get<std::string>(),
@@ -176,6 +178,7 @@ std::string tile_key(const TileManifest& manifest, const TileSpec& tile) {
   j["program_sha256"] = program;
   j["frame"] = {manifest.frame.crs(), manifest.frame.origin().x(), manifest.frame.origin().y()};
   j["grid"] = {manifest.tile_size_m, manifest.halo_m, manifest.grid_origin.x(), manifest.grid_origin.y()};
+  j["hold_neighbours"] = manifest.hold_neighbours;
   j["tile"] = {tile.x, tile.y};
   j["crossing_ways"] = tile.crossing_ways;
   // What a window holds (osm_window.h): a tile built under another rule is built again.
@@ -194,6 +197,7 @@ int tile_phase(const TileSpec& tile) {
 
 std::vector<const TileSpec*> tile_dependencies(const TileManifest& manifest, const TileSpec& tile) {
   std::vector<const TileSpec*> out;
+  if (!manifest.hold_neighbours) return out;
   for (int dy = -1; dy <= 1; ++dy) {
     for (int dx = -1; dx <= 1; ++dx) {
       const TileSpec* n = (dx == 0 && dy == 0) ? nullptr : manifest.find(tile.x + dx, tile.y + dy);
@@ -232,6 +236,7 @@ TileManifest plan_tiles(const TilePlanOptions& options) {
   m.frame = options.crs ? GeoFrame::in_crs(*options.crs, m.frame_centre) : GeoFrame::utm_at(m.frame_centre);
   m.tile_size_m = options.tile_size_m;
   m.halo_m = options.halo_m;
+  m.hold_neighbours = options.hold_neighbours;
   m.build_args = options.build_args;
 
   // Project in one batch, count per grid cell (multiples of the tile size in the local frame).

@@ -443,13 +443,14 @@ std::pair<double, double> distance_to(const Vec3& p, const std::vector<Vec3>& li
 // Plans `osm` in tiles, builds every tile in this process, builds the whole region in the plan's
 // frame and merges the tiles against it.
 Region tile_and_merge(const std::filesystem::path& osm, const std::string& dem, double tile_m,
-                      const std::filesystem::path& dir, double halo_m = 500.0) {
+                      const std::filesystem::path& dir, double halo_m = 500.0, bool hold_neighbours = false) {
   Diagnostics d;
   TilePlanOptions plan;
   plan.osm_path = osm;
   plan.dem_paths = {dem};
   plan.tile_size_m = tile_m;
   plan.halo_m = halo_m;
+  plan.hold_neighbours = hold_neighbours;
   plan.build_args = {"(in-process)"};
   Region r;
   r.dir = dir;
@@ -764,7 +765,7 @@ TEST(Tiles, TilesHoldWhatTheirNeighboursFittedSoTheyMeetWhereWindowsSeeTooLittle
     return 100.0 + 14.0 * u * u * (3.0 - 2.0 * u);
   });
   const std::filesystem::path dir = test::scratch_dir("step_tiles");
-  const Region r = tile_and_merge(osm, dem, 100.0, dir, 250.0);
+  const Region r = tile_and_merge(osm, dem, 100.0, dir, 250.0, /*hold_neighbours=*/true);
   const auto& w = r.report.at("whole_build");
   std::cout << r.manifest.tiles.size() << " tiles; against the whole build " << w << "\n  opendrive "
             << r.report.at("opendrive") << "\n";

@@ -47,6 +47,8 @@ struct TileManifest {
   LonLat frame_centre;  ///< the builds' BuildOptions::frame_centre
   double tile_size_m = 0.0;
   double halo_m = 0.0;
+  /// Whether a tile holds what its neighbours of earlier phases fitted (tile_dependencies).
+  bool hold_neighbours = false;
   Vec2 grid_origin = Vec2::Zero();  ///< south-west corner of tile (0, 0), local frame
   std::vector<TileSpec> tiles;      ///< only tiles whose core holds road nodes, row-major
   std::vector<TileInput> inputs;
@@ -69,6 +71,10 @@ struct TilePlanOptions {
   /// Context read around each tile. A road's profile feels the network for a few hundred
   /// metres; 500 m keeps heights within millimetres of a whole build (README, tiles).
   double halo_m = 500.0;
+  /// A tile holds what its neighbours of earlier phases fitted where their elements meet its
+  /// own, so their links meet exactly (README, tiles: at a cost in agreement with a whole build
+  /// where the neighbours' windows see less than the whole build; off by default).
+  bool hold_neighbours = false;
   /// Which ways are roads (include_non_motor), as the tiles' builds will read them: a tile is
   /// planned only where such a road has a node.
   OsmReadOptions osm;
@@ -95,9 +101,9 @@ void write_manifest(const std::filesystem::path& dir, const TileManifest& manife
 /// its phase; `--all` builds the phases in order, the tiles of one phase at once.
 [[nodiscard]] int tile_phase(const TileSpec& tile);
 
-/// The tiles of the plan among `tile`'s eight neighbours with an earlier phase: the tiles whose
-/// fitted heights it holds where their elements meet its own (tile_holds.h), so that the two
-/// build the same surface there, exactly.
+/// With manifest.hold_neighbours, the tiles of the plan among `tile`'s eight neighbours with an
+/// earlier phase: the tiles whose fitted heights it holds where their elements meet its own
+/// (tile_holds.h), so that the two build the same surface there, exactly. Otherwise none.
 [[nodiscard]] std::vector<const TileSpec*> tile_dependencies(const TileManifest& manifest,
                                                              const TileSpec& tile);
 
