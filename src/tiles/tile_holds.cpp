@@ -56,13 +56,6 @@ RoadKey road_key(const Road& road) {
   return {n.front(), n[1], n[n.size() - 2], n.back()};
 }
 
-std::size_t TileHolds::samples() const {
-  std::size_t count = 0;
-  for (const auto& [key, z] : road_z)
-    for (const double v : z) count += std::isnan(v) ? 0 : 1;
-  return count;
-}
-
 TileHolds tile_holds(const RoadNetwork& network, const ProfileFitResult& fit, const RoadModel& model,
                      const Aabb2& core) {
   // What the tile owns, by the network's roads and junctions.

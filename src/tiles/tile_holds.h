@@ -29,7 +29,6 @@ struct RoadKey {
 struct TileHolds {
   std::map<RoadKey, std::vector<double>> road_z;   ///< per sample, NaN where not held
   std::map<std::int64_t, Vec2> junction_gradient;  ///< by the network junction's OSM node
-  [[nodiscard]] std::size_t samples() const;
 };
 
 /// Samples of a road held on each side of a junction a tile owns: beyond its end trims and the
