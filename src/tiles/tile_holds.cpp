@@ -15,10 +15,6 @@ namespace {
 
 constexpr char kMagic[] = "relief-tile-holds 1\n";
 
-bool in_core(const Aabb2& core, const Vec2& p) {
-  return p.x() >= core.min.x() && p.x() < core.max.x() && p.y() >= core.min.y() && p.y() < core.max.y();
-}
-
 template <typename T>
 void put(std::string& out, const T& value) {
   out.append(reinterpret_cast<const char*>(&value), sizeof(T));
@@ -61,11 +57,11 @@ TileHolds tile_holds(const RoadNetwork& network, const ProfileFitResult& fit, co
   // What the tile owns, by the network's roads and junctions.
   std::vector<std::uint8_t> owned_road(network.roads.size(), 0), owned_junction(network.junctions.size(), 0);
   for (const ModelRoad& r : model.roads) {
-    if (r.junction == -1 && r.source_road >= 0 && in_core(core, road_anchor(r)))
+    if (r.junction == -1 && r.source_road >= 0 && owns(core, road_anchor(r)))
       owned_road[static_cast<std::size_t>(r.source_road)] = 1;
   }
   for (const JunctionModel& j : model.junctions) {
-    if (!in_core(core, junction_anchor(model, j))) continue;
+    if (!owns(core, junction_anchor(model, j))) continue;
     for (const int source : j.source_junctions) owned_junction[static_cast<std::size_t>(source)] = 1;
   }
   // At every junction it owns or one of its roads ends at: the plane, and the stations within

@@ -22,11 +22,11 @@ Vec2 end_point(const ModelRoad& road, RoadLink::Contact contact) {
   return road.plan.at(contact == RoadLink::Contact::start ? 0.0 : road.length()).position;
 }
 
+}  // namespace
+
 bool owns(const Aabb2& core, const Vec2& p) {
   return p.x() >= core.min.x() && p.x() < core.max.x() && p.y() >= core.min.y() && p.y() < core.max.y();
 }
-
-}  // namespace
 
 Vec2 road_anchor(const ModelRoad& road) {
   return road.plan.at(0.5 * road.length()).position;

@@ -29,6 +29,8 @@ struct ModelMergeResult {
 /// road ends and junction centres).
 [[nodiscard]] ModelMergeResult merge_models(std::vector<TileModel>& tiles);
 
+/// Whether a tile whose core is `core` owns what is decided by point `p` (half-open box).
+[[nodiscard]] bool owns(const Aabb2& core, const Vec2& p);
 /// The point a road's ownership is decided by: its reference line at half its length.
 [[nodiscard]] Vec2 road_anchor(const ModelRoad& road);
 /// The point a junction's ownership is decided by: the mean of its connecting roads' midpoints.
