@@ -395,6 +395,7 @@ BuildResult build(const BuildOptions& options, Diagnostics& diagnostics, const P
       const ModelDeviation dev = compare_models(model, back);
       const LinkContinuity links = check_link_continuity(model);
       const ConnectingRoadCrossings crossings = check_connecting_road_crossings(model);
+      const ConnectingRoadsOverRoads over_roads = check_connecting_roads_over_roads(model);
       OpenDriveSummary o;
       o.file = report.name + ".xodr";
       o.version = "1." + std::to_string(options.opendrive_rev_minor);
@@ -415,6 +416,11 @@ BuildResult build(const BuildOptions& options, Diagnostics& diagnostics, const P
       o.crossing_junctions_over = crossings.junctions_over;
       o.crossing_worst_junction = crossings.worst_junction;
       o.crossing_worst_xy = crossings.worst_xy;
+      o.over_road_max_step_m = over_roads.max_step_m;
+      o.over_road_junctions_over = over_roads.junctions_over;
+      o.over_road_worst_junction = over_roads.worst_junction;
+      o.over_road_worst_road = over_roads.worst_road;
+      o.over_road_worst_xy = over_roads.worst_xy;
       o.round_trip_max_xy_m = dev.max_xy_m;
       o.round_trip_max_z_m = dev.max_z_m;
       o.round_trip_points = dev.points;

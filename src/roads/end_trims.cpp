@@ -7,6 +7,7 @@
 #include <string>
 
 #include "relief/core/diagnostic_codes.h"
+#include "relief/geometry/plane.h"
 #include "roads/junction_joining.h"
 #include "roads/lane_layout.h"
 #include "roads/stray_ends.h"
@@ -18,6 +19,33 @@ namespace {
 constexpr double kTrimStep = 0.5;    // m added to an overlapping road end's trim per pass
 constexpr int kMaxTrimPasses = 400;  // bounds the trims' growth at one junction
 constexpr int kMaxJoinRounds = 8;    // bounds the rounds of junctions joined by their trims
+
+// The convex hull of two road ends' end lines: the ground the connecting roads between them
+// cross (counter-clockwise; monotone chain over the four corners).
+Polyline2 hull_of(const EndShape& a, const EndShape& b) {
+  std::array<Vec2, 4> p{a.right, a.left, b.right, b.left};
+  std::sort(p.begin(), p.end(),
+            [](const Vec2& u, const Vec2& v) { return u.x() < v.x() || (u.x() == v.x() && u.y() < v.y()); });
+  Polyline2 hull;
+  for (int pass = 0; pass < 2; ++pass) {
+    const std::size_t start = hull.size();
+    for (int i = 0; i < 4; ++i) {
+      const Vec2& q = p[pass == 0 ? i : 3 - i];
+      while (hull.size() >= start + 2 && cross(hull.back() - hull[hull.size() - 2], q - hull.back()) <= 0.0)
+        hull.pop_back();
+      hull.push_back(q);
+    }
+    hull.pop_back();
+  }
+  return hull;
+}
+
+// Whether the end line of `c` enters the ground between two other ends of its junction, where
+// their connecting roads run: its lanes would lie under them at its own heights.
+bool in_path(const EndShape& c, const EndShape& a, const EndShape& b) {
+  const Polyline2 hull = hull_of(a, b);
+  return hull.size() >= 3 && segment_polygon_distance(c.right, c.left, hull) <= 0.0;
+}
 
 // Grows the trims of the usable road ends at junction j in steps until no two overlap. Ends
 // that reach their cap mark their roads `stuck`; where ends still overlap, the junction goes
@@ -38,8 +66,10 @@ std::size_t grow_apart(JunctionEnds& state, const Junction& j, std::vector<std::
   };
   std::vector<std::uint8_t> grown(ends.size(), 0), capped(ends.size(), 0);
   bool clear = false;
-  for (int pass = 0; pass < kMaxTrimPasses && !clear; ++pass) {
-    std::vector<std::uint8_t> grow(ends.size(), 0);
+  for (int pass = 0; pass < kMaxTrimPasses; ++pass) {
+    // Ends that overlap another; ends lying between two others (grown too, but no reason to
+    // make the junction level or join it: connecting roads only pass over them).
+    std::vector<std::uint8_t> grow(ends.size(), 0), between(ends.size(), 0);
     for (std::size_t a = 0; a < ends.size(); ++a) {
       for (std::size_t b = a + 1; b < ends.size(); ++b) {
         if (!state.ends_overlap(shape_of(a), shape_of(b))) continue;
@@ -47,9 +77,18 @@ std::size_t grow_apart(JunctionEnds& state, const Junction& j, std::vector<std::
       }
     }
     clear = std::find(grow.begin(), grow.end(), 1) == grow.end();
+    if (ends.size() >= 3) {
+      for (std::size_t c = 0; c < ends.size(); ++c) {
+        for (std::size_t a = 0; a < ends.size() && !between[c]; ++a) {
+          for (std::size_t b = a + 1; b < ends.size() && !between[c]; ++b) {
+            if (a != c && b != c && in_path(shape_of(c), shape_of(a), shape_of(b))) between[c] = 1;
+          }
+        }
+      }
+    }
     bool any = false;
     for (std::size_t k = 0; k < ends.size(); ++k) {
-      if (!grow[k]) continue;
+      if (!grow[k] && !between[k]) continue;
       const Road& road = network.roads[ends[k]->road];
       const double length = state.cumulative[road.id].back();
       double& t = state.trim[road.id][ends[k]->at_start ? 0 : 1];
@@ -60,7 +99,7 @@ std::size_t grow_apart(JunctionEnds& state, const Junction& j, std::vector<std::
                                                 options.min_kept_length_m;
       const double next = std::min(t + kTrimStep, cap);
       if (next - t < 1e-9) {
-        capped[k] = state.loop(road) ? 0 : 1;
+        if (grow[k]) capped[k] = state.loop(road) ? 0 : 1;
         continue;
       }
       t = next;

@@ -4,7 +4,10 @@
 // without passage) trims its roads by its radius; where road ends at a junction still overlap
 // (forks at a small angle), their trims grow in steps until the ends lie apart, and a road the
 // trims use up joins its two junctions into one (junction_joining.h), after which the trims run
-// again. Dead ends lying on another road's pavement are trimmed back as well (stray_ends.h).
+// again. An end lying between two others, where their connecting roads run (inside the convex
+// hull of their end lines), grows as well (and may use its road up, as above), without making
+// its junction level.
+// Dead ends lying on another road's pavement are trimmed back as well (stray_ends.h).
 
 #include <cstddef>
 #include <cstdint>

@@ -3,6 +3,7 @@
 #include "relief/core/errors.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <map>
 #include <vector>
@@ -99,6 +100,111 @@ ConnectingRoadCrossings check_connecting_road_crossings(const RoadModel& model, 
       out.worst_junction = junction;
       out.worst_xy = worst_xy;
     }
+  }
+  return out;
+}
+
+ConnectingRoadsOverRoads check_connecting_roads_over_roads(const RoadModel& model, double tolerance_m,
+                                                           double step_m, double reach_m, double inset_m) {
+  ConnectingRoadsOverRoads out;
+  // The pavement of each road within reach_m of each junction it ends at, as triangles with
+  // their distance behind the end line at each corner.
+  struct Triangle {
+    std::array<Vec3, 3> p;
+    std::array<double, 3> behind;
+    int road = -1;
+  };
+  constexpr double kAlong = 0.5;  // m between the pavement's cross-sections
+  std::map<int, std::vector<Triangle>> pavement;
+  for (const ModelRoad& road : model.roads) {
+    if (road.junction >= 0 || road.sections.empty()) continue;
+    const double length = road.length();
+    for (const auto& [link, at_start] :
+         {std::pair{&road.predecessor, true}, std::pair{&road.successor, false}}) {
+      if (!*link || (*link)->element != RoadLink::Element::junction) continue;
+      const double reach = std::min(reach_m, length);
+      const int n = std::max(1, static_cast<int>(std::ceil(reach / kAlong)));
+      std::array<Vec3, 2> prev{Vec3::Zero(), Vec3::Zero()};
+      double prev_behind = 0.0;
+      for (int i = 0; i <= n; ++i) {
+        const double behind = reach * i / n;
+        const double s = at_start ? behind : length - behind;
+        const LaneSection& sec = section_at(road, s);
+        const int left = sec.left.empty() ? 0 : sec.left.back().id;
+        const int right = sec.right.empty() ? 0 : sec.right.back().id;
+        const std::array<Vec3, 2> cut{surface_point(road, s, lane_border_t(road, s, right)),
+                                      surface_point(road, s, lane_border_t(road, s, left))};
+        if (i > 0) {
+          std::vector<Triangle>& tris = pavement[(*link)->id];
+          tris.push_back({{prev[0], prev[1], cut[0]}, {prev_behind, prev_behind, behind}, road.id});
+          tris.push_back({{prev[1], cut[1], cut[0]}, {prev_behind, behind, behind}, road.id});
+        }
+        prev = cut;
+        prev_behind = behind;
+      }
+    }
+  }
+  // Each junction's triangles in a plan grid of 1 m cells, and its connecting roads' lane
+  // centres sampled against them.
+  std::map<int, std::vector<const ModelRoad*>> connecting;
+  for (const ModelRoad& road : model.roads) {
+    if (road.junction >= 0 && !road.sections.empty()) connecting[road.junction].push_back(&road);
+  }
+  constexpr double kCell = 1.0;
+  const auto key = [](double x, double y) {
+    return std::pair<long, long>{static_cast<long>(std::floor(x / kCell)),
+                                 static_cast<long>(std::floor(y / kCell))};
+  };
+  for (const auto& [junction, tris] : pavement) {
+    const auto roads = connecting.find(junction);
+    if (roads == connecting.end()) continue;
+    std::map<std::pair<long, long>, std::vector<std::size_t>> grid;
+    for (std::size_t k = 0; k < tris.size(); ++k) {
+      const auto& p = tris[k].p;
+      const auto lo = key(std::min({p[0].x(), p[1].x(), p[2].x()}), std::min({p[0].y(), p[1].y(), p[2].y()}));
+      const auto hi = key(std::max({p[0].x(), p[1].x(), p[2].x()}), std::max({p[0].y(), p[1].y(), p[2].y()}));
+      for (long i = lo.first; i <= hi.first; ++i)
+        for (long j = lo.second; j <= hi.second; ++j) grid[{i, j}].push_back(k);
+    }
+    double worst = 0.0;
+    for (const ModelRoad* c : roads->second) {
+      const double length = c->length();
+      const int n = std::max(1, static_cast<int>(std::ceil(length / step_m)));
+      const LaneSection& first = c->sections.front();
+      for (const auto* side : {&first.left, &first.right}) {
+        for (const LaneModel& lane : *side) {
+          if (lane.type != "driving") continue;
+          for (int i = 0; i <= n; ++i) {
+            const double s = length * i / n;
+            const Vec3 q = surface_point(*c, s, lane_centre_t(*c, s, lane.id));
+            const auto cell = grid.find(key(q.x(), q.y()));
+            if (cell == grid.end()) continue;
+            for (const std::size_t k : cell->second) {
+              const Triangle& t = tris[k];
+              const Vec2 a = t.p[0].head<2>(), b = t.p[1].head<2>(), d = t.p[2].head<2>();
+              const double area = cross(b - a, d - a);
+              if (std::abs(area) < 1e-12) continue;
+              const double wb = cross(q.head<2>() - a, d - a) / area;  // q = a + wb (b - a) + wd (d - a)
+              const double wd = cross(b - a, q.head<2>() - a) / area;
+              const double wa = 1.0 - wb - wd;
+              if (wa < 0.0 || wb < 0.0 || wd < 0.0) continue;
+              if (wa * t.behind[0] + wb * t.behind[1] + wd * t.behind[2] < inset_m) continue;
+              ++out.samples;
+              const double step = std::abs(q.z() - (wa * t.p[0].z() + wb * t.p[1].z() + wd * t.p[2].z()));
+              if (step > worst) worst = step;
+              if (step > out.max_step_m) {
+                out.max_step_m = step;
+                out.worst_junction = junction;
+                out.worst_road = t.road;
+                out.worst_xy = q.head<2>();
+              }
+              break;
+            }
+          }
+        }
+      }
+    }
+    if (worst > tolerance_m) ++out.junctions_over;
   }
   return out;
 }

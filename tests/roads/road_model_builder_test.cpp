@@ -223,6 +223,41 @@ TEST(RoadModelBuilder, AForkAtTenDegreesGetsDisjointRoadEnds) {
   EXPECT_LT(c.max_vertical_m, 1e-6);
 }
 
+TEST(RoadModelBuilder, ARoadEndingBetweenTwoOthersIsTrimmedOutOfTheirConnectingRoads) {
+  // A wide west-east street (three lanes each way, 9 m half-width: a radius of 11 m) with a
+  // narrow side street to the south and a narrow diagonal one to the south-east, all to one node,
+  // on a bowl (each road climbs away from the node). At the radius the diagonal's end line lies
+  // clear of every other end's outline, but between the west and east ends (|y| < 9, x < 11),
+  // where the through lanes' connecting roads run: its pavement under them, at its own heights
+  // (NE's J235, Columbus Avenue ending inside the junction with Kearny Street).
+  const double d = 100.0 / std::numbers::sqrt2;
+  const RoadNetwork net =
+      test::make_network({{{-100, 0}, {0, 0}}, {{0, 0}, {100, 0}}, {{0, 0}, {0, -100}}, {{0, 0}, {d, -d}}},
+                         {street(3, 3), street(3, 3), street(1, 1), street(1, 1)});
+  const auto bowl = [](const Vec2& p) { return 10.0 + 0.003 * p.squaredNorm(); };
+  Diagnostics diag;
+  const RoadModelBuild b = build_road_model(net, test::drape(net, bowl), {}, diag);
+  EXPECT_EQ(b.stats.junctions, 1u);
+  EXPECT_EQ(b.stats.junction_ends_overlap, 0u);
+  // The diagonal's end line runs along y = x - r sqrt(2) at trim r, its corners 3 m either side:
+  // it leaves the through lanes' ground (|y| <= 9 up to the east end) from r = 14.14 on, and
+  // grows in steps of 0.5 m from the radius; the east end, passed by the diagonal's corner, grows
+  // and the south end, between the west end and the diagonal's, a little too. The west end,
+  // which no other end's connecting roads pass, stays at the radius.
+  const std::vector<std::array<double, 2>> trims = junction_end_trims(net, test::drape(net, bowl), {});
+  EXPECT_NEAR(trims[0][1], 11.0, 1e-9);
+  EXPECT_GE(trims[3][0], 14.5 - 1e-9);
+  for (const int r : {1, 2, 3}) EXPECT_LE(trims[r][0], 20.0 + 1e-9) << r;
+  EXPECT_NEAR(b.model.roads[b.model_road_of[3]].length(), 100.0 - trims[3][0], 1e-6);
+  // No connecting road's lane centre runs over a road's pavement (beyond the 0.25 m inset behind
+  // its end line): one surface everywhere.
+  const ConnectingRoadsOverRoads over = check_connecting_roads_over_roads(b.model);
+  EXPECT_EQ(over.samples, 0u) << "worst " << over.max_step_m << " m on road " << over.worst_road;
+  const LinkContinuity c = check_link_continuity(b.model);
+  EXPECT_LT(c.max_horizontal_m, 1e-6);
+  EXPECT_LT(c.max_vertical_m, 1e-6);
+}
+
 TEST(RoadModelBuilder, ShortForkBranchesGiveUpMoreThanTheRadiusShare) {
   // The fork above with 50 m branches: clearing the ends takes about 37 m, more than the 40 %
   // the junction radius may take; the branch draws on its whole length but min_kept_length_m.

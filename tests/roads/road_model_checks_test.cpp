@@ -35,5 +35,34 @@ TEST(ConnectingRoadCrossings, FindsTheHeightStepWhereLaneCentresCross) {
   EXPECT_EQ(check_connecting_road_crossings(model).crossings, 0u);
 }
 
+// Road 1 leaves junction 7 east, climbing 10 % from 1.0 m (lanes 1 of 3 m and -1 of 3.5 m: its
+// pavement y in [-3.5, 3]); connecting road 2 of junction 7 crosses it northwards at x = 5, level
+// at 1.5 m, its lane centres at x = 5 + 1.75 (lane -1) and 5 - 1.5 (lane 1), where road 1 lies at
+// 1.675 and 1.35 m.
+TEST(ConnectingRoadsOverRoads, MeasuresAConnectingRoadAgainstTheRoadItCrosses) {
+  RoadModel model;
+  model.roads.push_back(test::straight_road(1, Vec2(0.0, 0.0), 0.0, 40.0, 1.0, 0.1));
+  model.roads[0].predecessor = RoadLink{RoadLink::Element::junction, 7, RoadLink::Contact::start};
+  model.roads.push_back(test::straight_road(2, Vec2(5.0, -10.0), std::numbers::pi / 2, 20.0, 1.5, 0.0));
+  model.roads[1].junction = 7;
+  const ConnectingRoadsOverRoads c = check_connecting_roads_over_roads(model);
+  EXPECT_NEAR(c.max_step_m, 0.175, 1e-9);
+  EXPECT_EQ(c.worst_road, 1);
+  EXPECT_EQ(c.worst_junction, 7);
+  EXPECT_EQ(c.junctions_over, 1u);
+  EXPECT_NEAR(c.worst_xy.x(), 6.75, 1e-9);
+  // 6.5 m of pavement under each lane centre, sampled every 0.25 m: 26 or 27 samples each.
+  EXPECT_GE(c.samples, 52u);
+  EXPECT_LE(c.samples, 56u);
+  // Road 1 ends at another junction: not this one's to measure.
+  model.roads[0].predecessor->id = 8;
+  EXPECT_EQ(check_connecting_roads_over_roads(model).samples, 0u);
+  // Beyond the reach from the junction (crossing at x = 35, 30 m reach) nothing is measured.
+  model.roads[0].predecessor->id = 7;
+  model.roads[1] = test::straight_road(2, Vec2(35.0, -10.0), std::numbers::pi / 2, 20.0, 1.5, 0.0);
+  model.roads[1].junction = 7;
+  EXPECT_EQ(check_connecting_roads_over_roads(model).samples, 0u);
+}
+
 }  // namespace
 }  // namespace relief

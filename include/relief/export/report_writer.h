@@ -87,6 +87,12 @@ struct OpenDriveSummary {
   std::size_t crossing_junctions_over = 0;
   int crossing_worst_junction = -1;
   Vec2 crossing_worst_xy = Vec2::Zero();
+  /// Connecting roads over the pavement of their junction's roads (check_connecting_roads_over_roads).
+  double over_road_max_step_m = 0.0;
+  std::size_t over_road_junctions_over = 0;
+  int over_road_worst_junction = -1;
+  int over_road_worst_road = -1;
+  Vec2 over_road_worst_xy = Vec2::Zero();
   double round_trip_max_xy_m = 0.0;  ///< file read back vs the model written
   double round_trip_max_z_m = 0.0;
   std::size_t round_trip_points = 0;

@@ -40,6 +40,29 @@ struct ConnectingRoadCrossings {
                                                                       double step_m = 0.25,
                                                                       double near_m = 0.05);
 
+/// Where a connecting road's lane centre runs over the pavement of one of its junction's roads
+/// (a road end lying inside the junction, in the path of the connections between other ends),
+/// the .xodr has two surfaces at one place: a vehicle there is at either height. The largest
+/// difference found, and where.
+struct ConnectingRoadsOverRoads {
+  double max_step_m = 0.0;         ///< largest height difference between the two surfaces
+  std::size_t junctions_over = 0;  ///< junctions with a difference above the tolerance
+  std::size_t samples = 0;         ///< lane-centre samples lying on a road's pavement
+  int worst_junction = -1;
+  int worst_road = -1;  ///< OpenDRIVE id of the road under (or over) the worst sample
+  Vec2 worst_xy = Vec2::Zero();
+};
+
+/// Samples every connecting road's driving lane centres every `step_m` and measures each sample
+/// lying on the pavement (between the outermost lane borders) of a road that ends at the same
+/// junction, within `reach_m` of that end and at least `inset_m` behind its end line (the
+/// connecting roads leave from the end lines) against that road's surface.
+[[nodiscard]] ConnectingRoadsOverRoads check_connecting_roads_over_roads(const RoadModel& model,
+                                                                         double tolerance_m = 0.02,
+                                                                         double step_m = 0.25,
+                                                                         double reach_m = 30.0,
+                                                                         double inset_m = 0.25);
+
 /// Grades of the elevation records against the caps (fraction, 0.35 for 35 %), roads and
 /// connecting roads apart (a connecting road runs along its lane's centre, so its record's grade
 /// is the grade a vehicle drives there).
