@@ -20,8 +20,9 @@ namespace {
 
 // Options of `tiles plan` that the plan itself takes; every other one is a build option the
 // tiles are built with.
-const std::set<std::string> kPlanOnly = {"--osm",  "--out", "--tile-size", "--halo", "--hold-neighbours",
-                                         "--name", "--crs", "--origin"};
+const std::set<std::string> kPlanOnly = {
+    "--osm",  "--out", "--tile-size", "--halo", "--hold-neighbours", "--no-hold-neighbours",
+    "--name", "--crs", "--origin"};
 
 // The build options given on the command line, as arguments again (for the manifest).
 std::vector<std::string> given_build_args(const CLI::App& cmd) {
@@ -247,9 +248,9 @@ Runner add_tiles_command(CLI::App& app) {
       ->capture_default_str()
       ->check(finite_positive());
   plan->add_option("--halo", args->plan.halo_m, "context read around each tile, m")->capture_default_str();
-  plan->add_flag(
-      "--hold-neighbours", args->plan.hold_neighbours,
-      "each tile holds what its neighbours of earlier phases fitted where they meet (links exact)");
+  plan->add_flag("--hold-neighbours,!--no-hold-neighbours", args->plan.hold_neighbours,
+                 "each tile holds what its neighbours of earlier phases fitted where they meet, so that "
+                 "links meet exactly (default; --no-hold-neighbours: each tile fits its window alone)");
 
   auto* build = tiles->add_subcommand(
       "build", "Build tiles of a plan into DIR/tiles/X_Y (unchanged tiles are skipped)");
