@@ -47,9 +47,10 @@ bool in_path(const EndShape& c, const EndShape& a, const EndShape& b) {
   return hull.size() >= 3 && segment_polygon_distance(c.right, c.left, hull) <= 0.0;
 }
 
-// Grows the trims of the usable road ends at junction j in steps until no two overlap. Ends
-// that reach their cap mark their roads `stuck`; where ends still overlap, the junction goes
-// into `overlaps` and is made level in `planes`. Returns the ends whose trims grew.
+// Grows the trims of the usable road ends at junction j in steps until no two overlap and none
+// lies between two others (in_path). Overlapping ends that reach their cap mark their roads
+// `stuck`; where ends still overlap, the junction goes into `overlaps` and is made level in
+// `planes`. Returns the ends whose trims grew.
 std::size_t grow_apart(JunctionEnds& state, const Junction& j, std::vector<std::uint8_t>& stuck,
                        EndTrimResult& out, std::vector<Vec2>& planes) {
   const RoadNetwork& network = state.network;
@@ -67,8 +68,8 @@ std::size_t grow_apart(JunctionEnds& state, const Junction& j, std::vector<std::
   std::vector<std::uint8_t> grown(ends.size(), 0), capped(ends.size(), 0);
   bool clear = false;
   for (int pass = 0; pass < kMaxTrimPasses; ++pass) {
-    // Ends that overlap another; ends lying between two others (grown too, but no reason to
-    // make the junction level or join it: connecting roads only pass over them).
+    // Ends that overlap another; ends lying between two others (grown too, but they do not
+    // make the junction level: only connecting roads pass over them, no road end).
     std::vector<std::uint8_t> grow(ends.size(), 0), between(ends.size(), 0);
     for (std::size_t a = 0; a < ends.size(); ++a) {
       for (std::size_t b = a + 1; b < ends.size(); ++b) {

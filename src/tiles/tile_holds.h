@@ -39,8 +39,9 @@ constexpr double kJunctionHoldReachM = 150.0;
 /// meet its own: at every junction it owns (junction_anchor in the core, xodr_merge.h) or one of
 /// the roads it owns (road_anchor in the core) ends at, the junction's plane and the stations
 /// within kJunctionHoldReachM of it (and short of the road's middle) of each road there that it
-/// owns, or of every road there when it owns the junction. Only there: the rest of a road is the owner's copy
-/// in the merge, and holding it whole would pin a neighbour's fit to what a window saw far from its core.
+/// owns, or of every road there when it owns the junction. Only there: the rest of a road is the
+/// owner's copy in the merge, and holding it whole would pin a neighbour's fit to what a window
+/// saw far from its core.
 [[nodiscard]] TileHolds tile_holds(const RoadNetwork& network, const ProfileFitResult& fit,
                                    const RoadModel& model, const Aabb2& core);
 
