@@ -59,13 +59,14 @@ TEST(Regions, LiechtensteinRegion) {
   Diagnostics d;
   const BuildResult result = build_region(o, "liechtenstein", 409.2, d);
   const RunReport& r = result.report;
-  // Every gate passes. netconvert cuts the lanes of road 2550 (drawn beside the joined junction
-  // J169's other roads) where the junction outline reaches over it, 56 m before its end; the
-  // internal lanes are extended along the OpenDRIVE lane to meet them (sumo_seams.h).
+  // Every gate passes. netconvert cut the lanes of road 2550 (drawn beside the joined junction
+  // J169's other roads) where the junction outline reached over it, 56 m before its end, and the
+  // internal lanes were extended along the OpenDRIVE lane to meet them (sumo_seams.h); since road
+  // ends lying between two others are trimmed out of their way, no lane needs that.
   expect_gates(r, {});
   ASSERT_TRUE(r.sumo);
   EXPECT_LT(r.sumo->max_handover_gap_m, 0.1);
-  EXPECT_NEAR(r.sumo->handover_max_extension_m, 56.0, 1.0);
+  EXPECT_LT(r.sumo->handover_max_extension_m, 1.0);
   // Measured: RMSE 0.31 m, max 13.0 m; roads 0.33 % and connecting roads 0.63 % over their cap.
   EXPECT_LT(gate(r, "ground_vs_dem_rmse_m").value, 0.35);
   EXPECT_LT(gate(r, "ground_vs_dem_max_m").value, 15.0);
