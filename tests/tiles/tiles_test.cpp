@@ -443,7 +443,7 @@ std::pair<double, double> distance_to(const Vec3& p, const std::vector<Vec3>& li
 // Plans `osm` in tiles, builds every tile in this process, builds the whole region in the plan's
 // frame and merges the tiles against it.
 Region tile_and_merge(const std::filesystem::path& osm, const std::string& dem, double tile_m,
-                      const std::filesystem::path& dir, double halo_m = 500.0, bool hold_neighbours = true) {
+                      const std::filesystem::path& dir, double halo_m = 500.0, bool hold_neighbours = false) {
   Diagnostics d;
   TilePlanOptions plan;
   plan.osm_path = osm;
