@@ -64,6 +64,27 @@ TileHolds tile_holds(const RoadNetwork& network, const ProfileFitResult& fit, co
     if (!owns(core, junction_anchor(model, j))) continue;
     for (const int source : j.source_junctions) owned_junction[static_cast<std::size_t>(source)] = 1;
   }
+  // A transition road (no network road of its own, between two roads) is its attribute change's
+  // junction in the merge: the tile keeping it owns that junction, so that a neighbour built
+  // later holds both roads' ends there as this tile fitted them (the generated 2 000 km region:
+  // a tunnel's end 4.3 cm off the transition road the next tile built).
+  for (const ModelRoad& t : model.roads) {
+    if (t.junction != -1 || t.source_road >= 0 || !t.predecessor || !t.successor ||
+        t.predecessor->element != RoadLink::Element::road ||
+        t.successor->element != RoadLink::Element::road || !owns(core, road_anchor(t)))
+      continue;
+    const int a = model.road_index(t.predecessor->id), b = model.road_index(t.successor->id);
+    if (a < 0 || b < 0) continue;
+    const int ra = model.roads[static_cast<std::size_t>(a)].source_road;
+    const int rb = model.roads[static_cast<std::size_t>(b)].source_road;
+    if (ra < 0 || rb < 0) continue;
+    const Road& na = network.roads[static_cast<std::size_t>(ra)];
+    const Road& nb = network.roads[static_cast<std::size_t>(rb)];
+    for (const int ja : {na.start_junction, na.end_junction}) {
+      if (ja >= 0 && (ja == nb.start_junction || ja == nb.end_junction))
+        owned_junction[static_cast<std::size_t>(ja)] = 1;
+    }
+  }
   // At every junction it owns or one of its roads ends at: the plane, and the stations within
   // reach of the junction of every road there it owns (of every road, at a junction it owns),
   // never past the road's middle: the far end's junction is its owner's to hold, with its plane.
