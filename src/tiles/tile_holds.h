@@ -36,7 +36,8 @@ struct TileHolds {
 constexpr double kJunctionHoldReachM = 150.0;
 
 /// What a tile owning `core` fitted that its neighbours must build alike where their elements
-/// meet its own: at every junction it owns (junction_anchor in the core, xodr_merge.h) or one of
+/// meet its own: at every junction it owns (junction_anchor in the core, xodr_merge.h, or the
+/// anchor of the transition road it keeps at an attribute change) or one of
 /// the roads it owns (road_anchor in the core) ends at, the junction's plane and the stations
 /// within kJunctionHoldReachM of it (and short of the road's middle) of each road there that it
 /// owns, or of every road there when it owns the junction. Only there: the rest of a road is the
