@@ -14,6 +14,7 @@ set(relief_tools_tests
   "^(Corpus|Fuzz|Regions|Sumo)\\."
   # region tiles merged (the merge builds the region's SUMO network: netconvert)
   "^Tiles\\.(OldTownMergesLikeTheWholeBuild|AStructureChainLongerThanTheHaloMergesLikeTheWholeBuild)$"
+  "^Tiles\\.OldTownFarFromTheFrameOriginMergesLikeTheWholeBuild$"
   "^Tiles\\.(ARoadSplitBeyondTheWindowIsOwnedByTheTileOfItsMidpoint|TilesHoldWhatTheirNeighboursFittedSoTheyMeetWhereWindowsSeeTooLittle)$"
   "^TilesRealData\\."
   # a relief build with the SUMO output, then SUMO in this process (libsumo)
@@ -33,6 +34,7 @@ set(relief_realdata_tests
   "^Build\\.(FailedRunLeavesNoOutputs|PotreroIdwDiffersFromBilinear)$"
   "^Info\\.DescribesPotreroWithoutWriting$"
   "^TilesTerrain\\."
+  "^TilePlan\\.TakesTheFrameCentreItIsGiven$"
   "^MeshPipeline\\.(PotreroTilesAddUpToTheScene|PotreroCarlaPackageHoldsTheFilesWritten)$"
   "^MeshPipeline\\.PotreroCarlaLargeMapFillsTheTileGrid$")
 

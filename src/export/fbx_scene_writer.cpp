@@ -77,12 +77,14 @@ Node global_settings() {
   return g;
 }
 
-Node geometry(std::int64_t id, const MeshDesc& mesh) {
+Node geometry(std::int64_t id, const MeshDesc& mesh, const std::array<double, 3>& offset) {
   Node g{"Geometry", {id, object_name(mesh.name, "Geometry"), std::string("Mesh")}, {}};
   g.add("GeometryVersion", {std::int32_t{124}});
   std::vector<double> xyz;
   xyz.reserve(3 * mesh.positions.size());
-  for (const auto& p : mesh.positions) xyz.insert(xyz.end(), p.begin(), p.end());
+  for (const auto& p : mesh.positions) {
+    for (std::size_t k = 0; k < 3; ++k) xyz.push_back(double{p[k]} + offset[k]);
+  }
   g.add_one("Vertices", std::move(xyz));
   // The last index of each polygon is stored as -(index + 1).
   std::vector<std::int32_t> polygon_vertices;
@@ -212,7 +214,7 @@ std::string encode_scene(const SceneDesc& scene) {
 
   Node objects{"Objects", {}, {}};
   for (std::size_t i = 0; i < scene.meshes.size(); ++i) {
-    objects.children.push_back(geometry(geometry_id(i), scene.meshes[i]));
+    objects.children.push_back(geometry(geometry_id(i), scene.meshes[i], scene.offset));
     objects.children.push_back(model(model_id(i), scene.meshes[i], scene));
   }
   for (std::size_t i = 0; i < scene.materials.size(); ++i) {

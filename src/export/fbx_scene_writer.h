@@ -35,6 +35,10 @@ struct SceneDesc {
   /// SceneInfo: Blender shows them as object custom properties, assimp as node metadata.
   std::vector<std::pair<std::string, std::string>> user_properties;
   std::string creator = "relief";
+  /// Added to every position (file axes; whole metres): the file origin the positions are
+  /// relative to (MeshScene::file_origin), zero for positions in the frame itself. The glb puts
+  /// it in its root node's translation; FBX and OBJ write the sums, in double.
+  std::array<double, 3> offset{0.0, 0.0, 0.0};
 };
 
 /// The binary FBX file. Deterministic: the creation time is fixed (1970-01-01 10:00, with the

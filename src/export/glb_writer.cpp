@@ -163,6 +163,7 @@ std::string encode_glb(const fbx::SceneDesc& scene, const std::vector<GlbTrack>&
   j["meshes"] = nlohmann::json::array();
   j["nodes"] = nlohmann::json::array(
       {{{"name", "relief"}, {"extras", extras}, {"children", nlohmann::json::array()}}});
+  if (scene.offset != std::array<double, 3>{0.0, 0.0, 0.0}) j["nodes"][0]["translation"] = scene.offset;
   for (const fbx::MeshDesc& mesh : scene.meshes) {
     nlohmann::json attributes = {
         {"POSITION", doc.add(mesh.positions, "VEC3", kFloat, kArrayBuffer, /*bounds=*/true)}};

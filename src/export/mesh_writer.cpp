@@ -11,8 +11,10 @@
 #include <algorithm>
 #include <array>
 #include <cctype>
+#include <cmath>
 #include <fstream>
 #include <map>
+#include <optional>
 #include <sstream>
 
 #include "export/fbx_scene_writer.h"
@@ -59,10 +61,42 @@ Vec3 from_file_axes(double x, double y, double z) {
   return {x, -z, y};
 }
 
+constexpr const char* kFileOriginKey = "relief:file_origin";
+
+// Where the positions of `scene` are written from: its file origin, with the quantum doubled
+// until every vertex lies within 2^24 quanta of it (so that a float holds each exactly), or
+// nothing. Throws InvalidInput for an origin off whole metres or a quantum not a power of two.
+std::optional<FileOrigin> placement_of(const MeshScene& scene) {
+  if (!scene.file_origin) return std::nullopt;
+  FileOrigin o = *scene.file_origin;
+  int exponent = 0;
+  if (!o.at.allFinite() || o.at != o.at.array().round().matrix() || !std::isfinite(o.quantum_m) ||
+      !(o.quantum_m > 0.0) || std::frexp(o.quantum_m, &exponent) != 0.5) {
+    throw InvalidInput(
+        "mesh scene: a file origin must lie on whole metres and its quantum be a power of two");
+  }
+  double far = 0.0;
+  for (const TriangleMesh& mesh : scene.meshes)
+    for (const Vec3& v : mesh.vertices) far = std::max(far, (v.head<2>() - o.at).cwiseAbs().maxCoeff());
+  constexpr double kFloatIntegers = 16777216.0;  // 2^24
+  while (far + o.quantum_m > kFloatIntegers * o.quantum_m) o.quantum_m *= 2.0;
+  o.at = (o.at / o.quantum_m).array().round().matrix() * o.quantum_m;  // on the quantum's grid too
+  return o;
+}
+
 // The scene in file axes and float, one material per kind used (in order of first use);
 // shared by the assimp and the FBX encoders. Throws InvalidInput for a bad index.
 fbx::SceneDesc prepare_scene(const MeshScene& scene) {
   fbx::SceneDesc out;
+  const std::optional<FileOrigin> placement = placement_of(scene);
+  // x and y on the quantum's grid, relative to the origin: exact in a float.
+  const auto position = [&placement](const Vec3& v) {
+    if (!placement) return to_file_axes(v);
+    const double q = placement->quantum_m;
+    const Vec2 p = (v.head<2>() / q).array().round().matrix() * q - placement->at;
+    return to_file_axes(Vec3(p.x(), p.y(), v.z()));
+  };
+  if (placement) out.offset = {placement->at.x(), 0.0, -placement->at.y()};
   std::vector<SurfaceKind> kinds;
   for (const TriangleMesh& mesh : scene.meshes) {
     fbx::MeshDesc m;
@@ -78,7 +112,7 @@ fbx::SceneDesc prepare_scene(const MeshScene& scene) {
     }
     m.triangles = mesh.triangles;
     m.positions.reserve(n);
-    for (const Vec3& v : mesh.vertices) m.positions.push_back(to_file_axes(v));
+    for (const Vec3& v : mesh.vertices) m.positions.push_back(position(v));
     if (mesh.normals.size() == n) {
       for (const Vec3& v : mesh.normals) m.normals.push_back(to_file_axes(v));
     }
@@ -105,6 +139,13 @@ fbx::SceneDesc prepare_scene(const MeshScene& scene) {
   metadata["relief:origin"] = origin.str();
   if (!scene.metadata.contains("relief:proj")) metadata["relief:proj"] = scene.frame.proj_string();
   for (const auto& [key, value] : scene.metadata) metadata[key] = value;
+  metadata.erase(kFileOriginKey);
+  if (placement) {
+    std::ostringstream at;
+    at.precision(17);
+    at << placement->at.x() << ' ' << placement->at.y() << ' ' << placement->quantum_m;
+    metadata[kFileOriginKey] = at.str();
+  }
   out.user_properties.assign(metadata.begin(), metadata.end());
   return out;
 }
@@ -186,9 +227,15 @@ TriangleMesh convert_mesh(const aiScene& scene, const aiMesh& src, const aiMatri
   aiMatrix3x3 normal_matrix(to_world);
   normal_matrix.Inverse().Transpose();
   mesh.vertices.reserve(src.mNumVertices);
+  // In double: a file origin's translation plus a position relative to it is exact only there.
+  Eigen::Matrix4d m;
+  for (int r = 0; r < 4; ++r)
+    for (int c = 0; c < 4; ++c) m(r, c) = to_world[static_cast<unsigned>(r)][static_cast<unsigned>(c)];
   for (unsigned i = 0; i < src.mNumVertices; ++i) {
-    const aiVector3D p = to_world * src.mVertices[i];
-    mesh.vertices.push_back(from_file_axes(p.x, p.y, p.z));
+    const aiVector3D& v = src.mVertices[i];
+    const Eigen::Vector3d p =
+        m.topLeftCorner<3, 3>() * Eigen::Vector3d(v.x, v.y, v.z) + m.topRightCorner<3, 1>();
+    mesh.vertices.push_back(from_file_axes(p.x(), p.y(), p.z()));
   }
   if (src.mNormals != nullptr) {
     mesh.normals.reserve(src.mNumVertices);
@@ -377,6 +424,14 @@ MeshScene read_mesh_file(const std::filesystem::path& path) {
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
   if (ext == ".obj") read_obj_metadata(path, out.metadata);
   restore_frame(out);
+  // The file origin it was written with, so that writing it again keeps it (the positions read
+  // are in the frame already).
+  if (const auto it = out.metadata.find(kFileOriginKey); it != out.metadata.end()) {
+    std::istringstream in(it->second);
+    FileOrigin o;
+    if (in >> o.at.x() >> o.at.y() >> o.quantum_m) out.file_origin = o;
+    out.metadata.erase(it);
+  }
   return out;
 }
 

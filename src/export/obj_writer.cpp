@@ -12,6 +12,13 @@ void append_float(std::string& out, float value) {
   out.append(buffer, ec == std::errc() ? end : buffer);
 }
 
+// Shortest text that reads back as the same double.
+void append_double(std::string& out, double value) {
+  char buffer[32];
+  const auto [end, ec] = std::to_chars(buffer, buffer + sizeof buffer, value);
+  out.append(buffer, ec == std::errc() ? end : buffer);
+}
+
 void append_uint(std::string& out, std::size_t value) {
   char buffer[24];
   const auto [end, ec] = std::to_chars(buffer, buffer + sizeof buffer, value);
@@ -39,13 +46,17 @@ void write_obj(const fbx::SceneDesc& scene, const std::string& mtl_name, const s
   for (const fbx::MeshDesc& mesh : scene.meshes) {
     o +=
         "\no " + mesh.name + "\ng " + mesh.name + "\nusemtl " + scene.materials.at(mesh.material).name + "\n";
+    const bool offset = scene.offset != std::array<double, 3>{0.0, 0.0, 0.0};
     for (const auto& p : mesh.positions) {
-      o += "v ";
-      append_float(o, p[0]);
-      o += ' ';
-      append_float(o, p[1]);
-      o += ' ';
-      append_float(o, p[2]);
+      o += "v";
+      for (std::size_t k = 0; k < 3; ++k) {
+        o += ' ';
+        if (offset) {
+          append_double(o, double{p[k]} + scene.offset[k]);  // exact: see SceneDesc::offset
+        } else {
+          append_float(o, p[k]);
+        }
+      }
       o += '\n';
       flush(false);
     }

@@ -70,11 +70,22 @@ void check_size(double size_m) {
 
 }  // namespace
 
+FileOrigin cell_file_origin(double size_m, long long column, long long row) {
+  check_size(size_m);
+  FileOrigin o;
+  o.at = Vec2(std::round((static_cast<double>(column) + 0.5) * size_m),
+              std::round((static_cast<double>(row) + 0.5) * size_m));
+  // A float holds every multiple k q with |k| <= 2^24 exactly: 2^24 q >= 2 size_m.
+  o.quantum_m = std::exp2(std::ceil(std::log2(size_m / 8388608.0)));
+  return o;
+}
+
 MeshScene scene_in_cell(const MeshScene& scene, double size_m, long long column, long long row) {
   check_size(size_m);
   MeshScene out;
   out.frame = scene.frame;
   out.metadata = scene.metadata;
+  out.file_origin = cell_file_origin(size_m, column, row);
   for (const TriangleMesh& mesh : scene.meshes) {
     std::vector<std::uint32_t> ids;
     for (std::size_t i = 0; i < mesh.triangles.size(); ++i) {

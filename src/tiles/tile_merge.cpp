@@ -135,6 +135,7 @@ TileMergeResult merge_tiles(const std::filesystem::path& dir, const TileMergeOpt
     detail::scene_bounds(scenes[i], tile.min, tile.max);
     // The coarse level: a glb of its own, measured against the full tile.
     detail::SceneLod lod = detail::coarsen_scene(scenes[i], lod_cell_m, scene_cores[i]);
+    lod.scene.file_origin = scenes[i].file_origin;
     tile.coarse_uri = scene_names[i] + "_lod1.glb";
     detail::scene_bounds(lod.scene, tile.coarse_min, tile.coarse_max);
     tile.coarse_error_m = lod.error_m();

@@ -232,7 +232,7 @@ TileManifest plan_tiles(const TilePlanOptions& options) {
 
   TileManifest m;
   m.name = options.name.empty() ? default_name(options.osm_path) : options.name;
-  m.frame_centre = bounds_of(roads.nodes).centre();
+  m.frame_centre = options.frame_centre ? *options.frame_centre : bounds_of(roads.nodes).centre();
   m.frame = options.crs ? GeoFrame::in_crs(*options.crs, m.frame_centre) : GeoFrame::utm_at(m.frame_centre);
   m.tile_size_m = options.tile_size_m;
   m.halo_m = options.halo_m;

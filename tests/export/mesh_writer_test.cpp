@@ -13,6 +13,7 @@
 #include <set>
 
 #include "relief/core/errors.h"
+#include "relief/geometry/mesh_tiles.h"
 #include "support/blender.h"
 #include "support/test_data.h"
 
@@ -186,6 +187,121 @@ TEST(MeshWriter, ReadThrowsIoErrorNamingTheFile) {
 // glTF keeps the indexed vertices: every count round-trips.
 TEST(MeshWriter, GlbRoundTripKeepsCountsPositionsAndMetadata) {
   expect_round_trip(MeshFormat::glb, [](const TriangleMesh& m) { return m.vertices.size(); });
+}
+
+// A strip of triangles 4 mm wide in 2 km tile (-68, -1) of a region, 135 km from the frame's
+// origin, where a float step is 15.6 mm: written in the frame's coordinates the strip's sides
+// collapse onto one line (the 2 000 km region's merge had 34 "self-intersecting" Road_Road pairs
+// of such zero-area triangles). With the tile's file origin every format holds the positions to
+// the quantum (2^-12 m); the .glb reads back exact to it, and a vertex two tiles share reads back
+// with the same bits from both.
+MeshScene far_strip(const std::optional<FileOrigin>& origin) {
+  MeshScene s;
+  s.frame = GeoFrame("EPSG:32610", Vec2(701044.0, 4180022.0));
+  TriangleMesh m;
+  m.name = "Road_Road";
+  for (int i = 0; i <= 10; ++i) {
+    m.vertices.emplace_back(-134594.3 + 0.3 * i, -320.37 - 1.625 * i, 300.0 + 0.01 * i);
+    m.vertices.emplace_back(-134594.3 + 0.3 * i + 0.004, -320.37 - 1.625 * i, 300.0 + 0.01 * i);
+  }
+  for (std::uint32_t i = 0; i < 10; ++i) {
+    m.triangles.push_back({2 * i, 2 * i + 3, 2 * i + 1});  // counter-clockwise from above
+    m.triangles.push_back({2 * i, 2 * i + 2, 2 * i + 3});
+  }
+  s.meshes.push_back(m);
+  s.file_origin = origin;
+  return s;
+}
+
+double smallest_plan_area(const TriangleMesh& m) {
+  double smallest = std::numeric_limits<double>::infinity();
+  for (const auto& t : m.triangles) {
+    const Vec2 a = m.vertices[t[0]].head<2>(), b = m.vertices[t[1]].head<2>(), c = m.vertices[t[2]].head<2>();
+    const Vec2 u = b - a, v = c - a;
+    smallest = std::min(smallest, 0.5 * (u.x() * v.y() - u.y() * v.x()));
+  }
+  return smallest;
+}
+
+TEST(MeshWriter, AFileOriginKeepsATileFarFromTheFrameOriginExact) {
+  const FileOrigin tile = cell_file_origin(2000.0, -68, -1);
+  EXPECT_EQ(tile.at, Vec2(-135000.0, -1000.0));
+  EXPECT_EQ(tile.quantum_m, std::exp2(-12.0));
+  EXPECT_EQ(cell_file_origin(500.0, 3, 0).quantum_m, std::exp2(-14.0));
+  const auto dir = test::scratch_dir("mesh_writer_file_origin");
+  // Without: the 4 mm strip collapses (every triangle's plan area 0 or folded).
+  const MeshScene plain = far_strip(std::nullopt);
+  ASSERT_GT(smallest_plan_area(plain.meshes[0]), 5e-4);
+  const MeshScene lost = read_mesh_file(write_files(encode_mesh_scene(plain, MeshFormat::glb, "lost"), dir));
+  EXPECT_LE(smallest_plan_area(lost.meshes[0]), 0.0);
+
+  const MeshScene scene = far_strip(tile);
+  const double q = tile.quantum_m;
+  const auto quantised = [q](const Vec3& v) {
+    return Vec3(std::round(v.x() / q) * q, std::round(v.y() / q) * q,
+                static_cast<double>(static_cast<float>(v.z())));
+  };
+  const MeshScene back = read_mesh_file(write_files(encode_mesh_scene(scene, MeshFormat::glb, "kept"), dir));
+  ASSERT_EQ(back.meshes.size(), 1U);
+  ASSERT_EQ(back.meshes[0].vertices.size(), scene.meshes[0].vertices.size());
+  for (std::size_t i = 0; i < scene.meshes[0].vertices.size(); ++i) {
+    EXPECT_EQ(back.meshes[0].vertices[i], quantised(scene.meshes[0].vertices[i])) << i;
+    EXPECT_LE((back.meshes[0].vertices[i] - scene.meshes[0].vertices[i]).head<2>().cwiseAbs().maxCoeff(),
+              q / 2);
+  }
+  EXPECT_NEAR(smallest_plan_area(back.meshes[0]), smallest_plan_area(scene.meshes[0]),
+              1.625 * q);                     // side 1.625 m, width to q
+  ASSERT_TRUE(back.file_origin.has_value());  // kept for writing it again
+  EXPECT_EQ(back.file_origin->at, tile.at);
+  EXPECT_EQ(back.file_origin->quantum_m, q);
+  EXPECT_FALSE(back.metadata.contains("relief:file_origin"));
+  EXPECT_EQ(back.frame.origin(), scene.frame.origin());
+  // The glb's root node carries the origin (file axes, y up), its positions are relative to it.
+  const std::string glb = encode_mesh_scene(scene, MeshFormat::glb, "kept").front().bytes;
+  std::uint32_t json_length = 0;
+  std::memcpy(&json_length, glb.data() + 12, 4);
+  const nlohmann::json j = nlohmann::json::parse(glb.substr(20, json_length));
+  EXPECT_EQ(j["nodes"][0]["translation"], nlohmann::json({-135000.0, 0.0, 1000.0}));
+  EXPECT_LT(j["accessors"][0]["max"][0].get<double>(), 500.0);
+
+  // OBJ: the same quantised positions, absolute, as text that reads back as the same double.
+  const std::vector<EncodedFile> obj = encode_mesh_scene(scene, MeshFormat::obj, "kept");
+  std::istringstream lines(obj.front().bytes);
+  std::vector<Vec3> written;
+  for (std::string line; std::getline(lines, line);) {
+    if (line.rfind("v ", 0) != 0) continue;
+    std::istringstream v(line.substr(2));
+    double x = 0, y = 0, z = 0;
+    v >> x >> y >> z;
+    written.emplace_back(x, -z, y);  // file axes back to the frame's
+  }
+  ASSERT_EQ(written.size(), scene.meshes[0].vertices.size());
+  for (std::size_t i = 0; i < written.size(); ++i)
+    EXPECT_EQ(written[i], quantised(scene.meshes[0].vertices[i])) << i;
+
+  // A vertex on the line between tiles (-68, -1) and (-67, -1), near it, and near a corner:
+  // the same bits from either tile's file.
+  for (const Vec3& p : {Vec3(-134000.0, -1234.5678, 301.0), Vec3(-133999.99987, -1.00003, 302.0),
+                        Vec3(-134000.00011, -1999.99991, 303.0)}) {
+    MeshScene a = far_strip(tile);
+    a.meshes[0].vertices[0] = p;
+    MeshScene b = far_strip(cell_file_origin(2000.0, -67, -1));
+    b.meshes[0].vertices[0] = p;
+    const MeshScene ra = read_mesh_file(write_files(encode_mesh_scene(a, MeshFormat::glb, "a"), dir));
+    const MeshScene rb = read_mesh_file(write_files(encode_mesh_scene(b, MeshFormat::glb, "b"), dir));
+    EXPECT_EQ(ra.meshes[0].vertices[0], rb.meshes[0].vertices[0]);
+    EXPECT_EQ(ra.meshes[0].vertices[0], quantised(p));
+  }
+  // A vertex beyond 2^24 quanta of the origin doubles the quantum rather than lose exactness.
+  MeshScene wide = far_strip(tile);
+  wide.meshes[0].vertices[0].x() += 5000.0;
+  const MeshScene rw = read_mesh_file(write_files(encode_mesh_scene(wide, MeshFormat::glb, "wide"), dir));
+  ASSERT_TRUE(rw.file_origin.has_value());
+  EXPECT_EQ(rw.file_origin->quantum_m, 2 * q);
+  MeshScene bad = far_strip(FileOrigin{Vec2(0.5, 0.0), q});
+  EXPECT_THROW((void)encode_mesh_scene(bad, MeshFormat::glb, "bad"), InvalidInput);
+  bad.file_origin = FileOrigin{Vec2::Zero(), 0.001};
+  EXPECT_THROW((void)encode_mesh_scene(bad, MeshFormat::glb, "bad"), InvalidInput);
 }
 
 // The .glb's own layout, as the glTF 2.0 spec has it: header and two 4-byte aligned chunks,

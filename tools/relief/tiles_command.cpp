@@ -89,6 +89,7 @@ int run_plan(const TilesArgs& a, const CLI::App& cmd) {
   plan.dem_paths = a.build.options.dem_paths;
   plan.name = a.build.options.name;
   plan.crs = a.build.options.crs;
+  plan.frame_centre = a.build.options.frame_centre;
   plan.osm = a.build.options.osm;
   plan.build_args = given_build_args(cmd);
   if (std::find(plan.build_args.begin(), plan.build_args.end(), "--outputs") == plan.build_args.end()) {

@@ -28,8 +28,13 @@ struct SceneTile {
 
 /// The triangles of `scene` that split_into_tiles puts in the grid cell (column, row), counted
 /// from the frame's origin (cell (c, r) spans size_m * [c, c + 1) x [r, r + 1)): a region tile's
-/// own piece of a scene built over its window. Same frame and metadata; meshes without triangles
-/// there are left out.
+/// own piece of a scene built over its window. Same frame and metadata, the cell's file origin;
+/// meshes without triangles there are left out.
+/// The FileOrigin (triangle_mesh.h) of grid cell (column, row) of size_m (cell (c, r) spans size_m * [c, c +
+/// 1)): its centre in whole metres, the smallest power-of-two quantum at which a float holds every value
+/// within 2 size_m of it. Throws InvalidInput unless size_m is positive and finite.
+[[nodiscard]] FileOrigin cell_file_origin(double size_m, long long column, long long row);
+
 [[nodiscard]] MeshScene scene_in_cell(const MeshScene& scene, double size_m, long long column, long long row);
 
 }  // namespace relief

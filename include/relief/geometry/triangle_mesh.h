@@ -7,6 +7,7 @@
 #include <array>
 #include <cstdint>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -35,11 +36,25 @@ struct TriangleMesh {
   void append(const TriangleMesh& other);
 };
 
+/// Where a file puts its own origin, for a scene far from its frame's origin (a region tile
+/// 150 km out, where a float step is 1.6 cm and narrow triangles collapse or fold over). The
+/// writers round x and y to whole multiples of `quantum_m` (a power of two) and write them
+/// relative to `at` (whole metres), which every such value then holds exactly as a float; z
+/// stays as it is. The same point gives the same value in every tile whose origins share the
+/// quantum, so neighbouring tiles still share their border vertices bit for bit.
+struct FileOrigin {
+  Vec2 at = Vec2::Zero();  ///< local frame, whole metres
+  double quantum_m = 0.0;  ///< a power of two
+};
+
 /// A set of named meshes in one frame, as written to one file.
 struct MeshScene {
   GeoFrame frame;  ///< the local frame the vertices are in
   std::vector<TriangleMesh> meshes;
   std::map<std::string, std::string> metadata;  ///< e.g. "relief:proj" -> frame PROJ string
+  /// Unset: files carry the local frame's coordinates as floats (half a float step is 0.24 mm
+  /// at 4 km from the origin). Set: as FileOrigin says (export/mesh_writer.h).
+  std::optional<FileOrigin> file_origin;
 };
 
 /// The triangles with keep[i] != 0 (keep.size() == triangles.size(), else InvalidInput), with

@@ -67,6 +67,9 @@ struct TilePlanOptions {
   std::vector<std::string> dem_paths;
   std::string name;                ///< default: the OSM file's stem
   std::optional<std::string> crs;  ///< default: the WGS84 UTM zone of the region's centre
+  /// Centre of the local frame (--origin): default, the centre of the road nodes' box. Give a
+  /// whole build's --origin to plan tiles in its frame, or another plan's to share its grid.
+  std::optional<LonLat> frame_centre;
   double tile_size_m = 2000.0;
   /// Context read around each tile. A road's profile feels the network for a few hundred
   /// metres; 500 m keeps heights within millimetres of a whole build (README, tiles).
