@@ -129,6 +129,7 @@ std::vector<SceneTile> split_into_tiles(const MeshScene& scene, double size_m) {
         Vec2(static_cast<double>(cell.second + 1) * size_m, static_cast<double>(cell.first + 1) * size_m));
     tile.scene.frame = scene.frame;
     tile.scene.metadata = scene.metadata;
+    tile.scene.file_origin = cell_file_origin(size_m, cell.second, cell.first);
     tile.scene.metadata["relief:tile"] = std::to_string(tile.x) + " " + std::to_string(tile.y);
     std::string bounds;
     for (const double v :

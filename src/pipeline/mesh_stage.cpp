@@ -1,6 +1,8 @@
 #include "pipeline/mesh_stage.h"
 
 #include <algorithm>
+#include <cmath>
+#include <iomanip>
 #include <limits>
 #include <set>
 #include <sstream>
@@ -48,6 +50,35 @@ void core_terrain(const Scene& built, MeshScene& core) {
   if (!owned.triangles.empty()) core.meshes.push_back(std::move(owned));
 }
 
+// A scene written in the frame's own coordinates (no file origin) that reaches where a float
+// steps by more than 1 mm (beyond 16 384 m of the origin): its files hold the vertices only to
+// that step, and narrow triangles collapse. Said once, with where and how coarse.
+void warn_if_far_from_origin(const MeshScene& scene, Diagnostics& diagnostics) {
+  if (scene.file_origin) return;
+  double far = 0.0;
+  Vec2 where = Vec2::Zero();
+  for (const TriangleMesh& mesh : scene.meshes) {
+    for (const Vec3& v : mesh.vertices) {
+      const double d = v.head<2>().cwiseAbs().maxCoeff();
+      if (d > far) {
+        far = d;
+        where = v.head<2>();
+      }
+    }
+  }
+  constexpr double kOneMillimetreStep = 16384.0;  // a float's step is 2^-9 m = 1.95 mm beyond
+  if (!(far >= kOneMillimetreStep)) return;
+  const double step_mm = 1000.0 * std::exp2(std::floor(std::log2(far)) - 23.0);
+  std::ostringstream m;
+  m.precision(3);
+  m << "the scene reaches " << far / 1000.0 << " km from the frame's origin (at " << std::fixed
+    << std::setprecision(0) << where.x() << ", " << where.y() << "), where a float steps by "
+    << std::setprecision(1) << step_mm
+    << " mm: its mesh files hold the vertices only to that, and narrow triangles collapse; build it as "
+       "region tiles (relief tiles) or with --mesh-tile-size, whose files each have their own origin";
+  diagnostics.report(Severity::warning, codes::kMeshFarFromOrigin, m.str());
+}
+
 }  // namespace
 
 Scene build_scene_stage(const MeshStageInput& in, StageTimer& timer) {
@@ -77,6 +108,7 @@ MeshSummary write_mesh_outputs(const MeshStageInput& in, const Scene& built, Out
                        : MeshScene{};
   if (options.mesh_core_size_m > 0.0) core_terrain(built, core);
   const MeshScene& scene = options.mesh_core_size_m > 0.0 ? core : built.meshes;
+  if (!options.mesh_formats.empty()) warn_if_far_from_origin(scene, in.diagnostics);
   // The checks only read the scene, so they run beside the file writers.
   BackgroundStage<SceneChecks> check("check meshes (beside the files)", [&] { return check_scene(built); });
 

@@ -10,6 +10,7 @@
 #include <fstream>
 #include <iostream>
 #include <map>
+#include <numbers>
 #include <optional>
 #include <regex>
 #include <set>
@@ -534,6 +535,45 @@ TEST(MeshPipeline, StraightRoadOnAPlaneIsExact) {
   }
   EXPECT_LE(worst_m, 1e-6 + 2e-6);  // plus the float rounding of the file (z ~ 20 m: 1e-6)
   EXPECT_LE(m.xodr_surface_max_distance_m, 1e-6);
+}
+
+// A scene 20 km from its frame's origin, where a float steps by 1.95 mm: the build says its mesh
+// files are that coarse (mesh.far_from_origin, once); its --mesh-tile-size tiles each carry their
+// own origin and read back exact to their quantum. At the frame's own centre nothing is said.
+TEST(MeshPipeline, AFileFarFromTheFrameOriginIsSaidAndTilesKeepItExact) {
+  const test::OsmSketch sketch = test::OsmSketch(R"(
+      A----------B
+  )",
+                                                 10.0, synthetic_origin_lonlat())
+                                     .way("AB", {{"highway", "residential"}, {"lanes", "2"}});
+  BuildOptions o = synthetic_options("far", sketch, [](double x, double) { return 20.0 + 0.01 * x; });
+  o.mesh_formats = {MeshFormat::glb};
+  const SceneBuild near = build_scene(o);
+  EXPECT_EQ(near.diagnostics.count("mesh.far_from_origin"), 0U);
+  const LonLat centre = synthetic_origin_lonlat();
+  o.frame_centre = LonLat{
+      centre.lon_deg + 20.0 / (111.32 * std::cos(centre.lat_deg * std::numbers::pi / 180.0)), centre.lat_deg};
+  o.mesh_tile_size_m = 500.0;
+  const SceneBuild far = build_scene(o);
+  EXPECT_EQ(far.diagnostics.at("mesh.far_from_origin"), 1U);
+  const MeshScene whole = read_mesh_file(o.out_dir / "far.glb");
+  EXPECT_FALSE(whole.file_origin.has_value());
+  std::size_t tiles = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(o.out_dir)) {
+    const std::string file = entry.path().filename().string();
+    if (!file.starts_with("far_Tile_") || entry.path().extension() != ".glb") continue;
+    ++tiles;
+    const MeshScene tile = read_mesh_file(entry.path());
+    ASSERT_TRUE(tile.file_origin.has_value()) << file;
+    EXPECT_LT(tile.file_origin->at.x(), -19000.0) << file;
+    EXPECT_EQ(tile.file_origin->quantum_m, std::exp2(-14.0)) << file;
+    for (const TriangleMesh& m : tile.meshes)
+      for (const Vec3& v : m.vertices) {
+        EXPECT_EQ(v.x(), std::round(v.x() * 16384.0) / 16384.0);
+        EXPECT_EQ(v.y(), std::round(v.y() * 16384.0) / 16384.0);
+      }
+  }
+  EXPECT_GT(tiles, 0U);
 }
 
 // Two ways crossing without a shared node (a data defect): a node is put at the crossing, which

@@ -102,6 +102,8 @@ inline constexpr DiagnosticCode kMeshRoadsOverlapInPlan{
 inline constexpr DiagnosticCode kMeshStructureTerrainIntersections{
     "mesh.structure_terrain_intersections",
     "a deck, tunnel or road piece under another road cuts the terrain"};
+inline constexpr DiagnosticCode kMeshFarFromOrigin{
+    "mesh.far_from_origin", "a mesh file reaches where a float steps by more than 1 mm; tiles keep it exact"};
 
 // SUMO network (export/sumo_network.h) and its stage.
 inline constexpr DiagnosticCode kSumoLoopSkipped{
@@ -177,6 +179,7 @@ inline constexpr std::array kAll{kDemDatumGridMissing,
                                  kMeshRoadSelfIntersections,
                                  kMeshRoadsOverlapInPlan,
                                  kMeshStructureTerrainIntersections,
+                                 kMeshFarFromOrigin,
                                  kCarlaTileGridGap,
                                  kTilesLinkUnresolved,
                                  kTilesHaloGate,

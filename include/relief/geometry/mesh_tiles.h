@@ -21,9 +21,9 @@ struct SceneTile {
 /// the tiles' triangle counts add up to the scene's and neighbouring tiles share the exact
 /// vertex positions along their ragged common edge (no gap, no overlap). Each tile's meshes keep
 /// their names and kinds (a mesh without triangles in a tile is left out of it), its scene the
-/// frame and metadata plus "relief:tile" ("X Y") and "relief:tile_bounds" ("xmin ymin xmax ymax",
-/// local metres). Tiles without triangles are left out; tiles come in row-major order (y, then x).
-/// Linear in the number of triangles. Throws InvalidInput unless size_m is positive and finite.
+/// cell's file origin, the frame and metadata plus "relief:tile" ("X Y") and "relief:tile_bounds" ("xmin ymin
+/// xmax ymax", local metres). Tiles without triangles are left out; tiles come in row-major order (y, then
+/// x). Linear in the number of triangles. Throws InvalidInput unless size_m is positive and finite.
 [[nodiscard]] std::vector<SceneTile> split_into_tiles(const MeshScene& scene, double size_m);
 
 /// The triangles of `scene` that split_into_tiles puts in the grid cell (column, row), counted
