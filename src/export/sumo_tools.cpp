@@ -116,9 +116,12 @@ NetconvertRun run_netconvert(const SumoPlainNetwork& net, const std::filesystem:
 DemandRun make_demand(const std::filesystem::path& work_dir, const std::string& name,
                       const DemandOptions& options) {
   if (options.trips <= 0) throw InvalidInput("demand: the number of trips must be > 0");
-  const std::filesystem::path net = work_dir / (name + ".net.xml");
-  const std::filesystem::path trips = work_dir / (name + ".trips.xml");
-  const std::filesystem::path routes = work_dir / (name + ".rou.xml");
+  // randomTrips.py and duarouter run in the work directory: a relative path would be read from
+  // there (and randomTrips, not finding it, takes it for a URL).
+  const std::filesystem::path dir = std::filesystem::absolute(work_dir);
+  const std::filesystem::path net = dir / (name + ".net.xml");
+  const std::filesystem::path trips = dir / (name + ".trips.xml");
+  const std::filesystem::path routes = dir / (name + ".rou.xml");
   const double end = options.end_s > options.begin_s ? options.end_s : options.begin_s + options.trips;
   const double period = (end - options.begin_s) / options.trips;
   std::string period_text, begin_text, end_text;
@@ -148,7 +151,7 @@ DemandRun make_demand(const std::filesystem::path& work_dir, const std::string& 
                                                "--trip-attributes",
                                                "departLane=\"best\" departSpeed=\"max\"",
                                                "--validate"},
-                                              sumo_tool_environment(), work_dir);
+                                              sumo_tool_environment(), dir);
   run.log += trips_run.output;
   if (trips_run.exit_code != 0) {
     throw IoError("randomTrips.py failed on '" + net.string() + "': " + tail(trips_run.output));
@@ -157,7 +160,7 @@ DemandRun make_demand(const std::filesystem::path& work_dir, const std::string& 
       run_process({sumo_tool("duarouter").string(), "--net-file", net.string(), "--route-files",
                    trips.string(), "--output-file", routes.string(), "--ignore-errors", "true",
                    "--no-step-log", "true", "--seed", std::to_string(options.seed)},
-                  sumo_tool_environment(), work_dir);
+                  sumo_tool_environment(), dir);
   run.log += route_run.output;
   if (route_run.exit_code != 0)
     throw IoError("duarouter failed on '" + trips.string() + "': " + tail(route_run.output));

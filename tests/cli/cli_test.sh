@@ -179,6 +179,10 @@ check "sumo routes" run 0 "$out" build --osm "$fix/hill.osm" --dem "$fix/hill_de
   --outputs xodr,sumo --routes 20
 check "sumo net written" test -s "$out/hill.net.xml"
 check "sumo routes written" grep -q "<vehicle " "$out/hill.rou.xml"
+# The same with an output directory relative to the working directory (SUMO's tools run in it).
+check "sumo routes, relative --out" bash -c "cd '$RELIEF_TMP' && '$RELIEF' build --osm '$fix/hill.osm' \
+  --dem '$fix/hill_dem.asc' --out routes_relative --quiet --outputs xodr,sumo --routes 20 >/dev/null 2>&1 \
+  && grep -q '<vehicle ' routes_relative/hill.rou.xml"
 check "sumocfg step length" python3 - "$out/hill.sumocfg" <<'PY'
 import sys, xml.etree.ElementTree as ET
 c = ET.parse(sys.argv[1]).getroot()
