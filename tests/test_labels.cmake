@@ -18,7 +18,7 @@ set(relief_tools_tests
   "^Tiles\\.(ARoadSplitBeyondTheWindowIsOwnedByTheTileOfItsMidpoint|TilesHoldWhatTheirNeighboursFittedSoTheyMeetWhereWindowsSeeTooLittle)$"
   "^TilesRealData\\."
   # a relief build with the SUMO output, then SUMO in this process (libsumo)
-  "^(Cosim|SumoSession)\\."
+  "^(Cosim|CosimRealData|SumoSession)\\."
   # a relief build, then randomTrips.py, duarouter, routeSampler.py and SUMO
   "^Demand\\."
   # xmllint, python3 (xmlschema, the HTML parse), blender

@@ -94,6 +94,11 @@ void write_cosim_json(const std::filesystem::path& path, const CosimInputs& inpu
   j["ego_steps_held_by_sumo"] = r.ego_steps_held;
   j["resync_log"] = r.resync_log;
   j["ego_speed_gap_mps"] = r.egos > 0 ? spread_json(r.ego_speed_gap_mps) : Json(nullptr);
+  j["ego_z_error_m"] = r.egos > 0 ? spread_json(r.ego_z_error_m) : Json(nullptr);
+  j["worst_ego_z_place"] = r.worst_ego_z_place;
+  j["ego_steps_wheels_in_air"] = r.ego_steps_wheels_in_air;
+  j["wheels_in_air_z_max_m"] = r.wheels_in_air_z_max_m;
+  j["worst_in_air_place"] = r.worst_in_air_place;
   if (options.lidars.empty()) {
     j["lidar"] = nullptr;
   } else {

@@ -109,7 +109,9 @@ std::string cosim_html(const CosimInputs& inputs, const CosimOptions& options, c
   if (r.egos > 0)
     row(h, "egos",
         std::to_string(r.egos) + ", sync error " + spread(r.sync_error_m, " m", 3) + ", " +
-            std::to_string(r.resyncs) + " resyncs");
+            std::to_string(r.resyncs) + " resyncs, " + std::to_string(r.ego_steps_wheels_in_air) +
+            " steps with a wheel in the air (z off the surface up to " + num(r.wheels_in_air_z_max_m, 3) +
+            " m)");
   h += "</table>\n";
   const LidarFigures& l = r.lidar;
   if (l.sensors > 0) {

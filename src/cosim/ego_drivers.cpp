@@ -158,6 +158,7 @@ SurfacePose EgoDrivers::pose(const std::string& id) const {
   p.z_m = s.ground_z_m;
   p.pitch_rad = s.pitch_rad;
   p.roll_rad = s.roll_rad;
+  p.wheels_in_air = 4 - s.wheels_on_ground;
   for (std::size_t i = 0; i < 4; ++i) {
     const Vec3& c = s.contacts[i];
     const std::optional<SurfaceHit> hit = query_.nearest(c.x(), c.y(), c.z());

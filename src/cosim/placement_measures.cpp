@@ -134,11 +134,6 @@ void PlacementMeasures::add(const SumoVehicleState& v, const SurfacePose& pose, 
     return;
   }
   const double z_error = std::abs(pose.z_m - at_centre->z_m);
-  z_errors_.push_back(static_cast<float>(z_error));
-  (centre_lane->starts_with(':') ? z_errors_junction_ : z_errors_road_)
-      .push_back(static_cast<float>(z_error));
-  if (slope)
-    pitch_errors_.push_back(static_cast<float>(std::abs(pose.pitch_rad - std::atan(*slope)) * kDegree));
   // The vehicle, time, lane and place of an error (the worst of its kind so far).
   const auto place = [&](double error) {
     std::ostringstream where;
@@ -147,6 +142,29 @@ void PlacementMeasures::add(const SumoVehicleState& v, const SurfacePose& pose, 
           << "): " << error << " m";
     return where.str();
   };
+  if (!sumo_placed) {
+    // An ego: the physics' body on its suspension, not a placement. With a wheel off the ground
+    // (a crest taken fast lifts it) counted apart.
+    if (pose.wheels_in_air > 0) {
+      ++result.ego_steps_wheels_in_air;
+      if (z_error > result.wheels_in_air_z_max_m) {
+        result.wheels_in_air_z_max_m = z_error;
+        result.worst_in_air_place = place(z_error);
+      }
+    } else {
+      ego_z_errors_.push_back(static_cast<float>(z_error));
+      if (z_error > worst_ego_z_) {
+        worst_ego_z_ = z_error;
+        result.worst_ego_z_place = place(z_error);
+      }
+    }
+    return;
+  }
+  z_errors_.push_back(static_cast<float>(z_error));
+  (centre_lane->starts_with(':') ? z_errors_junction_ : z_errors_road_)
+      .push_back(static_cast<float>(z_error));
+  if (slope)
+    pitch_errors_.push_back(static_cast<float>(std::abs(pose.pitch_rad - std::atan(*slope)) * kDegree));
   // The same vehicle set on the OpenDRIVE surface: its wheel contacts' mean height there.
   if (const std::optional<double> body = odr_body_z(v, *centre_lane, *at_centre)) {
     const auto e = static_cast<float>(std::abs(pose.z_m - *body));
@@ -174,6 +192,7 @@ void PlacementMeasures::finish(CosimResult& result, Diagnostics& diagnostics) {
   result.sumo_z_error_m = spread_of(sumo_z_errors_);
   result.pitch_error_deg = spread_of(pitch_errors_);
   result.wheel_under_m = spread_of(wheel_under_);
+  result.ego_z_error_m = spread_of(ego_z_errors_);
   if (result.unplaced > 0) {
     diagnostics.report(Severity::warning, codes::kCosimVehicleOffSurface,
                        std::to_string(result.unplaced) +

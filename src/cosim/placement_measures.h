@@ -2,8 +2,8 @@
 // Private to the cosim module: every placement measured against the OpenDRIVE surface of the
 // lane the vehicle's centre is on (its height, its pitch against the surface's slope along the
 // heading, SUMO's own lane height at the front bumper; the vehicle's body against the same
-// wheel contacts on that surface), the wheel contacts tallied, and the
-// spreads and worst place summed up into a CosimResult.
+// wheel contacts on that surface), the wheel contacts tallied, the egos' physics bodies apart,
+// and the spreads and worst place summed up into a CosimResult.
 
 #include <array>
 #include <optional>
@@ -29,7 +29,8 @@ class PlacementMeasures {
   /// Notes the vehicle's lane (call once per vehicle and step, before add or unplaced).
   void track_lane(const SumoVehicleState& v);
   /// A vehicle set on the surface at time t; SUMO's own lane height at its bumper measured
-  /// when `sumo_placed` (an ego's plan position is the physics', not SUMO's).
+  /// when `sumo_placed`. An ego (not `sumo_placed`: its plan position and body are the
+  /// physics') adds only to the ego spreads (cosim.h ego_z_error_m).
   void add(const SumoVehicleState& v, const SurfacePose& pose, double t, CosimResult& result,
            bool sumo_placed = true);
   /// A vehicle that could not be set on the surface.
@@ -51,8 +52,8 @@ class PlacementMeasures {
   // bumper, may still be on a lane the bumper has left.
   std::unordered_map<std::string, std::array<std::string, 3>> recent_;
   std::vector<float> z_errors_, z_errors_road_, z_errors_junction_, sumo_z_errors_, pitch_errors_,
-      wheel_under_, body_errors_, body_errors_road_, body_errors_junction_;
-  double worst_z_ = -1.0, worst_body_ = -1.0, worst_under_ = 0.0;
+      wheel_under_, body_errors_, body_errors_road_, body_errors_junction_, ego_z_errors_;
+  double worst_z_ = -1.0, worst_body_ = -1.0, worst_under_ = 0.0, worst_ego_z_ = -1.0;
   std::string first_unplaced_, first_unmapped_;
 };
 

@@ -45,11 +45,13 @@ void print_result(const CosimResult& r, const std::string& out) {
   print_spread("pitch vs slope", r.pitch_error_deg, " deg", 3);
   std::cout << "  wheels under   " << r.wheels_under_road << " (deepest " << fixed(r.wheel_under_m.max, 4)
             << " m)\n"
-            << (r.egos > 0 ? "egos       " + std::to_string(r.egos) + ", sync error p50 " +
-                                 fixed(r.sync_error_m.p50, 3) + " m, p99 " + fixed(r.sync_error_m.p99, 3) +
-                                 " m, max " + fixed(r.sync_error_m.max, 3) + " m, " +
-                                 std::to_string(r.resyncs) + " resyncs\n"
-                           : std::string())
+            << (r.egos > 0
+                    ? "egos       " + std::to_string(r.egos) + ", sync error p50 " +
+                          fixed(r.sync_error_m.p50, 3) + " m, p99 " + fixed(r.sync_error_m.p99, 3) +
+                          " m, max " + fixed(r.sync_error_m.max, 3) + " m, " + std::to_string(r.resyncs) +
+                          " resyncs, " + std::to_string(r.ego_steps_wheels_in_air) +
+                          " steps with a wheel in the air\n"
+                    : std::string())
             << (r.lidar.sensors > 0
                     ? "lidar      " + std::to_string(r.lidar.sensors) + " sensor(s), " +
                           std::to_string(r.lidar.sweeps) + " sweeps (" +

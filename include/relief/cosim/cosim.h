@@ -166,7 +166,16 @@ struct CosimResult {
   std::size_t ego_steps_held = 0;       ///< steps SUMO drove an ego (its place on its route was ambiguous)
   std::vector<std::string> resync_log;  ///< the first 100: vehicle, time, error, place
   Spread ego_speed_gap_mps;             ///< |SUMO's speed - the physics' speed| of an ego after a step
-  double physics_s = 0.0;               ///< of relief_s: the egos' physics and driving
+  /// The egos' z are the physics' bodies on their suspension, not placements: their |z - S.z| at
+  /// the centre is measured apart from the vehicles set on the surface (z_error_m and the rest
+  /// above), over the steps with all four wheels on the ground; with a wheel off the ground (a
+  /// crest taken fast lifts it, vehicle_pose.h wheels_in_air) counted apart, with the largest.
+  Spread ego_z_error_m;
+  std::string worst_ego_z_place;  ///< vehicle, time, lane and (x, y) of ego_z_error_m.max
+  std::size_t ego_steps_wheels_in_air = 0;
+  double wheels_in_air_z_max_m = 0.0;
+  std::string worst_in_air_place;  ///< the same for wheels_in_air_z_max_m
+  double physics_s = 0.0;          ///< of relief_s: the egos' physics and driving
   LidarFigures lidar;
   [[nodiscard]] double real_time_factor() const { return wall_s > 0.0 ? simulated_s / wall_s : 0.0; }
 };

@@ -39,6 +39,9 @@ struct SurfacePose {
   /// Contacts with no surface within max_gap_m of their expected height: each took the height
   /// of the plane through the other three (its wheel_under_m is 0).
   int contacts_missing = 0;
+  /// An ego's wheels off the ground (hanging at full extension: over a crest taken fast, a kerb);
+  /// its z is then the physics' and not a placement on the surface. 0 for a placement.
+  int wheels_in_air = 0;
 };
 
 /// Sets a vehicle with its centre at `centre`, heading `heading` (radians, counter-clockwise
