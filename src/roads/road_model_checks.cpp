@@ -220,7 +220,11 @@ LinkContinuity check_link_continuity(const RoadModel& model, double tolerance_m)
       const double v = std::abs(p.z() - q.z());
       ++c.borders_checked;
       if (h > tolerance_m || v > tolerance_m) ++c.over_tolerance;
-      if (h > c.max_horizontal_m || v > c.max_vertical_m) c.worst_road = a.id;
+      if (h > c.max_horizontal_m || v > c.max_vertical_m) {
+        c.worst_road = a.id;
+        c.worst_other_road = b.id;
+        c.worst_at = p;
+      }
       c.max_horizontal_m = std::max(c.max_horizontal_m, h);
       c.max_vertical_m = std::max(c.max_vertical_m, v);
     }

@@ -183,12 +183,28 @@ TileMergeResult merge_tiles(const std::filesystem::path& dir, const TileMergeOpt
     report["opendrive"]["max_link_gap_m"] = links.max_horizontal_m;
     report["opendrive"]["max_link_step_m"] = links.max_vertical_m;
     report["opendrive"]["links_over_1cm"] = links.over_tolerance;
-    if (links.over_tolerance > 0) {
-      std::ostringstream where;
-      where << "merge: " << links.over_tolerance << " lane borders apart at road links (largest "
-            << links.max_horizontal_m << " m in plan, " << links.max_vertical_m << " m in height, road "
-            << links.worst_road << "): tiles disagree there";
-      result.failed_gates.push_back(where.str());
+    if (links.worst_road >= 0) {
+      // Where the largest step is, and which tiles the two roads came from.
+      const auto tile_of = [&](int road) {
+        const auto it = m.road_tile.find(road);
+        return it == m.road_tile.end()
+                   ? std::string("?")
+                   : std::to_string(it->second.first) + "_" + std::to_string(it->second.second);
+      };
+      const Vec3& at = links.worst_at;
+      report["opendrive"]["worst_link"] = {
+          {"roads", {links.worst_road, links.worst_other_road}},
+          {"tiles", {tile_of(links.worst_road), tile_of(links.worst_other_road)}},
+          {"at", {at.x(), at.y(), at.z()}}};
+      if (links.over_tolerance > 0) {
+        std::ostringstream where;
+        where << "merge: " << links.over_tolerance << " lane borders apart at road links (largest "
+              << links.max_horizontal_m << " m in plan, " << links.max_vertical_m << " m in height, road "
+              << links.worst_road << " of tile " << tile_of(links.worst_road) << " to road "
+              << links.worst_other_road << " of tile " << tile_of(links.worst_other_road) << " at (" << at.x()
+              << ", " << at.y() << ")): tiles disagree there";
+        result.failed_gates.push_back(where.str());
+      }
     }
     if (options.whole_xodr) {
       const detail::WholeBuildComparison c =

@@ -138,6 +138,7 @@ ModelMergeResult merge_models(std::vector<TileModel>& tiles) {
       relink(t, road, it->second, road.successor);
       road.id = it->second;
       if (road.junction != -1) road.junction = local[t].junction.at(road.junction);
+      out.road_tile.emplace(road.id, std::pair{tiles[t].x, tiles[t].y});
       out.model.roads.push_back(std::move(road));
     }
   }

@@ -5,6 +5,8 @@
 // (a road by its end at the contact, a junction by its centre).
 
 #include <string>
+#include <unordered_map>
+#include <utility>
 #include <vector>
 
 #include "relief/geometry/types.h"
@@ -23,6 +25,8 @@ struct ModelMergeResult {
   std::size_t links_unresolved = 0;     ///< links whose target no tile owns (dropped)
   std::string first_unresolved;         ///< where, for the message
   std::vector<std::string> unresolved;  ///< every one, where
+  /// The tile each merged road came from (its owner), by merged road id.
+  std::unordered_map<int, std::pair<int, int>> road_tile;
 };
 
 /// Merges the tiles' models (moving their owned roads out). Linear in the roads (hash grids of

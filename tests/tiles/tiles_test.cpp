@@ -822,6 +822,11 @@ TEST(Tiles, TilesHoldWhatTheirNeighboursFittedSoTheyMeetWhereWindowsSeeTooLittle
   EXPECT_EQ(r.report.at("opendrive").at("links_unresolved").get<int>(), 0);
   EXPECT_EQ(r.report.at("opendrive").at("links_over_1cm").get<int>(), 0) << r.report.at("opendrive");
   EXPECT_LE(r.report.at("opendrive").at("max_link_step_m").get<double>(), 1e-6);
+  // The largest step's place: the two roads linked there and the tiles each came from.
+  const auto& worst = r.report.at("opendrive").at("worst_link");
+  EXPECT_NE(worst.at("roads")[0], worst.at("roads")[1]) << worst;
+  for (const auto& tile : worst.at("tiles")) EXPECT_NE(tile.get<std::string>(), "?") << worst;
+  EXPECT_EQ(worst.at("at").size(), 3u);
   EXPECT_TRUE(r.merge.failed_gates.empty()) << r.merge.failed_gates.front();
   EXPECT_EQ(r.merge.roads, w.at("roads").get<std::size_t>());
   std::size_t held = 0, holding_tiles = 0;
@@ -912,7 +917,9 @@ TEST(TilesTerrain, PotreroIn250mTilesMeetsAlongTheTileLines) {
         ASSERT_NE(it, theirs.end()) << a.x << "," << a.y << ": (" << p.first << ", " << p.second << ")";
         // Beyond the DEM (Potrero's is a small subsection) each tile's terrain ends at its own
         // hull, at the hull's height.
-        if (dem_heights.height_at(Vec2(p.first, p.second))) EXPECT_NEAR(it->second, z, 0.01);
+        if (dem_heights.height_at(Vec2(p.first, p.second))) {
+          EXPECT_NEAR(it->second, z, 0.01);
+        }
         ++shared;
       }
     }

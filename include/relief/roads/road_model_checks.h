@@ -15,6 +15,8 @@ struct LinkContinuity {
   std::size_t borders_checked = 0;
   std::size_t over_tolerance = 0;  ///< border pairs with a gap above the tolerance
   int worst_road = -1;             ///< road id where the largest gap is
+  int worst_other_road = -1;       ///< the road it links to there
+  Vec3 worst_at = Vec3::Zero();    ///< the border point of worst_road there
 };
 
 /// At every road-to-road link and at both ends of every connecting road, the inner and outer
