@@ -51,6 +51,12 @@ SeamWeld weld_seams(std::vector<MeshScene>& tiles, double max_dz_m) {
             v.z() = nearest->z;
             continue;
           }
+          SeamApart& apart = weld.left_apart[mesh.name];
+          ++apart.vertices;
+          if (dz > apart.max_m) {
+            apart.max_m = dz;
+            apart.at = v;
+          }
         }
         at.push_back({v.z(), t});
       }

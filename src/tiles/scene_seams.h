@@ -7,21 +7,35 @@
 // bit for bit.
 
 #include <cstddef>
+#include <map>
+#include <string>
 #include <vector>
 
 #include "relief/geometry/triangle_mesh.h"
 
 namespace relief::detail {
 
+/// Shared vertices of one mesh left apart by the weld: how many, the largest height difference
+/// and where (the later tile's vertex).
+struct SeamApart {
+  std::size_t vertices = 0;
+  double max_m = 0.0;
+  Vec3 at = Vec3::Zero();
+};
+
 struct SeamWeld {
   std::size_t shared_vertices = 0;  ///< vertices of a later tile at the plan position of an earlier one's
   std::size_t welded = 0;           ///< of them, moved to the earlier tile's height
   double max_dz_m = 0.0;            ///< largest height difference welded
+  /// Of the shared vertices, those left apart (their heights differ by more than the weld's
+  /// max_dz_m: the two tiles' fits disagree there), by mesh name.
+  std::map<std::string, SeamApart> left_apart;
 };
 
 /// Welds the tiles' meshes of the same name, in the order given: a vertex whose plan position
 /// (exact bits) is a vertex of an earlier tile's mesh and whose height is within `max_dz_m` of
-/// it takes that height. Linear (a hash of plan positions).
+/// it takes that height; one farther is left apart and counted. Linear (a hash of plan
+/// positions).
 SeamWeld weld_seams(std::vector<MeshScene>& tiles, double max_dz_m = 0.01);
 
 /// Every tile's mesh `name` in one mesh, vertices at the same position (exact bits) merged: the

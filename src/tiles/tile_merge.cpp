@@ -254,6 +254,22 @@ TileMergeResult merge_tiles(const std::filesystem::path& dir, const TileMergeOpt
                     {"tiles", lod_json}};
   report["seams"] = {
       {"shared_vertices", weld.shared_vertices}, {"welded", weld.welded}, {"max_dz_m", weld.max_dz_m}};
+  report["seams"]["left_apart"] = nlohmann::json::object();
+  for (const auto& [mesh, apart] : weld.left_apart) {
+    report["seams"]["left_apart"][mesh] = {{"vertices", apart.vertices},
+                                           {"max_m", apart.max_m},
+                                           {"at", {apart.at.x(), apart.at.y(), apart.at.z()}}};
+  }
+  // A road vertex the two tiles put at different heights is a step in the region's road surface
+  // (the terrain is simplified per window, so its seams are not held to this).
+  if (const auto road = weld.left_apart.find("Road_Road"); road != weld.left_apart.end()) {
+    std::ostringstream where;
+    const Vec3& p = road->second.at;
+    where << "merge: " << road->second.vertices
+          << " Road_Road vertices of two tiles more than 1 cm apart in height (largest " << road->second.max_m
+          << " m at (" << p.x() << ", " << p.y() << ", " << p.z() << ")): the tiles' fits disagree there";
+    result.failed_gates.push_back(where.str());
+  }
   if (!scenes.empty()) {
     const MeshQuality road = analyse_mesh(detail::joined_mesh(scenes, "Road_Road"));
     const MeshQuality terrain = analyse_mesh(detail::joined_mesh(scenes, "Terrain"));

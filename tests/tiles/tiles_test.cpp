@@ -32,6 +32,7 @@
 #include "support/synthetic.h"
 #include "support/test_data.h"
 #include "tiles/scene_lod.h"
+#include "tiles/scene_seams.h"
 #include "tiles/tileset_writer.h"
 
 namespace relief {
@@ -360,6 +361,32 @@ bool holds(const Box& outer, const Box& inner) {
   return holds(outer, inner.centre + inner.half) && holds(outer, inner.centre - inner.half);
 }
 
+// Two tiles' copies of a strip across their line: a vertex both have at the same plan position
+// takes the first tile's height when the two lie within the weld's 1 cm, and is left apart and
+// counted, with the largest and its place, when they do not (the two fits disagree there).
+TEST(SceneSeams, AVertexWithinTheToleranceIsWeldedAndOneFartherLeftApartAndCounted) {
+  const auto tile = [](double z0, double z1) {
+    MeshScene scene;
+    TriangleMesh& m = scene.meshes.emplace_back();
+    m.name = "Road_Road";
+    m.vertices = {Vec3(0.0, 0.0, z0), Vec3(10.0, 0.0, z1), Vec3(0.0, 3.0, 5.0)};
+    m.triangles = {{0, 1, 2}};
+    return scene;
+  };
+  std::vector<MeshScene> tiles = {tile(5.0, 6.0), tile(5.004, 6.017)};
+  const detail::SeamWeld weld = detail::weld_seams(tiles);
+  EXPECT_EQ(weld.shared_vertices, 3u);
+  EXPECT_EQ(weld.welded, 1u);
+  EXPECT_NEAR(weld.max_dz_m, 0.004, 1e-12);
+  EXPECT_EQ(tiles[1].meshes[0].vertices[0].z(), 5.0);    // welded to the first tile's
+  EXPECT_EQ(tiles[1].meshes[0].vertices[1].z(), 6.017);  // left apart
+  ASSERT_EQ(weld.left_apart.size(), 1u);
+  const detail::SeamApart& apart = weld.left_apart.at("Road_Road");
+  EXPECT_EQ(apart.vertices, 1u);
+  EXPECT_NEAR(apart.max_m, 0.017, 1e-12);
+  EXPECT_EQ(apart.at, Vec3(10.0, 0.0, 6.017));
+}
+
 TEST(Tileset, CoarseTilesRefineByReplacementAndBoxesHoldTheirContent) {
   detail::TilesetTile a;
   a.uri = "r_Tile_0_0.glb";
@@ -600,6 +627,7 @@ void expect_like_the_whole_build(const Region& r, double max_dz_m = 1e-3) {
   EXPECT_LE(w.at("max_z_m").get<double>(), max_dz_m);  // the fit, to its gap tolerance
   EXPECT_GT(r.report.at("seams").at("shared_vertices").get<int>(), 0);
   EXPECT_LE(r.report.at("seams").at("max_dz_m").get<double>(), max_dz_m);
+  EXPECT_FALSE(r.report.at("seams").at("left_apart").contains("Road_Road")) << r.report.at("seams");
   const auto& road = r.report.at("joined").at("Road_Road");
   EXPECT_EQ(road.at("self_intersecting_pairs").get<int>(), 0);
   EXPECT_EQ(road.at("non_manifold_edges").get<int>(), 0);
