@@ -2,9 +2,10 @@
 // The seams between a region's scene tiles. Each tile is built over its own window, so a vertex
 // on the line between two tiles is computed twice: its plan position comes out with the same
 // bits in both builds (the reference lines and the DEM do not depend on the window) and its
-// height within the fit's agreement (well under a millimetre). The weld gives every such vertex
-// the height of the first tile that has it, so neighbouring tiles share their border vertices
-// bit for bit.
+// height within the fits' agreement (well under a millimetre where the windows see enough). The
+// weld gives every such vertex the height of the first tile that has it, so neighbouring tiles
+// share their border vertices bit for bit; where the two fits disagree by more than the weld's
+// tolerance the vertex is left apart and counted (a step the merge reports).
 
 #include <cstddef>
 #include <map>
