@@ -54,6 +54,29 @@ std::filesystem::path container_file(const std::filesystem::path& path) {
 
 }  // namespace
 
+std::string absolute_input_path(const std::string& path) {
+  std::error_code ec;
+  const auto absolute = [](const std::filesystem::path& p) {
+    return std::filesystem::absolute(p).lexically_normal().string();
+  };
+  if (path.rfind("/vsi", 0) == 0) {
+    const std::size_t start = path.find('/', 1);  // the end of "/vsiNAME"
+    if (start == std::string::npos || start + 1 >= path.size() || path[start + 1] == '/') return path;
+    // A relative container: the shortest prefix of the rest that is a regular file.
+    const std::string rest = path.substr(start + 1);
+    for (std::size_t next = rest.find('/');; next = rest.find('/', next + 1)) {
+      const std::string candidate = rest.substr(0, next);
+      if (std::filesystem::is_regular_file(candidate, ec))
+        return path.substr(0, start + 1) + absolute(candidate) +
+               (next == std::string::npos ? std::string() : rest.substr(next));
+      if (next == std::string::npos) return path;
+    }
+  }
+  const std::filesystem::path p(path);
+  if (p.is_relative() && std::filesystem::exists(p, ec)) return absolute(p);
+  return path;
+}
+
 std::string sha256_hex(std::string_view bytes) {
   Sha256 digest;
   digest.update(bytes.data(), bytes.size());

@@ -302,8 +302,11 @@ TileManifest plan_tiles(const TilePlanOptions& options) {
     }
     m.tiles.push_back(t);
   }
-  m.inputs.push_back({options.osm_path.string(), sha256_of_file(options.osm_path), "osm"});
-  for (const std::string& dem : options.dem_paths) m.inputs.push_back({dem, sha256_of_file(dem), "dem"});
+  // Absolute: the tiles are built wherever their builder runs (tile_build reads the OSM from here).
+  m.inputs.push_back(
+      {absolute_input_path(options.osm_path.string()), sha256_of_file(options.osm_path), "osm"});
+  for (const std::string& dem : options.dem_paths)
+    m.inputs.push_back({absolute_input_path(dem), sha256_of_file(dem), "dem"});
   return m;
 }
 

@@ -627,8 +627,17 @@ fi
 if [ -d "$potrero" ]; then
   t="$RELIEF_TMP/tiles"
   pdem="$potrero/USGS_13_n38w123-subsection-small-potrero.tif"
-  check "tiles plan" run 0 "$t" tiles plan --osm "$potrero/sf-potrero.osm.gz" --dem "$pdem" --tile-size 250 \
-    --out "$t" --no-compare
+  # Planned with paths relative to another directory: the plan records its inputs absolute, so
+  # the tiles build from here (as on a cluster's workers).
+  check "tiles plan" bash -c "cd '$potrero' && '$RELIEF' tiles plan --osm sf-potrero.osm.gz \
+    --dem '$(basename "$pdem")' --tile-size 250 --out '$t' --no-compare >'$RELIEF_TMP/stdout' 2>'$RELIEF_TMP/err'"
+  check "tiles plan records absolute inputs" python3 - "$t/manifest.json" "$pdem" <<'PY'
+import json, os, sys
+m = json.load(open(sys.argv[1]))
+assert all(os.path.isabs(i["path"]) and os.path.isfile(i["path"]) for i in m["inputs"]), m["inputs"]
+dem = m["build_args"][m["build_args"].index("--dem") + 1]
+assert os.path.samefile(dem, sys.argv[2]), dem
+PY
   check "tiles merge before the build" run 3 "$t" tiles merge "$t"
   check "tiles merge before the build message" stderr_has "is not built: run relief tiles build"
   check "tiles unknown tile" run 2 "$t" tiles build "$t" --tile 99,99

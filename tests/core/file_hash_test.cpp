@@ -33,5 +33,30 @@ TEST(FileHash, AFileAndAGdalVirtualPathIntoIt) {
   EXPECT_THROW((void)sha256_of_file("/vsizip/" + (dir / "missing.zip").string() + "/b.hgt"), IoError);
 }
 
+// A plan records its inputs so that any working directory reads the same files.
+TEST(FileHash, AnInputPathReadsTheSameFileFromAnyWorkingDirectory) {
+  const std::filesystem::path dir = test::scratch_dir("input_paths");
+  std::ofstream(dir / "dem.zip") << "zip";
+  std::ofstream(dir / "dem.tif") << "tif";
+  const std::filesystem::path before = std::filesystem::current_path();
+  std::filesystem::current_path(dir.parent_path());
+  const std::string name = dir.filename().string();
+  const std::string abs = dir.lexically_normal().string();
+  EXPECT_EQ(absolute_input_path(name + "/dem.tif"), abs + "/dem.tif");
+  EXPECT_EQ(absolute_input_path("./" + name + "/dem.tif"), abs + "/dem.tif");
+  EXPECT_EQ(absolute_input_path("/vsizip/" + name + "/dem.zip/inner/b.hgt"),
+            "/vsizip/" + abs + "/dem.zip/inner/b.hgt");
+  EXPECT_EQ(absolute_input_path("/vsigzip/" + name + "/dem.zip"), "/vsigzip/" + abs + "/dem.zip");
+  // As given: absolute, not found, a container already absolute, a URL.
+  EXPECT_EQ(absolute_input_path(abs + "/dem.tif"), abs + "/dem.tif");
+  EXPECT_EQ(absolute_input_path(name + "/missing.tif"), name + "/missing.tif");
+  EXPECT_EQ(absolute_input_path("/vsizip/" + abs + "/dem.zip/b.hgt"), "/vsizip/" + abs + "/dem.zip/b.hgt");
+  EXPECT_EQ(absolute_input_path("/vsizip/" + name + "/missing.zip/b.hgt"),
+            "/vsizip/" + name + "/missing.zip/b.hgt");
+  EXPECT_EQ(absolute_input_path("/vsicurl/https://example.org/dem.tif"),
+            "/vsicurl/https://example.org/dem.tif");
+  std::filesystem::current_path(before);
+}
+
 }  // namespace
 }  // namespace relief

@@ -12,6 +12,7 @@
 #include "console.h"
 #include "options.h"
 #include "relief/core/errors.h"
+#include "relief/core/file_hash.h"
 #include "relief/core/subprocess.h"
 #include "relief/tiles/tiles.h"
 
@@ -35,9 +36,11 @@ std::vector<std::string> given_build_args(const CLI::App& cmd) {
       args.push_back(name);
       continue;
     }
+    // The tiles are built wherever their builder runs: input files by absolute paths.
+    const bool input = name == "--dem" || name == "--reference-dem";
     for (const std::string& value : opt->results()) {
       args.push_back(name);
-      args.push_back(value);
+      args.push_back(input ? absolute_input_path(value) : value);
     }
   }
   return args;

@@ -16,4 +16,11 @@ namespace relief {
 /// first component of the path that is a regular file. Throws IoError when it cannot be read.
 [[nodiscard]] std::string sha256_of_file(const std::filesystem::path& path);
 
+/// An input path that reads the same file from any working directory (a plan's tiles are built
+/// wherever its builder runs: another directory, a cluster's worker): a relative path to an
+/// existing file made absolute; a GDAL virtual path whose container is relative to an existing
+/// file ("/vsizip/a.zip/b.hgt") with that container made absolute ("/vsizip//work/a.zip/b.hgt");
+/// anything else (absolute, not found, a URL) as given.
+[[nodiscard]] std::string absolute_input_path(const std::string& path);
+
 }  // namespace relief
