@@ -1,7 +1,7 @@
 // Issue 16's real scenario: San Francisco's NE quadrant (1 500 random trips over 300 s, 20 of
 // them egos driven by the physics), SUMO in this process and every vehicle set on relief's
 // scene at 20 Hz for 300 s, measured against the OpenDRIVE surface (README, "Co-simulation
-// checks"). About 2 minutes in the Release suite; not run under the sanitizers (.ci/run).
+// checks"). 219 s in the Release suite of CI; not run under the sanitizers (.ci/run).
 
 #include <gtest/gtest.h>
 
