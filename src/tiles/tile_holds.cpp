@@ -1,48 +1,18 @@
 #include "tiles/tile_holds.h"
 
 #include <cmath>
-#include <cstring>
-#include <fstream>
 #include <limits>
 #include <string>
 
 #include "relief/core/atomic_file.h"
 #include "relief/core/errors.h"
+#include "tiles/binary_file.h"
 #include "tiles/xodr_merge.h"
 
 namespace relief::detail {
 namespace {
 
 constexpr char kMagic[] = "relief-tile-holds 1\n";
-
-template <typename T>
-void put(std::string& out, const T& value) {
-  out.append(reinterpret_cast<const char*>(&value), sizeof(T));
-}
-
-class Reader {
- public:
-  Reader(std::string data, std::filesystem::path path) : data_(std::move(data)), path_(std::move(path)) {}
-  template <typename T>
-  T get() {
-    if (pos_ + sizeof(T) > data_.size()) throw InvalidInput(path_.string() + ": truncated tile holds");
-    T value;
-    std::memcpy(&value, data_.data() + pos_, sizeof(T));
-    pos_ += sizeof(T);
-    return value;
-  }
-  void expect(std::string_view text) {
-    if (data_.compare(0, text.size(), text) != 0)
-      throw InvalidInput(path_.string() + ": not a tile holds file");
-    pos_ = text.size();
-  }
-  [[nodiscard]] bool done() const { return pos_ == data_.size(); }
-
- private:
-  std::string data_;
-  std::filesystem::path path_;
-  std::size_t pos_ = 0;
-};
 
 }  // namespace
 
@@ -171,10 +141,7 @@ void write_holds(const std::filesystem::path& path, const TileHolds& holds) {
 }
 
 TileHolds read_holds(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw IoError("cannot read " + path.string());
-  std::string data((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  Reader r(std::move(data), path);
+  BinaryReader r(path, "tile holds");
   r.expect(kMagic);
   TileHolds holds;
   const auto roads = r.get<std::uint64_t>();
@@ -196,7 +163,7 @@ TileHolds read_holds(const std::filesystem::path& path) {
     const auto gy = r.get<double>();
     holds.junction_gradient.emplace(id, Vec2(gx, gy));
   }
-  if (!r.done()) throw InvalidInput(path.string() + ": trailing bytes in tile holds");
+  r.finish();
   return holds;
 }
 
