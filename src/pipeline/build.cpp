@@ -439,6 +439,7 @@ BuildResult build(const BuildOptions& options, Diagnostics& diagnostics, const P
   if (scene_needed) {
     const MeshStageInput in{options, network, built->model, dem, report.name, diagnostics};
     scene.emplace(build_scene_stage(in, timer));
+    if (options.meshed) options.meshed(built->model, *scene);
     if (options.outputs.contains(Output::mesh)) {
       CarlaFbx carla_fbx;
       report.mesh = write_mesh_outputs(in, *scene, files, timer, result.written, report.outputs,

@@ -303,7 +303,9 @@ RoadMeshes build_road_meshes(const RoadModel& model, const RoadMeshOptions& opti
   out.road = finish(road, "Road_Road", SurfaceKind::road);
   out.road_triangle_owner = road.owner;
   out.sidewalk = finish(sidewalk, "Road_Sidewalk", SurfaceKind::sidewalk);
+  out.sidewalk_triangle_owner = sidewalk.owner;
   out.marking = finish(marking, "Road_Marking", SurfaceKind::marking);
+  out.marking_triangle_owner = marking.owner;
   return out;
 }
 

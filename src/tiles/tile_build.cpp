@@ -14,6 +14,7 @@
 #include "relief/export/quality_gates.h"
 #include "relief/tiles/tiles.h"
 #include "tiles/osm_window.h"
+#include "tiles/owner_surface.h"
 #include "tiles/tile_holds.h"
 #include "tiles/tile_record.h"
 
@@ -68,6 +69,7 @@ TileBuildResult build_tile(const std::filesystem::path& dir, const TileManifest&
   // The outputs of an earlier build, and the temporaries of one that was killed, go.
   std::filesystem::remove_all(here / "out");
   std::filesystem::remove(here / detail::kHoldsFile);
+  std::filesystem::remove(here / detail::kOwnedSurfaceFile);
 
   const std::filesystem::path window = here / "window.osm.pbf";
   const detail::WindowCounts counts = detail::extract_window(
@@ -93,6 +95,10 @@ TileBuildResult build_tile(const std::filesystem::path& dir, const TileManifest&
   };
   options.fitted = [&](const RoadNetwork& network, const ProfileFitResult& fit, const RoadModel& model) {
     detail::write_holds(here / detail::kHoldsFile, detail::tile_holds(network, fit, model, spec->core));
+  };
+  options.meshed = [&](const RoadModel& model, const Scene& scene) {
+    detail::write_owned_surface(here / detail::kOwnedSurfaceFile,
+                                detail::owned_surface(model, scene, spec->core));
   };
   const BuildResult built = build(options, diagnostics);
   if (!std::filesystem::exists(here / detail::kHoldsFile)) detail::write_holds(here / detail::kHoldsFile, {});

@@ -17,6 +17,7 @@
 #include "relief/tiles/tiles.h"
 #include "tiles/carla_merge.h"
 #include "tiles/model_alignment.h"
+#include "tiles/owner_surface.h"
 #include "tiles/scene_lod.h"
 #include "tiles/scene_seams.h"
 #include "tiles/sumo_merge.h"
@@ -59,6 +60,7 @@ TileMergeResult merge_tiles(const std::filesystem::path& dir, const TileMergeOpt
   std::vector<detail::TileModel> models;
   std::vector<detail::TilesetTile> tileset;
   std::vector<MeshScene> scenes;
+  std::vector<detail::OwnedSurface> owned;  // per tile that wrote one, in the plan's order
   std::vector<std::string> scene_names;
   std::vector<Aabb2> scene_cores;
   std::vector<std::pair<int, int>> scene_tiles;
@@ -90,6 +92,8 @@ TileMergeResult merge_tiles(const std::filesystem::path& dir, const TileMergeOpt
     if (const std::filesystem::path xodr = out / (manifest.name + ".xodr"); std::filesystem::exists(xodr)) {
       models.push_back({spec.x, spec.y, spec.core, read_opendrive(xodr)});
     }
+    if (const std::filesystem::path o = here / detail::kOwnedSurfaceFile; std::filesystem::exists(o))
+      owned.push_back(detail::read_owned_surface(o));
     if (const std::filesystem::path glb = out / (manifest.name + ".glb");
         std::filesystem::exists(glb) && glb_holds_meshes(glb)) {
       scenes.push_back(read_mesh_file(glb));
@@ -103,7 +107,11 @@ TileMergeResult merge_tiles(const std::filesystem::path& dir, const TileMergeOpt
   }
 
   std::filesystem::create_directories(merged);  // every tile is built: the merge can be written
-  // The scene tiles, their seams welded, then their checks as one surface.
+  // The scene tiles: every paved vertex at its owner's height, their seams welded, then their
+  // checks as one surface.
+  const detail::OwnerHeights heights = detail::take_owner_heights(scenes, owned);
+  owned.clear();
+  owned.shrink_to_fit();
   const detail::SeamWeld weld = detail::weld_seams(scenes);
   const double lod_cell_m = options.lod_cell_m > 0.0 ? options.lod_cell_m : manifest.tile_size_m / 32.0;
   nlohmann::json lod_json = nlohmann::json::array();
@@ -259,6 +267,29 @@ TileMergeResult merge_tiles(const std::filesystem::path& dir, const TileMergeOpt
     report["seams"]["left_apart"][mesh] = {{"vertices", apart.vertices},
                                            {"max_m", apart.max_m},
                                            {"at", {apart.at.x(), apart.at.y(), apart.at.z()}}};
+  }
+  const auto point = [](const Vec3& p) { return nlohmann::json{p.x(), p.y(), p.z()}; };
+  report["seams"]["owner_heights"] = {{"vertices", heights.vertices},
+                                      {"moved", heights.moved},
+                                      {"max_dz_m", heights.max_dz_m},
+                                      {"at", point(heights.at)},
+                                      {"unmatched", heights.unmatched},
+                                      {"unmatched_at", point(heights.unmatched_at)},
+                                      {"interpolated", heights.interpolated},
+                                      {"terrain_moved", heights.terrain_moved},
+                                      {"owners_apart", heights.owners_apart},
+                                      {"owners_apart_max_m", heights.owners_apart_max_m},
+                                      {"owners_apart_at", point(heights.owners_apart_at)}};
+  // Two owners whose surfaces meet at different heights (a road's end and the junction it joins,
+  // from two tiles' fits): the merged surface takes the first's, a step in the other's element.
+  if (heights.owners_apart_max_m > 0.01) {
+    std::ostringstream where;
+    const Vec3& p = heights.owners_apart_at;
+    where << "merge: " << heights.owners_apart
+          << " places where the paved surfaces of two tiles' elements meet "
+          << "more than 1 mm apart, the largest " << heights.owners_apart_max_m << " m at (" << p.x() << ", "
+          << p.y() << ", " << p.z() << ") (over 1 cm): the tiles' fits disagree where their roads join";
+    result.failed_gates.push_back(where.str());
   }
   // A road vertex the two tiles put at different heights is a step in the region's road surface
   // (the terrain is simplified per window, so its seams are not held to this).

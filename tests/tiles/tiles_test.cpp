@@ -628,6 +628,13 @@ void expect_like_the_whole_build(const Region& r, double max_dz_m = 1e-3) {
   EXPECT_GT(r.report.at("seams").at("shared_vertices").get<int>(), 0);
   EXPECT_LE(r.report.at("seams").at("max_dz_m").get<double>(), max_dz_m);
   EXPECT_FALSE(r.report.at("seams").at("left_apart").contains("Road_Road")) << r.report.at("seams");
+  // Every paved vertex of every tile's file at its owner's height (tiles/owner_surface.h): a
+  // station only a non-owner's loft made follows its neighbours.
+  const auto& owner = r.report.at("seams").at("owner_heights");
+  EXPECT_GT(owner.at("vertices").get<std::size_t>(), 0u);
+  EXPECT_EQ(owner.at("unmatched"), owner.at("interpolated")) << owner;
+  // Two owners' elements meet where both agree with the whole build.
+  EXPECT_LE(owner.at("owners_apart_max_m").get<double>(), 2.0 * max_dz_m) << owner;
   const auto& road = r.report.at("joined").at("Road_Road");
   EXPECT_EQ(road.at("self_intersecting_pairs").get<int>(), 0);
   EXPECT_EQ(road.at("non_manifold_edges").get<int>(), 0);

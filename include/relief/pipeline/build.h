@@ -101,6 +101,9 @@ struct BuildOptions {
   /// with the network, the fit and the model (relief's fit only). Unset: neither.
   std::function<FitHolds(const RoadNetwork&, const std::vector<RoadProfile>& raw)> hold_profiles;
   std::function<void(const RoadNetwork&, const ProfileFitResult&, const RoadModel&)> fitted;
+  /// Region tiles: called once the scene is built (before its files are written), with the model
+  /// it was built from. Unset: not called.
+  std::function<void(const RoadModel&, const Scene&)> meshed;
 };
 
 struct BuildResult {

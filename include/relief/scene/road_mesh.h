@@ -31,6 +31,8 @@ struct RoadMeshes {
   TriangleMesh sidewalk;  ///< "Road_Sidewalk" (lanes of type sidewalk; empty if none)
   /// Per triangle of `road`: the OpenDRIVE road id it belongs to, or -1 - junction id.
   std::vector<int> road_triangle_owner;
+  std::vector<int> marking_triangle_owner;   ///< the same per triangle of `marking`
+  std::vector<int> sidewalk_triangle_owner;  ///< the same per triangle of `sidewalk`
   std::size_t junctions_meshed = 0;
   std::size_t junctions_failed = 0;   ///< reported as "mesh.junction_failed"; their area is left open
   std::string first_failed_junction;  ///< "junction J at (x, y, z)" of the first failed; empty if none

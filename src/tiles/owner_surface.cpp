@@ -1,0 +1,285 @@
+#include "tiles/owner_surface.h"
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <numeric>
+#include <optional>
+#include <unordered_map>
+#include <utility>
+
+#include "relief/core/atomic_file.h"
+#include "tiles/binary_file.h"
+#include "tiles/xodr_merge.h"
+
+namespace relief::detail {
+namespace {
+
+constexpr char kMagic[] = "relief-owned-surface 1\n";
+constexpr double kOwnersApartM = 1e-3;  // two owners' heights at one place further apart are reported
+
+// The owners' vertices of one mesh, by grid cells of the tolerance: a lookup searches the 3 x 3
+// cells around its point. Cells are ranges of one array sorted by cell (no allocation per cell).
+class OwnerIndex {
+ public:
+  struct Entry {
+    Vec3 p;
+    std::size_t tile;
+  };
+
+  OwnerIndex(std::vector<Entry> entries, double cell) : cell_(cell), entries_(std::move(entries)) {
+    std::vector<std::uint64_t> keys(entries_.size());
+    for (std::size_t i = 0; i < entries_.size(); ++i)
+      keys[i] = key(cell_of(entries_[i].p.x()), cell_of(entries_[i].p.y()));
+    order_.resize(entries_.size());
+    std::iota(order_.begin(), order_.end(), std::uint32_t{0});
+    // Stable: within a cell, the entries stay in the owners' order (the first owner first).
+    std::stable_sort(order_.begin(), order_.end(),
+                     [&](std::uint32_t a, std::uint32_t b) { return keys[a] < keys[b]; });
+    for (std::size_t i = 0; i < order_.size();) {
+      std::size_t j = i;
+      while (j < order_.size() && keys[order_[j]] == keys[order_[i]]) ++j;
+      ranges_.emplace(keys[order_[i]],
+                      std::make_pair(static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(j)));
+      i = j;
+    }
+  }
+
+  [[nodiscard]] const std::vector<Entry>& entries() const { return entries_; }
+
+  /// The index of the entry nearest `p` in plan within `tolerance` (of equally near ones, the
+  /// first owner's), skipping `skip`.
+  [[nodiscard]] std::optional<std::size_t> nearest(const Vec2& p, double tolerance,
+                                                   std::size_t skip = ~std::size_t{0}) const {
+    std::optional<std::size_t> best;
+    double best_d = 0.0;
+    const long long cx = cell_of(p.x()), cy = cell_of(p.y());
+    for (long long dx = -1; dx <= 1; ++dx) {
+      for (long long dy = -1; dy <= 1; ++dy) {
+        const auto it = ranges_.find(key(cx + dx, cy + dy));
+        if (it == ranges_.end()) continue;
+        for (std::uint32_t k = it->second.first; k < it->second.second; ++k) {
+          const std::size_t i = order_[k];
+          if (i == skip) continue;
+          const double d = (entries_[i].p.head<2>() - p).norm();
+          if (d > tolerance) continue;
+          if (!best || d < best_d || (d == best_d && i < *best)) {
+            best_d = d;
+            best = i;
+          }
+        }
+      }
+    }
+    return best;
+  }
+
+ private:
+  [[nodiscard]] long long cell_of(double v) const { return static_cast<long long>(std::floor(v / cell_)); }
+  static std::uint64_t key(long long x, long long y) {
+    return (static_cast<std::uint64_t>(x) * 0x9E3779B97F4A7C15ull) ^ static_cast<std::uint64_t>(y);
+  }
+  double cell_;
+  std::vector<Entry> entries_;
+  std::vector<std::uint32_t> order_;
+  std::unordered_map<std::uint64_t, std::pair<std::uint32_t, std::uint32_t>> ranges_;
+};
+
+struct PlanBits {
+  std::uint64_t x, y;
+  bool operator==(const PlanBits&) const = default;
+};
+struct PlanBitsHash {
+  std::size_t operator()(const PlanBits& k) const {
+    return std::hash<std::uint64_t>()(k.x * 0x9E3779B97F4A7C15ull ^ k.y);
+  }
+};
+PlanBits plan_bits(const Vec3& v) {
+  return {std::bit_cast<std::uint64_t>(v.x()), std::bit_cast<std::uint64_t>(v.y())};
+}
+
+// Per paved mesh of the scene, the owner (road id or -1 - junction id) of each triangle.
+const std::vector<int>* owners_of(const Scene& scene, const std::string& name) {
+  if (name == "Road_Road") return &scene.roads.road_triangle_owner;
+  if (name == "Road_Sidewalk") return &scene.roads.sidewalk_triangle_owner;
+  if (name == "Road_Marking") return &scene.roads.marking_triangle_owner;
+  return nullptr;
+}
+
+// For each vertex without a height change of its own (NaN in `dz`), the mean of its mesh
+// neighbours' changes weighted by their inverse plan distance (NaN when none has one): a station
+// the owner's loft did not make (its refinement went otherwise) follows the stations around it
+// instead of standing out of the moved surface by the two fits' difference.
+std::vector<double> interpolate_unmatched(const TriangleMesh& mesh, const std::vector<double>& dz) {
+  std::vector<double> sum(dz.size(), 0.0), weight(dz.size(), 0.0);
+  for (const auto& t : mesh.triangles) {
+    for (std::size_t a = 0; a < 3; ++a) {
+      for (std::size_t b = 0; b < 3; ++b) {
+        if (a == b || !std::isnan(dz[t[a]]) || std::isnan(dz[t[b]])) continue;
+        const double d = (mesh.vertices[t[a]].head<2>() - mesh.vertices[t[b]].head<2>()).norm();
+        const double w = 1.0 / std::max(d, 1e-3);
+        sum[t[a]] += w * dz[t[b]];
+        weight[t[a]] += w;
+      }
+    }
+  }
+  std::vector<double> out(dz.size(), std::numeric_limits<double>::quiet_NaN());
+  for (std::size_t i = 0; i < dz.size(); ++i)
+    if (weight[i] > 0.0) out[i] = sum[i] / weight[i];
+  return out;
+}
+
+}  // namespace
+
+OwnedSurface owned_surface(const RoadModel& model, const Scene& scene, const Aabb2& core) {
+  std::unordered_map<int, bool> junction_owned;
+  for (const JunctionModel& j : model.junctions) junction_owned[j.id] = owns(core, junction_anchor(model, j));
+  const auto owned = [&](int owner) {
+    if (owner < 0) {
+      const auto it = junction_owned.find(-1 - owner);
+      return it != junction_owned.end() && it->second;
+    }
+    const int index = model.road_index(owner);
+    if (index < 0) return false;
+    const ModelRoad& road = model.roads[static_cast<std::size_t>(index)];
+    if (road.junction == -1) return owns(core, road_anchor(road));
+    const auto it = junction_owned.find(road.junction);
+    return it != junction_owned.end() && it->second;
+  };
+  std::unordered_map<int, bool> owned_by_id;
+  OwnedSurface out;
+  for (const TriangleMesh& mesh : scene.meshes.meshes) {
+    const std::vector<int>* owners = owners_of(scene, mesh.name);
+    if (owners == nullptr || owners->size() != mesh.triangles.size()) continue;
+    std::vector<std::uint8_t> keep(mesh.vertices.size(), 0);
+    for (std::size_t i = 0; i < mesh.triangles.size(); ++i) {
+      const int owner = (*owners)[i];
+      auto [it, inserted] = owned_by_id.try_emplace(owner, false);
+      if (inserted) it->second = owned(owner);
+      if (!it->second) continue;
+      for (const std::uint32_t v : mesh.triangles[i]) keep[v] = 1;
+    }
+    std::vector<Vec3>& vertices = out.vertices[mesh.name];
+    // Heights as the tile's files hold them (a float), so that a tile's own vertices keep theirs.
+    for (std::size_t v = 0; v < mesh.vertices.size(); ++v) {
+      if (!keep[v]) continue;
+      const Vec3& p = mesh.vertices[v];
+      vertices.emplace_back(p.x(), p.y(), static_cast<double>(static_cast<float>(p.z())));
+    }
+  }
+  return out;
+}
+
+void write_owned_surface(const std::filesystem::path& path, const OwnedSurface& surface) {
+  std::string out(kMagic);
+  put<std::uint64_t>(out, surface.vertices.size());
+  for (const auto& [name, vertices] : surface.vertices) {
+    put<std::uint64_t>(out, name.size());
+    out += name;
+    put<std::uint64_t>(out, vertices.size());
+    for (const Vec3& v : vertices)
+      for (const double c : {v.x(), v.y(), v.z()}) put(out, c);
+  }
+  write_file_atomically(path, out);
+}
+
+OwnedSurface read_owned_surface(const std::filesystem::path& path) {
+  BinaryReader r(path, "owned surface");
+  r.expect(kMagic);
+  OwnedSurface surface;
+  const auto meshes = r.get<std::uint64_t>();
+  for (std::uint64_t m = 0; m < meshes; ++m) {
+    std::string name(r.get<std::uint64_t>(), '\0');
+    for (char& c : name) c = r.get<char>();
+    std::vector<Vec3>& vertices = surface.vertices[name];
+    vertices.resize(r.get<std::uint64_t>());
+    for (Vec3& v : vertices) {
+      const auto x = r.get<double>();
+      const auto y = r.get<double>();
+      v = Vec3(x, y, r.get<double>());
+    }
+  }
+  r.finish();
+  return surface;
+}
+
+OwnerHeights take_owner_heights(std::vector<MeshScene>& tiles, const std::vector<OwnedSurface>& owned,
+                                double tolerance_m) {
+  OwnerHeights out;
+  std::map<std::string, OwnerIndex> indexes;
+  {
+    std::map<std::string, std::vector<OwnerIndex::Entry>> entries;
+    for (std::size_t t = 0; t < owned.size(); ++t)
+      for (const auto& [name, vertices] : owned[t].vertices)
+        for (const Vec3& v : vertices) entries[name].push_back({v, t});
+    for (auto& [name, list] : entries) indexes.emplace(name, OwnerIndex(std::move(list), tolerance_m));
+  }
+  // Where two owners meet: each place once, from the later owner's side.
+  for (const auto& [name, index] : indexes) {
+    const std::vector<OwnerIndex::Entry>& e = index.entries();
+    for (std::size_t i = 0; i < e.size(); ++i) {
+      const std::optional<std::size_t> other = index.nearest(e[i].p.head<2>(), tolerance_m, i);
+      if (!other || *other > i || e[*other].tile == e[i].tile) continue;
+      const double dz = std::abs(e[*other].p.z() - e[i].p.z());
+      if (!(dz > kOwnersApartM)) continue;
+      ++out.owners_apart;
+      if (dz > out.owners_apart_max_m) {
+        out.owners_apart_max_m = dz;
+        out.owners_apart_at = e[i].p;
+      }
+    }
+  }
+  for (MeshScene& tile : tiles) {
+    // Road_Road vertices moved, by plan position: their height before and after.
+    std::unordered_map<PlanBits, std::pair<double, double>, PlanBitsHash> road_moved;
+    for (TriangleMesh& mesh : tile.meshes) {
+      const auto index = indexes.find(mesh.name);
+      if (index == indexes.end()) continue;
+      // Per vertex, the owner's height and that less its own; NaN where no owner has it.
+      std::vector<double> owner_z(mesh.vertices.size(), std::numeric_limits<double>::quiet_NaN());
+      std::vector<double> dz = owner_z;
+      for (std::size_t i = 0; i < mesh.vertices.size(); ++i) {
+        const std::optional<std::size_t> owner =
+            index->second.nearest(mesh.vertices[i].head<2>(), tolerance_m);
+        if (!owner) continue;
+        owner_z[i] = index->second.entries()[*owner].p.z();
+        dz[i] = owner_z[i] - mesh.vertices[i].z();
+      }
+      const std::vector<double> interpolated = interpolate_unmatched(mesh, dz);
+      for (std::size_t i = 0; i < mesh.vertices.size(); ++i) {
+        Vec3& v = mesh.vertices[i];
+        ++out.vertices;
+        double z = owner_z[i];
+        if (std::isnan(z)) {
+          if (out.unmatched++ == 0) out.unmatched_at = v;
+          if (std::isnan(interpolated[i])) continue;
+          ++out.interpolated;
+          z = v.z() + interpolated[i];
+        }
+        if (z == v.z()) continue;
+        ++out.moved;
+        if (std::abs(z - v.z()) > out.max_dz_m) {
+          out.max_dz_m = std::abs(z - v.z());
+          out.at = v;
+        }
+        if (mesh.name == "Road_Road") road_moved.emplace(plan_bits(v), std::make_pair(v.z(), z));
+        v.z() = z;  // the owner's bits: every tile's copy of a shared vertex comes out the same
+      }
+    }
+    if (road_moved.empty()) continue;
+    for (TriangleMesh& mesh : tile.meshes) {
+      if (mesh.name != "Terrain") continue;
+      for (Vec3& v : mesh.vertices) {
+        const auto it = road_moved.find(plan_bits(v));
+        if (it == road_moved.end()) continue;
+        const auto [before, after] = it->second;
+        v.z() = v.z() == before ? after : v.z() + (after - before);  // an opening's top keeps its rise
+        ++out.terrain_moved;
+      }
+    }
+  }
+  return out;
+}
+
+}  // namespace relief::detail
