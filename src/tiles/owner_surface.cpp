@@ -205,7 +205,7 @@ OwnedSurface read_owned_surface(const std::filesystem::path& path) {
 }
 
 OwnerHeights take_owner_heights(std::vector<MeshScene>& tiles, const std::vector<OwnedSurface>& owned,
-                                double tolerance_m) {
+                                const std::vector<Aabb2>& cores, double tolerance_m) {
   OwnerHeights out;
   std::map<std::string, OwnerIndex> indexes;
   {
@@ -230,9 +230,11 @@ OwnerHeights take_owner_heights(std::vector<MeshScene>& tiles, const std::vector
       }
     }
   }
-  for (MeshScene& tile : tiles) {
-    // Road_Road vertices moved, by plan position: their height before and after.
-    std::unordered_map<PlanBits, std::pair<double, double>, PlanBitsHash> road_moved;
+  for (std::size_t t = 0; t < tiles.size(); ++t) {
+    MeshScene& tile = tiles[t];
+    // Road_Road vertices with an owner's (or their neighbours') height, by plan position: their
+    // height before and after.
+    std::unordered_map<PlanBits, std::pair<double, double>, PlanBitsHash> road_heights;
     for (TriangleMesh& mesh : tile.meshes) {
       const auto index = indexes.find(mesh.name);
       if (index == indexes.end()) continue;
@@ -257,25 +259,44 @@ OwnerHeights take_owner_heights(std::vector<MeshScene>& tiles, const std::vector
           ++out.interpolated;
           z = v.z() + interpolated[i];
         }
+        if (mesh.name == "Road_Road") road_heights.emplace(plan_bits(v), std::make_pair(v.z(), z));
         if (z == v.z()) continue;
         ++out.moved;
         if (std::abs(z - v.z()) > out.max_dz_m) {
           out.max_dz_m = std::abs(z - v.z());
           out.at = v;
         }
-        if (mesh.name == "Road_Road") road_moved.emplace(plan_bits(v), std::make_pair(v.z(), z));
         v.z() = z;  // the owner's bits: every tile's copy of a shared vertex comes out the same
       }
     }
-    if (road_moved.empty()) continue;
+    if (road_heights.empty()) continue;
     for (TriangleMesh& mesh : tile.meshes) {
       if (mesh.name != "Terrain") continue;
-      for (Vec3& v : mesh.vertices) {
-        const auto it = road_moved.find(plan_bits(v));
-        if (it == road_moved.end()) continue;
+      std::vector<double> dz(mesh.vertices.size(), std::numeric_limits<double>::quiet_NaN());
+      for (std::size_t i = 0; i < mesh.vertices.size(); ++i) {
+        Vec3& v = mesh.vertices[i];
+        const auto it = road_heights.find(plan_bits(v));
+        if (it == road_heights.end()) continue;
         const auto [before, after] = it->second;
-        v.z() = v.z() == before ? after : v.z() + (after - before);  // an opening's top keeps its rise
+        const double z =
+            v.z() == before ? after : v.z() + (after - before);  // an opening's top keeps its rise
+        dz[i] = z - v.z();
+        if (dz[i] == 0.0) continue;
+        v.z() = z;
         ++out.terrain_moved;
+      }
+      if (t >= cores.size()) continue;
+      // Where a road's edge crosses the tile line the terrain has a vertex of its own between two
+      // road vertices: it follows them, so that it meets the neighbour's copy.
+      const Aabb2& core = cores[t];
+      const std::vector<double> interpolated = interpolate_unmatched(mesh, dz);
+      for (std::size_t i = 0; i < mesh.vertices.size(); ++i) {
+        Vec3& v = mesh.vertices[i];
+        const bool on_line =
+            v.x() == core.min.x() || v.x() == core.max.x() || v.y() == core.min.y() || v.y() == core.max.y();
+        if (!on_line || !std::isnan(dz[i]) || std::isnan(interpolated[i]) || interpolated[i] == 0.0) continue;
+        v.z() += interpolated[i];
+        ++out.terrain_interpolated;
       }
     }
   }

@@ -109,9 +109,14 @@ TileMergeResult merge_tiles(const std::filesystem::path& dir, const TileMergeOpt
   std::filesystem::create_directories(merged);  // every tile is built: the merge can be written
   // The scene tiles: every paved vertex at its owner's height, their seams welded, then their
   // checks as one surface.
-  const detail::OwnerHeights heights = detail::take_owner_heights(scenes, owned);
+  const detail::OwnerHeights heights = detail::take_owner_heights(scenes, owned, scene_cores);
   owned.clear();
   owned.shrink_to_fit();
+  result.paved_vertices = heights.vertices;
+  result.paved_moved = heights.moved;
+  result.paved_unmatched = heights.unmatched;
+  result.paved_interpolated = heights.interpolated;
+  result.paved_max_dz_m = heights.max_dz_m;
   const detail::SeamWeld weld = detail::weld_seams(scenes);
   const double lod_cell_m = options.lod_cell_m > 0.0 ? options.lod_cell_m : manifest.tile_size_m / 32.0;
   nlohmann::json lod_json = nlohmann::json::array();
@@ -277,6 +282,7 @@ TileMergeResult merge_tiles(const std::filesystem::path& dir, const TileMergeOpt
                                       {"unmatched_at", point(heights.unmatched_at)},
                                       {"interpolated", heights.interpolated},
                                       {"terrain_moved", heights.terrain_moved},
+                                      {"terrain_interpolated", heights.terrain_interpolated},
                                       {"owners_apart", heights.owners_apart},
                                       {"owners_apart_max_m", heights.owners_apart_max_m},
                                       {"owners_apart_at", point(heights.owners_apart_at)}};

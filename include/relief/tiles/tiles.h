@@ -163,6 +163,11 @@ struct TileMergeResult {
   std::size_t whole_roads = 0, whole_unmatched = 0;
   double whole_max_xy_m = 0.0, whole_max_z_m = 0.0;
   std::size_t whole_roads_over_1mm = 0;  ///< matched roads whose heights differ by more than 1 mm
+  /// The paved vertices of the scene tiles given their owners' heights (report.json
+  /// seams.owner_heights): how many there are, moved, with no owner's vertex (of them
+  /// interpolated from their neighbours), and the largest change.
+  std::size_t paved_vertices = 0, paved_moved = 0, paved_unmatched = 0, paved_interpolated = 0;
+  double paved_max_dz_m = 0.0;
   /// The coarse level of the scene tiles (NAME_Tile_X_Y_lod1.glb), summed over the tiles, and
   /// the largest measured error of one (its geometricError in tileset.json).
   std::size_t lod_full_triangles = 0, lod_coarse_triangles = 0;
