@@ -16,6 +16,7 @@ set(relief_tools_tests
   "^Tiles\\.(OldTownMergesLikeTheWholeBuild|AStructureChainLongerThanTheHaloMergesLikeTheWholeBuild)$"
   "^Tiles\\.OldTownFarFromTheFrameOriginMergesLikeTheWholeBuild$"
   "^Tiles\\.(ARoadSplitBeyondTheWindowIsOwnedByTheTileOfItsMidpoint|TilesHoldWhatTheirNeighboursFittedSoTheyMeetWhereWindowsSeeTooLittle)$"
+  "^Tiles\\.AMountainRangesRoadsTakeTheirOwnersHeightsAcrossTheTileLines$"
   "^TilesRealData\\."
   # a relief build with the SUMO output, then SUMO in this process (libsumo)
   "^(Cosim|CosimRealData|SumoSession)\\."

@@ -107,26 +107,59 @@ const std::vector<int>* owners_of(const Scene& scene, const std::string& name) {
   return nullptr;
 }
 
-// For each vertex without a height change of its own (NaN in `dz`), the mean of its mesh
-// neighbours' changes weighted by their inverse plan distance (NaN when none has one): a station
-// the owner's loft did not make (its refinement went otherwise) follows the stations around it
-// instead of standing out of the moved surface by the two fits' difference.
-std::vector<double> interpolate_unmatched(const TriangleMesh& mesh, const std::vector<double>& dz) {
-  std::vector<double> sum(dz.size(), 0.0), weight(dz.size(), 0.0);
+// `dz` with each vertex that has no height change of its own (NaN) given the mean of its mesh
+// neighbours' changes weighted by their inverse plan distance, ring by ring out from the vertices
+// that have one, up to `rings` rings (NaN beyond, and where no path leads): a run of stations the
+// owner's loft did not make (its refinement went otherwise) follows the stations around it
+// instead of standing out of the moved surface by the two fits' difference. Linear.
+std::vector<double> interpolate_unmatched(const TriangleMesh& mesh, const std::vector<double>& dz,
+                                          std::size_t rings) {
+  const std::size_t n = dz.size();
+  // Each vertex's neighbours along the triangles' edges (an edge of two triangles counted twice).
+  std::vector<std::size_t> start(n + 1, 0);
+  for (const auto& t : mesh.triangles)
+    for (const std::uint32_t v : t) start[v + 1] += 2;
+  std::partial_sum(start.begin(), start.end(), start.begin());
+  std::vector<std::uint32_t> neighbours(start.back());
+  std::vector<std::size_t> fill(start.begin(), start.end() - 1);
   for (const auto& t : mesh.triangles) {
-    for (std::size_t a = 0; a < 3; ++a) {
-      for (std::size_t b = 0; b < 3; ++b) {
-        if (a == b || !std::isnan(dz[t[a]]) || std::isnan(dz[t[b]])) continue;
-        const double d = (mesh.vertices[t[a]].head<2>() - mesh.vertices[t[b]].head<2>()).norm();
-        const double w = 1.0 / std::max(d, 1e-3);
-        sum[t[a]] += w * dz[t[b]];
-        weight[t[a]] += w;
-      }
+    for (std::size_t k = 0; k < 3; ++k) {
+      neighbours[fill[t[k]]++] = t[(k + 1) % 3];
+      neighbours[fill[t[k]]++] = t[(k + 2) % 3];
     }
   }
-  std::vector<double> out(dz.size(), std::numeric_limits<double>::quiet_NaN());
-  for (std::size_t i = 0; i < dz.size(); ++i)
-    if (weight[i] > 0.0) out[i] = sum[i] / weight[i];
+  std::vector<double> out = dz;
+  std::vector<std::uint8_t> queued(n, 0);
+  std::vector<std::uint32_t> ring;
+  const auto enqueue_around = [&](std::uint32_t v, std::vector<std::uint32_t>& into) {
+    for (std::size_t k = start[v]; k < start[v + 1]; ++k) {
+      const std::uint32_t w = neighbours[k];
+      if (!std::isnan(out[w]) || queued[w]) continue;
+      queued[w] = 1;
+      into.push_back(w);
+    }
+  };
+  for (std::uint32_t v = 0; v < n; ++v)
+    if (!std::isnan(dz[v])) enqueue_around(v, ring);
+  for (std::size_t r = 0; r < rings && !ring.empty(); ++r) {
+    std::vector<double> value(ring.size());
+    for (std::size_t i = 0; i < ring.size(); ++i) {
+      const std::uint32_t v = ring[i];
+      double sum = 0.0, weight = 0.0;
+      for (std::size_t k = start[v]; k < start[v + 1]; ++k) {
+        const std::uint32_t w = neighbours[k];
+        if (std::isnan(out[w])) continue;
+        const double d = (mesh.vertices[v].head<2>() - mesh.vertices[w].head<2>()).norm();
+        sum += out[w] / std::max(d, 1e-3);
+        weight += 1.0 / std::max(d, 1e-3);
+      }
+      value[i] = sum / weight;
+    }
+    for (std::size_t i = 0; i < ring.size(); ++i) out[ring[i]] = value[i];
+    std::vector<std::uint32_t> next;
+    for (const std::uint32_t v : ring) enqueue_around(v, next);
+    ring = std::move(next);
+  }
   return out;
 }
 
@@ -248,7 +281,7 @@ OwnerHeights take_owner_heights(std::vector<MeshScene>& tiles, const std::vector
         owner_z[i] = index->second.entries()[*owner].p.z();
         dz[i] = owner_z[i] - mesh.vertices[i].z();
       }
-      const std::vector<double> interpolated = interpolate_unmatched(mesh, dz);
+      const std::vector<double> interpolated = interpolate_unmatched(mesh, dz, mesh.vertices.size());
       for (std::size_t i = 0; i < mesh.vertices.size(); ++i) {
         Vec3& v = mesh.vertices[i];
         ++out.vertices;
@@ -289,7 +322,7 @@ OwnerHeights take_owner_heights(std::vector<MeshScene>& tiles, const std::vector
       // Where a road's edge crosses the tile line the terrain has a vertex of its own between two
       // road vertices: it follows them, so that it meets the neighbour's copy.
       const Aabb2& core = cores[t];
-      const std::vector<double> interpolated = interpolate_unmatched(mesh, dz);
+      const std::vector<double> interpolated = interpolate_unmatched(mesh, dz, 1);
       for (std::size_t i = 0; i < mesh.vertices.size(); ++i) {
         Vec3& v = mesh.vertices[i];
         const bool on_line =

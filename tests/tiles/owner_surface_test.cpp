@@ -96,8 +96,8 @@ TEST(OwnerSurface, EveryPavedVertexTakesItsOwnersHeightAndTheTerrainEdgeMovesWit
   EXPECT_EQ(weld.max_dz_m, 0.0);
 }
 
-// A vertex no owner has: a station the owner's loft did not make takes its neighbours' change;
-// one with no neighbour that has an owner is left as built. All are counted.
+// A vertex no owner has: a station the owner's loft did not make takes its neighbours' change,
+// ring by ring; one with no path to a vertex an owner has is left as built. All are counted.
 TEST(OwnerSurface, AVertexNoOwnerHasFollowsItsNeighboursOrIsLeftAsBuilt) {
   TwoTiles t = road_across_a_tile_line();
   std::vector<Vec3>& owner = t.owned[0].vertices["Road_Road"];
@@ -110,13 +110,31 @@ TEST(OwnerSurface, AVertexNoOwnerHasFollowsItsNeighboursOrIsLeftAsBuilt) {
     for (const Vec3& v : file.meshes[0].vertices) EXPECT_NEAR(v.z(), owner_z(v.x()), 1e-12) << v.transpose();
   }
 
+  // Two stations in a row (x = 5 and 10): the one next to no owner's vertex follows the other.
+  t = road_across_a_tile_line();
+  std::vector<Vec3>& two = t.owned[0].vertices["Road_Road"];
+  two.erase(two.begin() + 2, two.begin() + 6);
+  h = detail::take_owner_heights(t.files, t.owned);
+  EXPECT_EQ(h.unmatched, 6u);
+  EXPECT_EQ(h.interpolated, 6u);
+  for (const MeshScene& file : t.files) {
+    for (const Vec3& v : file.meshes[0].vertices) EXPECT_NEAR(v.z(), owner_z(v.x()), 1e-12) << v.transpose();
+  }
+
   t = road_across_a_tile_line();
   t.owned[0].vertices["Road_Road"].resize(6);  // A's window ended at x = 10
   h = detail::take_owner_heights(t.files, t.owned);
   EXPECT_EQ(h.unmatched, 4u);     // B's vertices at x = 15 and 20
-  EXPECT_EQ(h.interpolated, 2u);  // at x = 15, next to x = 10
-  EXPECT_EQ(h.moved, 4u);         // and B's at x = 10
-  EXPECT_EQ(t.files[1].meshes[0].vertices.back().z(), owner_z(20.0) + 0.05);
+  EXPECT_EQ(h.interpolated, 4u);  // ring by ring from x = 10
+  EXPECT_EQ(h.moved, 6u);         // and B's at x = 10
+  EXPECT_NEAR(t.files[1].meshes[0].vertices.back().z(), owner_z(20.0), 1e-12);
+  // A piece of road no owner made at all stays as built.
+  t = road_across_a_tile_line();
+  t.files[1].meshes.push_back(strip("Road_Road", {Vec3(50, 50, 7), Vec3(55, 50, 7), Vec3(50, 55, 7)}));
+  h = detail::take_owner_heights(t.files, t.owned);
+  EXPECT_EQ(h.unmatched, 3u);
+  EXPECT_EQ(h.interpolated, 0u);
+  for (const Vec3& v : t.files[1].meshes.back().vertices) EXPECT_EQ(v.z(), 7.0);
   // The tolerance is the plan's: a vertex 2 mm off its owner's is no match.
   TwoTiles off = road_across_a_tile_line();
   for (Vec3& v : off.owned[0].vertices["Road_Road"]) v.x() += 0.002;

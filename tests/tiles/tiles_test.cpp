@@ -877,6 +877,33 @@ TEST(Tiles, TilesHoldWhatTheirNeighboursFittedSoTheyMeetWhereWindowsSeeTooLittle
   EXPECT_GE(holding_tiles, 4u);
 }
 
+// Three generated mountains (`relief_write_corpus mountain-range 3 30`) in 2 km tiles with the
+// holds: each tile fits the pass roads over its own window, so the copies of a road in the two
+// files a tile line cuts it into differ by centimetres (cut by centroid, each from its own fit:
+// steps in the region's road). The merge gives every paved vertex its owner's height: no Road_Road
+// vertex is left apart at a tile line, no two owners meet more than 1 cm apart, the joined
+// Road_Road does not intersect itself, and every vertex no owner made follows its neighbours.
+TEST(Tiles, AMountainRangesRoadsTakeTheirOwnersHeightsAcrossTheTileLines) {
+  const test::CorpusCase c = test::make_mountain_range(3, 30.0, test::scratch_dir("range_input"));
+  const Region r = tile_and_merge(c.osm, c.dem, 2000.0, test::scratch_dir("range_tiles"), 500.0,
+                                  /*hold_neighbours=*/true);
+  const auto& seams = r.report.at("seams");
+  const auto& owner = seams.at("owner_heights");
+  std::cout << r.manifest.tiles.size() << " tiles; seams " << seams << "\n  opendrive "
+            << r.report.at("opendrive") << "\n  against the whole build " << r.report.at("whole_build")
+            << "\n";
+  EXPECT_TRUE(r.merge.failed_gates.empty()) << r.merge.failed_gates.front();
+  EXPECT_GT(owner.at("moved").get<std::size_t>(), 1000u);
+  EXPECT_GT(owner.at("max_dz_m").get<double>(),
+            0.01);  // the copies differed: steps without the owners' heights
+  EXPECT_EQ(owner.at("unmatched"), owner.at("interpolated")) << owner;
+  EXPECT_LE(owner.at("owners_apart_max_m").get<double>(), 0.01) << owner;
+  EXPECT_GT(seams.at("shared_vertices").get<std::size_t>(), 100u);
+  EXPECT_FALSE(seams.at("left_apart").contains("Road_Road")) << seams;
+  EXPECT_EQ(r.report.at("joined").at("Road_Road").at("self_intersecting_pairs").get<int>(), 0);
+  EXPECT_EQ(r.report.at("opendrive").at("links_over_1cm").get<int>(), 0);
+}
+
 // The terrain of region tiles: each tile's TIN is simplified over its own window, so it meets
 // its neighbours' only where both cut it along the tile line with the same vertices (before:
 // Potrero's joined Terrain had 2 self-intersecting pairs and no vertex on a line in common).
