@@ -19,6 +19,9 @@ namespace {
 
 constexpr char kMagic[] = "relief-owned-surface 1\n";
 constexpr double kOwnersApartM = 1e-3;  // two owners' heights at one place further apart are reported
+// A terrain vertex at a road vertex's place this close to its height is the road's edge (an
+// opening's top stands the portal's height, 5 m by default, over it).
+constexpr double kTerrainOnRoadM = 1.0;
 
 // The owners' vertices of one mesh, by grid cells of the tolerance: a lookup searches the 3 x 3
 // cells around its point. Cells are ranges of one array sorted by cell (no allocation per cell).
@@ -107,51 +110,57 @@ const std::vector<int>* owners_of(const Scene& scene, const std::string& name) {
   return nullptr;
 }
 
-// `dz` with each vertex that has no height change of its own (NaN) given the mean of its mesh
-// neighbours' changes weighted by their inverse plan distance, ring by ring out from the vertices
-// that have one, up to `rings` rings (NaN beyond, and where no path leads): a run of stations the
-// owner's loft did not make (its refinement went otherwise) follows the stations around it
-// instead of standing out of the moved surface by the two fits' difference. Linear.
-std::vector<double> interpolate_unmatched(const TriangleMesh& mesh, const std::vector<double>& dz,
-                                          std::size_t rings) {
-  const std::size_t n = dz.size();
-  // Each vertex's neighbours along the triangles' edges (an edge of two triangles counted twice).
-  std::vector<std::size_t> start(n + 1, 0);
-  for (const auto& t : mesh.triangles)
-    for (const std::uint32_t v : t) start[v + 1] += 2;
-  std::partial_sum(start.begin(), start.end(), start.begin());
-  std::vector<std::uint32_t> neighbours(start.back());
-  std::vector<std::size_t> fill(start.begin(), start.end() - 1);
-  for (const auto& t : mesh.triangles) {
-    for (std::size_t k = 0; k < 3; ++k) {
-      neighbours[fill[t[k]]++] = t[(k + 1) % 3];
-      neighbours[fill[t[k]]++] = t[(k + 2) % 3];
+// Each vertex's neighbours along a mesh's triangle edges (an edge of two triangles listed twice).
+struct VertexNeighbours {
+  std::vector<std::size_t> start;  // vertex v's neighbours: at[start[v] .. start[v + 1])
+  std::vector<std::uint32_t> at;
+
+  explicit VertexNeighbours(const TriangleMesh& mesh) : start(mesh.vertices.size() + 1, 0) {
+    for (const auto& t : mesh.triangles)
+      for (const std::uint32_t v : t) start[v + 1] += 2;
+    std::partial_sum(start.begin(), start.end(), start.begin());
+    at.resize(start.back());
+    std::vector<std::size_t> fill(start.begin(), start.end() - 1);
+    for (const auto& t : mesh.triangles) {
+      for (std::size_t k = 0; k < 3; ++k) {
+        at[fill[t[k]]++] = t[(k + 1) % 3];
+        at[fill[t[k]]++] = t[(k + 2) % 3];
+      }
     }
   }
+};
+
+// `dz` with each vertex that has no height change of its own (NaN) given the mean of its mesh
+// neighbours' changes weighted by their inverse plan distance, ring by ring out from the vertices
+// that have one (NaN where no path leads): a run of stations the owner's loft did not make (its
+// refinement went otherwise) follows the stations around it instead of standing out of the moved
+// surface by the two fits' difference. Linear.
+std::vector<double> interpolate_unmatched(const TriangleMesh& mesh, const std::vector<double>& dz) {
+  const VertexNeighbours near(mesh);
   std::vector<double> out = dz;
-  std::vector<std::uint8_t> queued(n, 0);
+  std::vector<std::uint8_t> queued(dz.size(), 0);
   std::vector<std::uint32_t> ring;
   const auto enqueue_around = [&](std::uint32_t v, std::vector<std::uint32_t>& into) {
-    for (std::size_t k = start[v]; k < start[v + 1]; ++k) {
-      const std::uint32_t w = neighbours[k];
+    for (std::size_t k = near.start[v]; k < near.start[v + 1]; ++k) {
+      const std::uint32_t w = near.at[k];
       if (!std::isnan(out[w]) || queued[w]) continue;
       queued[w] = 1;
       into.push_back(w);
     }
   };
-  for (std::uint32_t v = 0; v < n; ++v)
+  for (std::uint32_t v = 0; v < dz.size(); ++v)
     if (!std::isnan(dz[v])) enqueue_around(v, ring);
-  for (std::size_t r = 0; r < rings && !ring.empty(); ++r) {
+  while (!ring.empty()) {
     std::vector<double> value(ring.size());
     for (std::size_t i = 0; i < ring.size(); ++i) {
       const std::uint32_t v = ring[i];
       double sum = 0.0, weight = 0.0;
-      for (std::size_t k = start[v]; k < start[v + 1]; ++k) {
-        const std::uint32_t w = neighbours[k];
+      for (std::size_t k = near.start[v]; k < near.start[v + 1]; ++k) {
+        const std::uint32_t w = near.at[k];
         if (std::isnan(out[w])) continue;
-        const double d = (mesh.vertices[v].head<2>() - mesh.vertices[w].head<2>()).norm();
-        sum += out[w] / std::max(d, 1e-3);
-        weight += 1.0 / std::max(d, 1e-3);
+        const double d = std::max((mesh.vertices[v].head<2>() - mesh.vertices[w].head<2>()).norm(), 1e-3);
+        sum += out[w] / d;
+        weight += 1.0 / d;
       }
       value[i] = sum / weight;
     }
@@ -238,7 +247,7 @@ OwnedSurface read_owned_surface(const std::filesystem::path& path) {
 }
 
 OwnerHeights take_owner_heights(std::vector<MeshScene>& tiles, const std::vector<OwnedSurface>& owned,
-                                const std::vector<Aabb2>& cores, double tolerance_m) {
+                                double tolerance_m) {
   OwnerHeights out;
   std::map<std::string, OwnerIndex> indexes;
   {
@@ -263,11 +272,10 @@ OwnerHeights take_owner_heights(std::vector<MeshScene>& tiles, const std::vector
       }
     }
   }
-  for (std::size_t t = 0; t < tiles.size(); ++t) {
-    MeshScene& tile = tiles[t];
-    // Road_Road vertices with an owner's (or their neighbours') height, by plan position: their
-    // height before and after.
-    std::unordered_map<PlanBits, std::pair<double, double>, PlanBitsHash> road_heights;
+  // Every tile's Road_Road vertices by plan position (exact bits): their height now (the first
+  // tile's where two tiles' files hold one).
+  std::unordered_map<PlanBits, double, PlanBitsHash> road_heights;
+  for (MeshScene& tile : tiles) {
     for (TriangleMesh& mesh : tile.meshes) {
       const auto index = indexes.find(mesh.name);
       if (index == indexes.end()) continue;
@@ -281,7 +289,7 @@ OwnerHeights take_owner_heights(std::vector<MeshScene>& tiles, const std::vector
         owner_z[i] = index->second.entries()[*owner].p.z();
         dz[i] = owner_z[i] - mesh.vertices[i].z();
       }
-      const std::vector<double> interpolated = interpolate_unmatched(mesh, dz, mesh.vertices.size());
+      const std::vector<double> interpolated = interpolate_unmatched(mesh, dz);
       for (std::size_t i = 0; i < mesh.vertices.size(); ++i) {
         Vec3& v = mesh.vertices[i];
         ++out.vertices;
@@ -292,7 +300,7 @@ OwnerHeights take_owner_heights(std::vector<MeshScene>& tiles, const std::vector
           ++out.interpolated;
           z = v.z() + interpolated[i];
         }
-        if (mesh.name == "Road_Road") road_heights.emplace(plan_bits(v), std::make_pair(v.z(), z));
+        if (mesh.name == "Road_Road") road_heights.emplace(plan_bits(v), z);
         if (z == v.z()) continue;
         ++out.moved;
         if (std::abs(z - v.z()) > out.max_dz_m) {
@@ -302,34 +310,20 @@ OwnerHeights take_owner_heights(std::vector<MeshScene>& tiles, const std::vector
         v.z() = z;  // the owner's bits: every tile's copy of a shared vertex comes out the same
       }
     }
-    if (road_heights.empty()) continue;
+  }
+  // The terrain meets the road's edge with vertices of its own at the road's (a tile's terrain
+  // may hold a road edge vertex that only the neighbour's file holds, where its triangles cross
+  // the tile line beside a road): those take the road's height now. An opening's top stands the
+  // portal's height over the road and stays.
+  for (MeshScene& tile : tiles) {
     for (TriangleMesh& mesh : tile.meshes) {
       if (mesh.name != "Terrain") continue;
-      std::vector<double> dz(mesh.vertices.size(), std::numeric_limits<double>::quiet_NaN());
-      for (std::size_t i = 0; i < mesh.vertices.size(); ++i) {
-        Vec3& v = mesh.vertices[i];
+      for (Vec3& v : mesh.vertices) {
         const auto it = road_heights.find(plan_bits(v));
-        if (it == road_heights.end()) continue;
-        const auto [before, after] = it->second;
-        const double z =
-            v.z() == before ? after : v.z() + (after - before);  // an opening's top keeps its rise
-        dz[i] = z - v.z();
-        if (dz[i] == 0.0) continue;
-        v.z() = z;
+        if (it == road_heights.end() || !(std::abs(it->second - v.z()) <= kTerrainOnRoadM)) continue;
+        if (it->second == v.z()) continue;
+        v.z() = it->second;
         ++out.terrain_moved;
-      }
-      if (t >= cores.size()) continue;
-      // Where a road's edge crosses the tile line the terrain has a vertex of its own between two
-      // road vertices: it follows them, so that it meets the neighbour's copy.
-      const Aabb2& core = cores[t];
-      const std::vector<double> interpolated = interpolate_unmatched(mesh, dz, 1);
-      for (std::size_t i = 0; i < mesh.vertices.size(); ++i) {
-        Vec3& v = mesh.vertices[i];
-        const bool on_line =
-            v.x() == core.min.x() || v.x() == core.max.x() || v.y() == core.min.y() || v.y() == core.max.y();
-        if (!on_line || !std::isnan(dz[i]) || std::isnan(interpolated[i]) || interpolated[i] == 0.0) continue;
-        v.z() += interpolated[i];
-        ++out.terrain_interpolated;
       }
     }
   }

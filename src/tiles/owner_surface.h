@@ -54,8 +54,6 @@ struct OwnerHeights {
   double max_dz_m = 0.0;          ///< largest height change
   Vec3 at = Vec3::Zero();         ///< where (the vertex as its tile built it)
   std::size_t terrain_moved = 0;  ///< terrain vertices on a moved road vertex, moved with it
-  /// Terrain vertices on a tile line (where a road's edge crosses it) moved by their neighbours'.
-  std::size_t terrain_interpolated = 0;
   /// Places where two owners' vertices meet (a road's end and the junction or road it joins, of
   /// two tiles) at heights more than 1 mm apart: how many, the largest difference and where.
   std::size_t owners_apart = 0;
@@ -65,11 +63,10 @@ struct OwnerHeights {
 
 /// Gives every vertex of the tiles' paved meshes the height of the nearest vertex of the same
 /// mesh in `owned` within `tolerance_m` in plan (of `owned` in order: at a place two owners
-/// share, the first's), a vertex no owner has its mesh neighbours' change, and moves every
-/// Terrain vertex at the plan position (exact bits) of a moved Road_Road vertex of its tile by
-/// as much, and a Terrain vertex on the edge of its tile's core (`cores`, per tile; none when
-/// empty) next to such vertices by their inverse-distance weighted change. Linear (hash grids).
+/// share, the first's), a vertex no owner has its mesh neighbours' change; then every Terrain
+/// vertex at the plan position (exact bits) of a Road_Road vertex of any tile's file, and within
+/// 1 m of its height (not an opening's top), that vertex's height. Linear (hash grids).
 OwnerHeights take_owner_heights(std::vector<MeshScene>& tiles, const std::vector<OwnedSurface>& owned,
-                                const std::vector<Aabb2>& cores = {}, double tolerance_m = 1e-3);
+                                double tolerance_m = 1e-3);
 
 }  // namespace relief::detail

@@ -109,7 +109,7 @@ TileMergeResult merge_tiles(const std::filesystem::path& dir, const TileMergeOpt
   std::filesystem::create_directories(merged);  // every tile is built: the merge can be written
   // The scene tiles: every paved vertex at its owner's height, their seams welded, then their
   // checks as one surface.
-  const detail::OwnerHeights heights = detail::take_owner_heights(scenes, owned, scene_cores);
+  const detail::OwnerHeights heights = detail::take_owner_heights(scenes, owned);
   owned.clear();
   owned.shrink_to_fit();
   result.paved_vertices = heights.vertices;
@@ -282,7 +282,6 @@ TileMergeResult merge_tiles(const std::filesystem::path& dir, const TileMergeOpt
                                       {"unmatched_at", point(heights.unmatched_at)},
                                       {"interpolated", heights.interpolated},
                                       {"terrain_moved", heights.terrain_moved},
-                                      {"terrain_interpolated", heights.terrain_interpolated},
                                       {"owners_apart", heights.owners_apart},
                                       {"owners_apart_max_m", heights.owners_apart_max_m},
                                       {"owners_apart_at", point(heights.owners_apart_at)}};

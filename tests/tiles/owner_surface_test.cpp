@@ -27,13 +27,13 @@ TriangleMesh strip(const std::string& name, const std::vector<Vec3>& vertices) {
 
 // A road 6 m wide along x from x = 0 to 20 crossing the tile line x = 10, on a 10 % climb as its
 // owner (tile A) fitted it; tile B fitted it 5 cm higher. A's file holds x 0..10, B's x 10..20
-// (cut by centroid), each from its own fit; the terrain in B meets the road's edge, at x = 15 it
-// stands over an opening 3 m above the road, and at (20, 8.5) it has a vertex of its own on the
-// tile line x = 20 next to the road's edge.
+// (cut by centroid), each from its own fit. The terrain in B meets the road's edge at y = 6: it
+// stands over an opening 3 m above the road at x = 15, it reaches over the line x = 10 to the
+// road's edge at x = 5 (a vertex only A's file holds), and it has a vertex of its own on the
+// road's edge at x = 17.5 (where a tile line would cross it).
 struct TwoTiles {
   std::vector<MeshScene> files;
   std::vector<detail::OwnedSurface> owned;
-  std::vector<Aabb2> cores;
 };
 
 double owner_z(double x) {
@@ -51,16 +51,11 @@ TwoTiles road_across_a_tile_line() {
   MeshScene a, b;
   a.meshes.push_back(strip("Road_Road", road(0.0, 10.0, 0.0)));
   b.meshes.push_back(strip("Road_Road", road(10.0, 20.0, 0.05)));
-  b.meshes.push_back(strip(
-      "Terrain",
-      {Vec3(10.0, 6.0, owner_z(10.0) + 0.05), Vec3(15.0, 6.0, owner_z(15.0) + 3.05), Vec3(12.0, 30.0, 90.0),
-       Vec3(20.0, 6.0, owner_z(20.0) + 0.05), Vec3(20.0, 8.5, owner_z(20.0) + 0.3)}));
+  b.meshes.push_back(
+      strip("Terrain", {Vec3(10.0, 6.0, owner_z(10.0) + 0.05), Vec3(15.0, 6.0, owner_z(15.0) + 3.05),
+                        Vec3(17.5, 30.0, 90.0), Vec3(20.0, 6.0, owner_z(20.0) + 0.05),
+                        Vec3(17.5, 6.0, owner_z(17.5) + 0.05), Vec3(5.0, 6.0, owner_z(5.0) + 0.05)}));
   t.files = {a, b};
-  t.cores.resize(2);
-  t.cores[0].extend(Vec2(0.0, -10.0));
-  t.cores[0].extend(Vec2(10.0, 40.0));
-  t.cores[1].extend(Vec2(10.0, -10.0));
-  t.cores[1].extend(Vec2(20.0, 40.0));
   detail::OwnedSurface owner;  // A owns the whole road, over its window
   owner.vertices["Road_Road"] = road(0.0, 20.0, 0.0);
   t.owned = {owner, detail::OwnedSurface{}};
@@ -69,7 +64,7 @@ TwoTiles road_across_a_tile_line() {
 
 TEST(OwnerSurface, EveryPavedVertexTakesItsOwnersHeightAndTheTerrainEdgeMovesWithIt) {
   TwoTiles t = road_across_a_tile_line();
-  const detail::OwnerHeights h = detail::take_owner_heights(t.files, t.owned, t.cores);
+  const detail::OwnerHeights h = detail::take_owner_heights(t.files, t.owned);
   EXPECT_EQ(h.vertices, 12u);  // 6 of each tile's Road_Road
   EXPECT_EQ(h.moved, 6u);      // B's
   EXPECT_EQ(h.unmatched, 0u);
@@ -78,17 +73,18 @@ TEST(OwnerSurface, EveryPavedVertexTakesItsOwnersHeightAndTheTerrainEdgeMovesWit
   for (const MeshScene& file : t.files) {
     for (const Vec3& v : file.meshes[0].vertices) EXPECT_EQ(v.z(), owner_z(v.x())) << v.transpose();
   }
-  // The terrain on the road's edge came down with it; over the opening it kept its 3 m rise;
-  // away from the road it did not move.
+  // The terrain on the road's edge came down with it; the opening's top, 3 m over the road, and
+  // the terrain away from the road did not move.
   const std::vector<Vec3>& terrain = t.files[1].meshes[1].vertices;
   EXPECT_EQ(h.terrain_moved, 3u);
   EXPECT_EQ(terrain[0].z(), owner_z(10.0));
-  EXPECT_NEAR(terrain[1].z(), owner_z(15.0) + 3.0, 1e-9);
+  EXPECT_EQ(terrain[1].z(), owner_z(15.0) + 3.05);
   EXPECT_EQ(terrain[2].z(), 90.0);
   EXPECT_EQ(terrain[3].z(), owner_z(20.0));
-  // On the tile line the terrain's own vertex follows the road edge next to it.
-  EXPECT_EQ(h.terrain_interpolated, 1u);
-  EXPECT_NEAR(terrain[4].z(), owner_z(20.0) + 0.25, 1e-9);
+  EXPECT_EQ(terrain[5].z(), owner_z(5.0));
+  // Where a road's edge crosses a tile line the terrain has a vertex of its own, from its own
+  // fit: not moved (README: the terrain's seams are counted, not held).
+  EXPECT_EQ(terrain[4].z(), owner_z(17.5) + 0.05);
   // The vertex both files hold at the tile line is one: the weld finds nothing apart.
   const detail::SeamWeld weld = detail::weld_seams(t.files);
   EXPECT_EQ(weld.shared_vertices, 2u);
