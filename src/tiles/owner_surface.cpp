@@ -1,7 +1,6 @@
 #include "tiles/owner_surface.h"
 
 #include <algorithm>
-#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -12,6 +11,7 @@
 
 #include "relief/core/atomic_file.h"
 #include "tiles/binary_file.h"
+#include "tiles/scene_seams.h"
 #include "tiles/xodr_merge.h"
 
 namespace relief::detail {
@@ -88,19 +88,6 @@ class OwnerIndex {
   std::vector<std::uint32_t> order_;
   std::unordered_map<std::uint64_t, std::pair<std::uint32_t, std::uint32_t>> ranges_;
 };
-
-struct PlanBits {
-  std::uint64_t x, y;
-  bool operator==(const PlanBits&) const = default;
-};
-struct PlanBitsHash {
-  std::size_t operator()(const PlanBits& k) const {
-    return std::hash<std::uint64_t>()(k.x * 0x9E3779B97F4A7C15ull ^ k.y);
-  }
-};
-PlanBits plan_bits(const Vec3& v) {
-  return {std::bit_cast<std::uint64_t>(v.x()), std::bit_cast<std::uint64_t>(v.y())};
-}
 
 // Per paved mesh of the scene, the owner (road id or -1 - junction id) of each triangle.
 const std::vector<int>* owners_of(const Scene& scene, const std::string& name) {
@@ -274,7 +261,7 @@ OwnerHeights take_owner_heights(std::vector<MeshScene>& tiles, const std::vector
   }
   // Every tile's Road_Road vertices by plan position (exact bits): their height now (the first
   // tile's where two tiles' files hold one).
-  std::unordered_map<PlanBits, double, PlanBitsHash> road_heights;
+  std::unordered_map<PlanKey, double, PlanKeyHash> road_heights;
   for (MeshScene& tile : tiles) {
     for (TriangleMesh& mesh : tile.meshes) {
       const auto index = indexes.find(mesh.name);
@@ -300,7 +287,7 @@ OwnerHeights take_owner_heights(std::vector<MeshScene>& tiles, const std::vector
           ++out.interpolated;
           z = v.z() + interpolated[i];
         }
-        if (mesh.name == "Road_Road") road_heights.emplace(plan_bits(v), z);
+        if (mesh.name == "Road_Road") road_heights.emplace(plan_key(v), z);
         if (z == v.z()) continue;
         ++out.moved;
         if (std::abs(z - v.z()) > out.max_dz_m) {
@@ -319,7 +306,7 @@ OwnerHeights take_owner_heights(std::vector<MeshScene>& tiles, const std::vector
     for (TriangleMesh& mesh : tile.meshes) {
       if (mesh.name != "Terrain") continue;
       for (Vec3& v : mesh.vertices) {
-        const auto it = road_heights.find(plan_bits(v));
+        const auto it = road_heights.find(plan_key(v));
         if (it == road_heights.end() || !(std::abs(it->second - v.z()) <= kTerrainOnRoadM)) continue;
         if (it->second == v.z()) continue;
         v.z() = it->second;

@@ -9,19 +9,6 @@
 namespace relief::detail {
 namespace {
 
-struct PlanKey {
-  std::uint64_t x, y;
-  bool operator==(const PlanKey&) const = default;
-};
-struct PlanKeyHash {
-  std::size_t operator()(const PlanKey& k) const {
-    return std::hash<std::uint64_t>()(k.x * 0x9E3779B97F4A7C15ull ^ k.y);
-  }
-};
-PlanKey plan_key(const Vec3& v) {
-  return {std::bit_cast<std::uint64_t>(v.x()), std::bit_cast<std::uint64_t>(v.y())};
-}
-
 struct Seen {
   double z;
   std::size_t tile;

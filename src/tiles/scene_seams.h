@@ -7,7 +7,10 @@
 // share their border vertices bit for bit; where the two fits disagree by more than the weld's
 // tolerance the vertex is left apart and counted (a step the merge reports).
 
+#include <bit>
 #include <cstddef>
+#include <cstdint>
+#include <functional>
 #include <map>
 #include <string>
 #include <vector>
@@ -15,6 +18,20 @@
 #include "relief/geometry/triangle_mesh.h"
 
 namespace relief::detail {
+
+/// A vertex's plan position by its exact bits: the same point in two tiles' files.
+struct PlanKey {
+  std::uint64_t x, y;
+  bool operator==(const PlanKey&) const = default;
+};
+struct PlanKeyHash {
+  std::size_t operator()(const PlanKey& k) const {
+    return std::hash<std::uint64_t>()(k.x * 0x9E3779B97F4A7C15ull ^ k.y);
+  }
+};
+inline PlanKey plan_key(const Vec3& v) {
+  return {std::bit_cast<std::uint64_t>(v.x()), std::bit_cast<std::uint64_t>(v.y())};
+}
 
 /// Shared vertices of one mesh left apart by the weld: how many, the largest height difference
 /// and where (the later tile's vertex).
