@@ -123,6 +123,7 @@ struct VertexNeighbours {
 // refinement went otherwise) follows the stations around it instead of standing out of the moved
 // surface by the two fits' difference. Linear.
 std::vector<double> interpolate_unmatched(const TriangleMesh& mesh, const std::vector<double>& dz) {
+  if (std::none_of(dz.begin(), dz.end(), [](double d) { return std::isnan(d); })) return dz;
   const VertexNeighbours near(mesh);
   std::vector<double> out = dz;
   std::vector<std::uint8_t> queued(dz.size(), 0);
