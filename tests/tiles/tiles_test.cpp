@@ -488,10 +488,11 @@ std::pair<double, double> distance_to(const Vec3& p, const std::vector<Vec3>& li
   return best;
 }
 
-// Plans `osm` in tiles, builds every tile in this process, builds the whole region in the plan's
-// frame and merges the tiles against it.
+// Plans `osm` in tiles (with the plan's default holds unless told), builds every tile in this
+// process, builds the whole region in the plan's frame and merges the tiles against it.
 Region tile_and_merge(const std::filesystem::path& osm, const std::string& dem, double tile_m,
-                      const std::filesystem::path& dir, double halo_m = 500.0, bool hold_neighbours = false,
+                      const std::filesystem::path& dir, double halo_m = 500.0,
+                      bool hold_neighbours = TilePlanOptions{}.hold_neighbours,
                       std::optional<LonLat> frame_centre = std::nullopt) {
   Diagnostics d;
   TilePlanOptions plan;
@@ -712,7 +713,8 @@ TEST(Tiles, OldTownFarFromTheFrameOriginMergesLikeTheWholeBuild) {
   const LonLat centre = plan_tiles(own).frame_centre;
   const LonLat far{centre.lon_deg + 140.0 / (111.32 * std::cos(centre.lat_deg * std::numbers::pi / 180.0)),
                    centre.lat_deg};
-  const Region r = tile_and_merge(c.osm, c.dem, 120.0, test::scratch_dir("far_tiles"), 500.0, false, far);
+  const Region r = tile_and_merge(c.osm, c.dem, 120.0, test::scratch_dir("far_tiles"), 500.0,
+                                  TilePlanOptions{}.hold_neighbours, far);
   ASSERT_LT(r.manifest.grid_origin.x(), -139000.0);
   expect_like_the_whole_build(r);
   // Every tile's glb puts its vertices relative to its tile's centre.

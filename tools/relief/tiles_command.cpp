@@ -257,7 +257,7 @@ Runner add_tiles_command(CLI::App& app) {
   plan->add_option("--halo", args->plan.halo_m, "context read around each tile, m")->capture_default_str();
   plan->add_flag("--hold-neighbours,!--no-hold-neighbours", args->plan.hold_neighbours,
                  "each tile holds what its neighbours of earlier phases fitted where they meet, so that "
-                 "links between neighbours meet exactly (default: off, each tile fits its window alone)");
+                 "links between neighbours meet exactly (default: on; off, each tile fits its window alone)");
 
   auto* build = tiles->add_subcommand(
       "build", "Build tiles of a plan into DIR/tiles/X_Y (unchanged tiles are skipped)");

@@ -48,7 +48,7 @@ struct TileManifest {
   double tile_size_m = 0.0;
   double halo_m = 0.0;
   /// Whether a tile holds what its neighbours of earlier phases fitted (tile_dependencies).
-  bool hold_neighbours = false;
+  bool hold_neighbours = true;
   Vec2 grid_origin = Vec2::Zero();  ///< south-west corner of tile (0, 0), local frame
   std::vector<TileSpec> tiles;      ///< only tiles whose core holds road nodes, row-major
   std::vector<TileInput> inputs;
@@ -75,9 +75,9 @@ struct TilePlanOptions {
   /// metres; 500 m keeps heights within millimetres of a whole build (README, tiles).
   double halo_m = 500.0;
   /// A tile holds what its neighbours of earlier phases fitted where their elements meet its
-  /// own, so that their links meet exactly where both are neighbours (README, tiles: off by
-  /// default; on the generated 2 000 km region it made the merge worse).
-  bool hold_neighbours = false;
+  /// own, so that their links meet exactly where both are neighbours (README, tiles: without
+  /// them a mountain region's merge fails, its links up to centimetres apart).
+  bool hold_neighbours = true;
   /// Which ways are roads (include_non_motor), as the tiles' builds will read them: a tile is
   /// planned only where such a road has a node.
   OsmReadOptions osm;
