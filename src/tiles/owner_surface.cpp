@@ -160,6 +160,138 @@ std::vector<double> interpolate_unmatched(const TriangleMesh& mesh, const std::v
   return out;
 }
 
+// The vertices on a mesh's boundary (edges of one triangle) within `band` of the border of
+// `core`: where another tile's file may hold the same vertex (the tiles' terrains are disjoint
+// pieces of one surface, cut at the tile lines but for triangles beside a road that cross one).
+std::vector<std::uint32_t> border_vertices(const TriangleMesh& mesh, const Aabb2& core, double band) {
+  std::unordered_map<std::uint64_t, int> edges;
+  edges.reserve(mesh.triangles.size() * 3);
+  for (const auto& t : mesh.triangles) {
+    for (std::size_t k = 0; k < 3; ++k) {
+      const std::uint32_t a = std::min(t[k], t[(k + 1) % 3]), b = std::max(t[k], t[(k + 1) % 3]);
+      ++edges[(static_cast<std::uint64_t>(a) << 32U) | b];
+    }
+  }
+  const Aabb2 outer = core.inflated(band), inner = core.inflated(-band);
+  std::vector<std::uint8_t> on(mesh.vertices.size(), 0);
+  for (const auto& [edge, count] : edges) {
+    if (count != 1) continue;
+    for (const std::uint32_t v :
+         {static_cast<std::uint32_t>(edge >> 32U), static_cast<std::uint32_t>(edge)}) {
+      const Vec2 p = mesh.vertices[v].head<2>();
+      if (outer.contains(p) && !inner.contains(p)) on[v] = 1;
+    }
+  }
+  std::vector<std::uint32_t> out;
+  for (std::uint32_t v = 0; v < on.size(); ++v)
+    if (on[v]) out.push_back(v);
+  return out;
+}
+
+// How far each paved vertex of each tile's files moved onto its owner's height: moved[tile][mesh]
+// per vertex, empty for a mesh that is not paved.
+using PavedMoves = std::vector<std::vector<std::vector<float>>>;
+
+// The terrain's copies of a place on a tile line beside a road came from each tile's batter on
+// its own fit of the road; the road now has its owner's heights. Every copy takes the one of the
+// tile whose paved vertex nearest the place (within kBatterReachM) moved least: the owner's own
+// file where it is one of them, else the fit nearest the owner's.
+void join_terrain_borders(std::vector<MeshScene>& tiles, const std::vector<Aabb2>& cores,
+                          const PavedMoves& moved, OwnerHeights& out) {
+  struct Copy {
+    std::size_t tile, mesh;
+    std::uint32_t vertex;
+  };
+  std::unordered_map<PlanKey, std::vector<Copy>, PlanKeyHash> places;
+  for (std::size_t t = 0; t < tiles.size() && t < cores.size(); ++t) {
+    for (std::size_t m = 0; m < tiles[t].meshes.size(); ++m) {
+      const TriangleMesh& mesh = tiles[t].meshes[m];
+      if (mesh.name != "Terrain") continue;
+      for (const std::uint32_t v : border_vertices(mesh, cores[t], kBatterReachM))
+        places[plan_key(mesh.vertices[v])].push_back({t, m, v});
+    }
+  }
+  const auto z_of = [&](const Copy& c) { return tiles[c.tile].meshes[c.mesh].vertices[c.vertex].z(); };
+  std::vector<std::vector<Copy>> apart;
+  for (auto& [key, copies] : places) {
+    if (copies.size() < 2) continue;
+    const auto [lo, hi] = std::minmax_element(
+        copies.begin(), copies.end(), [&](const Copy& a, const Copy& b) { return z_of(a) < z_of(b); });
+    if (z_of(*lo) != z_of(*hi)) apart.push_back(std::move(copies));
+  }
+  if (apart.empty()) return;
+  // The paved vertices near those places, by tile: (plan position, how far it moved).
+  const double cell = kBatterReachM;
+  const auto cell_key = [cell](double x, double y) {
+    return (static_cast<std::uint64_t>(static_cast<long long>(std::floor(x / cell))) *
+            0x9E3779B97F4A7C15ull) ^
+           static_cast<std::uint64_t>(static_cast<long long>(std::floor(y / cell)));
+  };
+  std::unordered_map<std::uint64_t, int> near_cells;
+  for (const auto& copies : apart) {
+    const Vec3& p = tiles[copies[0].tile].meshes[copies[0].mesh].vertices[copies[0].vertex];
+    for (int dx = -1; dx <= 1; ++dx)
+      for (int dy = -1; dy <= 1; ++dy) near_cells[cell_key(p.x() + dx * cell, p.y() + dy * cell)] = 1;
+  }
+  struct Paved {
+    Vec2 p;
+    float moved;
+  };
+  std::vector<std::unordered_map<std::uint64_t, std::vector<Paved>>> paved(tiles.size());
+  for (std::size_t t = 0; t < tiles.size(); ++t) {
+    for (std::size_t m = 0; m < tiles[t].meshes.size(); ++m) {
+      if (moved[t][m].empty()) continue;
+      const TriangleMesh& mesh = tiles[t].meshes[m];
+      for (std::size_t i = 0; i < mesh.vertices.size(); ++i) {
+        const std::uint64_t k = cell_key(mesh.vertices[i].x(), mesh.vertices[i].y());
+        if (near_cells.contains(k)) paved[t][k].push_back({mesh.vertices[i].head<2>(), moved[t][m][i]});
+      }
+    }
+  }
+  // The move of tile t's paved vertex nearest p within the reach; infinity where it has none.
+  const auto nearest_move = [&](std::size_t t, const Vec2& p) {
+    double best_d = kBatterReachM;
+    double move = std::numeric_limits<double>::infinity();
+    for (int dx = -1; dx <= 1; ++dx) {
+      for (int dy = -1; dy <= 1; ++dy) {
+        const auto it = paved[t].find(cell_key(p.x() + dx * cell, p.y() + dy * cell));
+        if (it == paved[t].end()) continue;
+        for (const Paved& q : it->second) {
+          const double d = (q.p - p).norm();
+          if (d < best_d || (d == best_d && q.moved < move)) {
+            best_d = d;
+            move = q.moved;
+          }
+        }
+      }
+    }
+    return move;
+  };
+  for (const auto& copies : apart) {
+    const Vec2 p = tiles[copies[0].tile].meshes[copies[0].mesh].vertices[copies[0].vertex].head<2>();
+    const Copy* best = nullptr;
+    double best_move = std::numeric_limits<double>::infinity();
+    for (const Copy& c : copies) {
+      const double move = nearest_move(c.tile, p);
+      if (move < best_move || (move == best_move && best != nullptr && c.tile < best->tile)) {
+        best_move = move;
+        best = &c;
+      }
+    }
+    if (best == nullptr) continue;  // no road near: the weld takes it, or leaves it apart and counts it
+    const double z = z_of(*best);
+    ++out.terrain_seams;
+    for (const Copy& c : copies) {
+      Vec3& v = tiles[c.tile].meshes[c.mesh].vertices[c.vertex];
+      if (std::abs(z - v.z()) > out.terrain_seams_max_dz_m) {
+        out.terrain_seams_max_dz_m = std::abs(z - v.z());
+        out.terrain_seams_at = v;
+      }
+      v.z() = z;
+    }
+  }
+}
+
 }  // namespace
 
 OwnedSurface owned_surface(const RoadModel& model, const Scene& scene, const Aabb2& core) {
@@ -234,8 +366,8 @@ OwnedSurface read_owned_surface(const std::filesystem::path& path) {
   return surface;
 }
 
-OwnerHeights take_owner_heights(std::vector<MeshScene>& tiles, const std::vector<OwnedSurface>& owned,
-                                double tolerance_m) {
+OwnerHeights take_owner_heights(std::vector<MeshScene>& tiles, const std::vector<Aabb2>& cores,
+                                const std::vector<OwnedSurface>& owned, double tolerance_m) {
   OwnerHeights out;
   std::map<std::string, OwnerIndex> indexes;
   {
@@ -263,10 +395,14 @@ OwnerHeights take_owner_heights(std::vector<MeshScene>& tiles, const std::vector
   // Every tile's Road_Road vertices by plan position (exact bits): their height now (the first
   // tile's where two tiles' files hold one).
   std::unordered_map<PlanKey, double, PlanKeyHash> road_heights;
-  for (MeshScene& tile : tiles) {
-    for (TriangleMesh& mesh : tile.meshes) {
+  PavedMoves moved(tiles.size());
+  for (std::size_t t = 0; t < tiles.size(); ++t) {
+    moved[t].resize(tiles[t].meshes.size());
+    for (std::size_t m = 0; m < tiles[t].meshes.size(); ++m) {
+      TriangleMesh& mesh = tiles[t].meshes[m];
       const auto index = indexes.find(mesh.name);
       if (index == indexes.end()) continue;
+      moved[t][m].assign(mesh.vertices.size(), 0.0F);
       // Per vertex, the owner's height and that less its own; NaN where no owner has it.
       std::vector<double> owner_z(mesh.vertices.size(), std::numeric_limits<double>::quiet_NaN());
       std::vector<double> dz = owner_z;
@@ -291,6 +427,7 @@ OwnerHeights take_owner_heights(std::vector<MeshScene>& tiles, const std::vector
         if (mesh.name == "Road_Road") road_heights.emplace(plan_key(v), z);
         if (z == v.z()) continue;
         ++out.moved;
+        moved[t][m][i] = static_cast<float>(std::abs(z - v.z()));
         if (std::abs(z - v.z()) > out.max_dz_m) {
           out.max_dz_m = std::abs(z - v.z());
           out.at = v;
@@ -315,6 +452,7 @@ OwnerHeights take_owner_heights(std::vector<MeshScene>& tiles, const std::vector
       }
     }
   }
+  join_terrain_borders(tiles, cores, moved, out);
   return out;
 }
 

@@ -54,6 +54,12 @@ struct OwnerHeights {
   double max_dz_m = 0.0;          ///< largest height change
   Vec3 at = Vec3::Zero();         ///< where (the vertex as its tile built it)
   std::size_t terrain_moved = 0;  ///< terrain vertices on a moved road vertex, moved with it
+  /// Terrain vertices on a tile's border whose copies in two or more tiles' files stood apart
+  /// beside a road (each tile's batter followed its own fit of the road), now all at the copy of
+  /// the tile whose nearest paved vertex moved least: how many places, the largest change, where.
+  std::size_t terrain_seams = 0;
+  double terrain_seams_max_dz_m = 0.0;
+  Vec3 terrain_seams_at = Vec3::Zero();
   /// Places where two owners' vertices meet (a road's end and the junction or road it joins, of
   /// two tiles) at heights more than 1 mm apart: how many, the largest difference and where.
   std::size_t owners_apart = 0;
@@ -61,12 +67,20 @@ struct OwnerHeights {
   Vec3 owners_apart_at = Vec3::Zero();
 };
 
+/// The terrain's batter reaches this far from a road edge (TerrainOptions::max_slope_width_m's
+/// default): a terrain vertex farther from every paved vertex does not follow a road's fit.
+inline constexpr double kBatterReachM = 30.0;
+
 /// Gives every vertex of the tiles' paved meshes the height of the nearest vertex of the same
 /// mesh in `owned` within `tolerance_m` in plan (of `owned` in order: at a place two owners
 /// share, the first's), a vertex no owner has its mesh neighbours' change; then every Terrain
 /// vertex at the plan position (exact bits) of a Road_Road vertex of any tile's file, and within
-/// 1 m of its height (not an opening's top), that vertex's height. Linear (hash grids).
-OwnerHeights take_owner_heights(std::vector<MeshScene>& tiles, const std::vector<OwnedSurface>& owned,
-                                double tolerance_m = 1e-3);
+/// 1 m of its height (not an opening's top), that vertex's height. Then the Terrain vertices on
+/// the border of a tile's `cores` entry (one per tile, the order of `tiles`) that two tiles'
+/// files hold at different heights: every copy takes the one of the tile whose paved vertex
+/// nearest it (within kBatterReachM) moved least, the road's owner where it is one of them (a
+/// place no copy's tile has a paved vertex near is left to the weld). Linear (hash grids).
+OwnerHeights take_owner_heights(std::vector<MeshScene>& tiles, const std::vector<Aabb2>& cores,
+                                const std::vector<OwnedSurface>& owned, double tolerance_m = 1e-3);
 
 }  // namespace relief::detail

@@ -109,7 +109,7 @@ TileMergeResult merge_tiles(const std::filesystem::path& dir, const TileMergeOpt
   std::filesystem::create_directories(merged);  // every tile is built: the merge can be written
   // The scene tiles: every paved vertex at its owner's height, their seams welded, then their
   // checks as one surface.
-  const detail::OwnerHeights heights = detail::take_owner_heights(scenes, owned);
+  const detail::OwnerHeights heights = detail::take_owner_heights(scenes, scene_cores, owned);
   owned.clear();
   owned.shrink_to_fit();
   result.paved_vertices = heights.vertices;
@@ -117,6 +117,8 @@ TileMergeResult merge_tiles(const std::filesystem::path& dir, const TileMergeOpt
   result.paved_unmatched = heights.unmatched;
   result.paved_interpolated = heights.interpolated;
   result.paved_max_dz_m = heights.max_dz_m;
+  result.terrain_seams = heights.terrain_seams;
+  result.terrain_seams_max_dz_m = heights.terrain_seams_max_dz_m;
   const detail::SeamWeld weld = detail::weld_seams(scenes);
   const double lod_cell_m = options.lod_cell_m > 0.0 ? options.lod_cell_m : manifest.tile_size_m / 32.0;
   nlohmann::json lod_json = nlohmann::json::array();
@@ -282,6 +284,9 @@ TileMergeResult merge_tiles(const std::filesystem::path& dir, const TileMergeOpt
                                       {"unmatched_at", point(heights.unmatched_at)},
                                       {"interpolated", heights.interpolated},
                                       {"terrain_moved", heights.terrain_moved},
+                                      {"terrain_seams", heights.terrain_seams},
+                                      {"terrain_seams_max_dz_m", heights.terrain_seams_max_dz_m},
+                                      {"terrain_seams_at", point(heights.terrain_seams_at)},
                                       {"owners_apart", heights.owners_apart},
                                       {"owners_apart_max_m", heights.owners_apart_max_m},
                                       {"owners_apart_at", point(heights.owners_apart_at)}};

@@ -33,8 +33,16 @@ TriangleMesh strip(const std::string& name, const std::vector<Vec3>& vertices) {
 // road's edge at x = 17.5 (where a tile line would cross it).
 struct TwoTiles {
   std::vector<MeshScene> files;
+  std::vector<Aabb2> cores;  // A: x 0..10, B: x 10..20
   std::vector<detail::OwnedSurface> owned;
 };
+
+Aabb2 box(double x0, double y0, double x1, double y1) {
+  Aabb2 b;
+  b.extend(Vec2(x0, y0));
+  b.extend(Vec2(x1, y1));
+  return b;
+}
 
 double owner_z(double x) {
   return 100.0 + 0.1 * x;
@@ -56,6 +64,7 @@ TwoTiles road_across_a_tile_line() {
                         Vec3(17.5, 30.0, 90.0), Vec3(20.0, 6.0, owner_z(20.0) + 0.05),
                         Vec3(17.5, 6.0, owner_z(17.5) + 0.05), Vec3(5.0, 6.0, owner_z(5.0) + 0.05)}));
   t.files = {a, b};
+  t.cores = {box(0.0, -50.0, 10.0, 50.0), box(10.0, -50.0, 20.0, 50.0)};
   detail::OwnedSurface owner;  // A owns the whole road, over its window
   owner.vertices["Road_Road"] = road(0.0, 20.0, 0.0);
   t.owned = {owner, detail::OwnedSurface{}};
@@ -64,7 +73,7 @@ TwoTiles road_across_a_tile_line() {
 
 TEST(OwnerSurface, EveryPavedVertexTakesItsOwnersHeightAndTheTerrainEdgeMovesWithIt) {
   TwoTiles t = road_across_a_tile_line();
-  const detail::OwnerHeights h = detail::take_owner_heights(t.files, t.owned);
+  const detail::OwnerHeights h = detail::take_owner_heights(t.files, t.cores, t.owned);
   EXPECT_EQ(h.vertices, 12u);  // 6 of each tile's Road_Road
   EXPECT_EQ(h.moved, 6u);      // B's
   EXPECT_EQ(h.unmatched, 0u);
@@ -83,7 +92,8 @@ TEST(OwnerSurface, EveryPavedVertexTakesItsOwnersHeightAndTheTerrainEdgeMovesWit
   EXPECT_EQ(terrain[3].z(), owner_z(20.0));
   EXPECT_EQ(terrain[5].z(), owner_z(5.0));
   // Where a road's edge crosses a tile line the terrain has a vertex of its own, from its own
-  // fit: not moved (README: the terrain's seams are counted, not held).
+  // fit, on no road vertex: one only this file holds is not moved (where two files hold it, the
+  // terrain border rule of the next test but one takes one tile's copy).
   EXPECT_EQ(terrain[4].z(), owner_z(17.5) + 0.05);
   // The vertex both files hold at the tile line is one: the weld finds nothing apart.
   const detail::SeamWeld weld = detail::weld_seams(t.files);
@@ -98,7 +108,7 @@ TEST(OwnerSurface, AVertexNoOwnerHasFollowsItsNeighboursOrIsLeftAsBuilt) {
   TwoTiles t = road_across_a_tile_line();
   std::vector<Vec3>& owner = t.owned[0].vertices["Road_Road"];
   owner.erase(owner.begin() + 4, owner.begin() + 6);  // A made no station at x = 10
-  detail::OwnerHeights h = detail::take_owner_heights(t.files, t.owned);
+  detail::OwnerHeights h = detail::take_owner_heights(t.files, t.cores, t.owned);
   EXPECT_EQ(h.unmatched, 4u);  // both files' vertices at x = 10
   EXPECT_EQ(h.interpolated, 4u);
   EXPECT_EQ(h.unmatched_at, Vec3(10.0, 0.0, owner_z(10.0)));
@@ -110,7 +120,7 @@ TEST(OwnerSurface, AVertexNoOwnerHasFollowsItsNeighboursOrIsLeftAsBuilt) {
   t = road_across_a_tile_line();
   std::vector<Vec3>& two = t.owned[0].vertices["Road_Road"];
   two.erase(two.begin() + 2, two.begin() + 6);
-  h = detail::take_owner_heights(t.files, t.owned);
+  h = detail::take_owner_heights(t.files, t.cores, t.owned);
   EXPECT_EQ(h.unmatched, 6u);
   EXPECT_EQ(h.interpolated, 6u);
   for (const MeshScene& file : t.files) {
@@ -119,7 +129,7 @@ TEST(OwnerSurface, AVertexNoOwnerHasFollowsItsNeighboursOrIsLeftAsBuilt) {
 
   t = road_across_a_tile_line();
   t.owned[0].vertices["Road_Road"].resize(6);  // A's window ended at x = 10
-  h = detail::take_owner_heights(t.files, t.owned);
+  h = detail::take_owner_heights(t.files, t.cores, t.owned);
   EXPECT_EQ(h.unmatched, 4u);     // B's vertices at x = 15 and 20
   EXPECT_EQ(h.interpolated, 4u);  // ring by ring from x = 10
   EXPECT_EQ(h.moved, 6u);         // and B's at x = 10
@@ -127,17 +137,17 @@ TEST(OwnerSurface, AVertexNoOwnerHasFollowsItsNeighboursOrIsLeftAsBuilt) {
   // A piece of road no owner made at all stays as built.
   t = road_across_a_tile_line();
   t.files[1].meshes.push_back(strip("Road_Road", {Vec3(50, 50, 7), Vec3(55, 50, 7), Vec3(50, 55, 7)}));
-  h = detail::take_owner_heights(t.files, t.owned);
+  h = detail::take_owner_heights(t.files, t.cores, t.owned);
   EXPECT_EQ(h.unmatched, 3u);
   EXPECT_EQ(h.interpolated, 0u);
   for (const Vec3& v : t.files[1].meshes.back().vertices) EXPECT_EQ(v.z(), 7.0);
   // The tolerance is the plan's: a vertex 2 mm off its owner's is no match.
   TwoTiles off = road_across_a_tile_line();
   for (Vec3& v : off.owned[0].vertices["Road_Road"]) v.x() += 0.002;
-  EXPECT_EQ(detail::take_owner_heights(off.files, off.owned).unmatched, 12u);
+  EXPECT_EQ(detail::take_owner_heights(off.files, off.cores, off.owned).unmatched, 12u);
   TwoTiles near = road_across_a_tile_line();
   for (Vec3& v : near.owned[0].vertices["Road_Road"]) v.x() += 0.0005;
-  EXPECT_EQ(detail::take_owner_heights(near.files, near.owned).unmatched, 0u);
+  EXPECT_EQ(detail::take_owner_heights(near.files, near.cores, near.owned).unmatched, 0u);
 }
 
 // A road of tile A ends where a junction of tile B begins; the two fits put that edge 2 cm apart.
@@ -148,11 +158,47 @@ TEST(OwnerSurface, WhereTwoOwnersMeetTheFirstsHeightIsTakenAndTheirDifferenceRep
   junction.vertices["Road_Road"] = {Vec3(20.0, 0.0, owner_z(20.0) + 0.02),
                                     Vec3(20.0, 6.0, owner_z(20.0) + 0.0005), Vec3(25.0, 3.0, owner_z(25.0))};
   t.owned[1] = junction;
-  const detail::OwnerHeights h = detail::take_owner_heights(t.files, t.owned);
+  const detail::OwnerHeights h = detail::take_owner_heights(t.files, t.cores, t.owned);
   EXPECT_EQ(h.owners_apart, 1u);  // 0.5 mm is within the 1 mm the report leaves out
   EXPECT_NEAR(h.owners_apart_max_m, 0.02, 1e-9);
   EXPECT_EQ(h.owners_apart_at, Vec3(20.0, 0.0, owner_z(20.0) + 0.02));
   EXPECT_EQ(t.files[1].meshes[0].vertices[4].z(), owner_z(20.0));
+}
+
+// The terrain beside the road, cut at the tile line x = 10: each tile's batter followed its own
+// fit of the road, so the two files' copies of a vertex on the line 6 m from the road's edge
+// stand 5 cm apart (a crack in the ground). Both take the copy of the tile whose road did not
+// move there (A, the owner). A vertex on the line 39 m from any road, farther than the batter
+// reaches, is no road's doing: it is left to the weld.
+TEST(OwnerSurface, TheTerrainOnATileLineBesideARoadTakesTheCopyOfTheTileWhoseRoadMovedLeast) {
+  TwoTiles t = road_across_a_tile_line();
+  t.files[0].meshes.push_back(strip(
+      "Terrain", {Vec3(10.0, 12.0, owner_z(10.0) + 1.0), Vec3(5.0, 12.0, 99.0), Vec3(10.0, 45.0, 50.0)}));
+  t.files[1].meshes.push_back(strip(
+      "Terrain", {Vec3(10.0, 12.0, owner_z(10.0) + 1.05), Vec3(15.0, 12.0, 99.0), Vec3(10.0, 45.0, 50.02)}));
+  const detail::OwnerHeights h = detail::take_owner_heights(t.files, t.cores, t.owned);
+  EXPECT_EQ(h.terrain_seams, 1u);
+  EXPECT_NEAR(h.terrain_seams_max_dz_m, 0.05, 1e-9);
+  EXPECT_EQ(h.terrain_seams_at.head<2>(), Vec2(10.0, 12.0));
+  const std::vector<Vec3>& a = t.files[0].meshes[1].vertices;
+  const std::vector<Vec3>& b = t.files[1].meshes[2].vertices;
+  EXPECT_EQ(a[0].z(), owner_z(10.0) + 1.0);
+  EXPECT_EQ(b[0].z(), a[0].z());  // the same bits: no crack
+  EXPECT_EQ(b[1].z(), 99.0);      // off the line: as built
+  EXPECT_EQ(a[2].z(), 50.0);
+  EXPECT_EQ(b[2].z(), 50.02);
+  const detail::SeamWeld weld = detail::weld_seams(t.files);
+  EXPECT_EQ(weld.left_apart.at("Terrain").vertices, 1u);  // the one far from the road: 2 cm
+  // Where it was B that owned the road (A's copy of it moved), B's terrain is taken.
+  TwoTiles swapped = road_across_a_tile_line();
+  std::swap(swapped.owned[0], swapped.owned[1]);
+  for (Vec3& v : swapped.owned[1].vertices["Road_Road"]) v.z() += 0.05;  // B's fit
+  swapped.files[0].meshes.push_back(t.files[0].meshes[1]);
+  swapped.files[0].meshes[1].vertices[0].z() = owner_z(10.0) + 1.0;
+  swapped.files[1].meshes.push_back(t.files[1].meshes[2]);
+  swapped.files[1].meshes[2].vertices[0].z() = owner_z(10.0) + 1.05;
+  EXPECT_EQ(detail::take_owner_heights(swapped.files, swapped.cores, swapped.owned).terrain_seams, 1u);
+  EXPECT_EQ(swapped.files[0].meshes[1].vertices[0].z(), owner_z(10.0) + 1.05);
 }
 
 TEST(OwnerSurface, FileRoundTripsAndABrokenOneIsRefused) {

@@ -884,7 +884,8 @@ TEST(Tiles, TilesHoldWhatTheirNeighboursFittedSoTheyMeetWhereWindowsSeeTooLittle
 // files a tile line cuts it into differ by centimetres (cut by centroid, each from its own fit:
 // steps in the region's road). The merge gives every paved vertex its owner's height: no Road_Road
 // vertex is left apart at a tile line, no two owners meet more than 1 cm apart, the joined
-// Road_Road does not intersect itself, and every vertex no owner made follows its neighbours.
+// Road_Road does not intersect itself, and every vertex no owner made follows its neighbours;
+// the terrain beside the roads meets at the tile lines too.
 TEST(Tiles, AMountainRangesRoadsTakeTheirOwnersHeightsAcrossTheTileLines) {
   const test::CorpusCase c = test::make_mountain_range(3, 30.0, test::scratch_dir("range_input"));
   const Region r = tile_and_merge(c.osm, c.dem, 2000.0, test::scratch_dir("range_tiles"), 500.0,
@@ -901,7 +902,11 @@ TEST(Tiles, AMountainRangesRoadsTakeTheirOwnersHeightsAcrossTheTileLines) {
   EXPECT_EQ(owner.at("unmatched"), owner.at("interpolated")) << owner;
   EXPECT_LE(owner.at("owners_apart_max_m").get<double>(), 0.01) << owner;
   EXPECT_GT(seams.at("shared_vertices").get<std::size_t>(), 100u);
-  EXPECT_FALSE(seams.at("left_apart").contains("Road_Road")) << seams;
+  // The terrain's cut and fill beside the roads followed each tile's fit: its copies on the tile
+  // lines stood apart (38 places, up to 9.2 cm) and take the tile's whose road moved least, so
+  // no mesh's vertex is left apart at a tile line.
+  EXPECT_GT(owner.at("terrain_seams").get<std::size_t>(), 0u);
+  EXPECT_TRUE(seams.at("left_apart").empty()) << seams;
   EXPECT_EQ(r.report.at("joined").at("Road_Road").at("self_intersecting_pairs").get<int>(), 0);
   EXPECT_EQ(r.report.at("opendrive").at("links_over_1cm").get<int>(), 0);
 }

@@ -222,7 +222,9 @@ int run_merge(const TilesArgs& a) {
   if (r.scene_tiles > 0) {
     std::cout << "paved surface at its owners' heights: " << r.paved_moved << " of " << r.paved_vertices
               << " vertices moved (up to " << r.paved_max_dz_m << " m), " << r.paved_unmatched
-              << " without an owner's vertex (" << r.paved_interpolated << " follow their neighbours)\n";
+              << " without an owner's vertex (" << r.paved_interpolated << " follow their neighbours); "
+              << r.terrain_seams << " terrain vertices on tile lines beside roads joined (up to "
+              << r.terrain_seams_max_dz_m << " m)\n";
     std::cout << "coarse level (lod1): " << r.lod_coarse_triangles << " of " << r.lod_full_triangles
               << " triangles, geometric error up to " << r.lod_max_error_m << " m\n";
   }

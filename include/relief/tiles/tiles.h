@@ -168,6 +168,10 @@ struct TileMergeResult {
   /// interpolated from their neighbours), and the largest change.
   std::size_t paved_vertices = 0, paved_moved = 0, paved_unmatched = 0, paved_interpolated = 0;
   double paved_max_dz_m = 0.0;
+  /// Terrain vertices on tile lines beside roads whose tiles' copies stood apart, joined at one
+  /// tile's (seams.owner_heights.terrain_seams), and the largest change.
+  std::size_t terrain_seams = 0;
+  double terrain_seams_max_dz_m = 0.0;
   /// The coarse level of the scene tiles (NAME_Tile_X_Y_lod1.glb), summed over the tiles, and
   /// the largest measured error of one (its geometricError in tileset.json).
   std::size_t lod_full_triangles = 0, lod_coarse_triangles = 0;
