@@ -212,12 +212,25 @@ void join_terrain_borders(std::vector<MeshScene>& tiles, const std::vector<Aabb2
     }
   }
   const auto z_of = [&](const Copy& c) { return tiles[c.tile].meshes[c.mesh].vertices[c.vertex].z(); };
+  // The copies of one place, by height, in runs no more than kTerrainOnRoadM apart (an opening's
+  // top over a road's edge at the same place is another vertex): a run of two tiles' copies at
+  // different heights is a seam apart.
   std::vector<std::vector<Copy>> apart;
   for (auto& [key, copies] : places) {
     if (copies.size() < 2) continue;
-    const auto [lo, hi] = std::minmax_element(
-        copies.begin(), copies.end(), [&](const Copy& a, const Copy& b) { return z_of(a) < z_of(b); });
-    if (z_of(*lo) != z_of(*hi)) apart.push_back(std::move(copies));
+    std::stable_sort(copies.begin(), copies.end(),
+                     [&](const Copy& a, const Copy& b) { return z_of(a) < z_of(b); });
+    for (std::size_t i = 0; i < copies.size();) {
+      std::size_t j = i + 1;
+      while (j < copies.size() && z_of(copies[j]) - z_of(copies[j - 1]) <= kTerrainOnRoadM) ++j;
+      const bool two_tiles = std::any_of(copies.begin() + static_cast<std::ptrdiff_t>(i) + 1,
+                                         copies.begin() + static_cast<std::ptrdiff_t>(j),
+                                         [&](const Copy& c) { return c.tile != copies[i].tile; });
+      if (two_tiles && z_of(copies[i]) != z_of(copies[j - 1]))
+        apart.emplace_back(copies.begin() + static_cast<std::ptrdiff_t>(i),
+                           copies.begin() + static_cast<std::ptrdiff_t>(j));
+      i = j;
+    }
   }
   if (apart.empty()) return;
   // The paved vertices near those places, by tile: (plan position, how far it moved).

@@ -172,12 +172,15 @@ TEST(OwnerSurface, WhereTwoOwnersMeetTheFirstsHeightIsTakenAndTheirDifferenceRep
 // reaches, is no road's doing: it is left to the weld.
 TEST(OwnerSurface, TheTerrainOnATileLineBesideARoadTakesTheCopyOfTheTileWhoseRoadMovedLeast) {
   TwoTiles t = road_across_a_tile_line();
-  t.files[0].meshes.push_back(strip(
-      "Terrain", {Vec3(10.0, 12.0, owner_z(10.0) + 1.0), Vec3(5.0, 12.0, 99.0), Vec3(10.0, 45.0, 50.0)}));
-  t.files[1].meshes.push_back(strip(
-      "Terrain", {Vec3(10.0, 12.0, owner_z(10.0) + 1.05), Vec3(15.0, 12.0, 99.0), Vec3(10.0, 45.0, 50.02)}));
+  // (The last vertex, 5 m over the first at its place, is another: an opening's top.)
+  t.files[0].meshes.push_back(
+      strip("Terrain", {Vec3(10.0, 12.0, owner_z(10.0) + 1.0), Vec3(5.0, 12.0, 99.0), Vec3(10.0, 45.0, 50.0),
+                        Vec3(10.0, 12.0, owner_z(10.0) + 6.0)}));
+  t.files[1].meshes.push_back(
+      strip("Terrain", {Vec3(10.0, 12.0, owner_z(10.0) + 1.05), Vec3(15.0, 12.0, 99.0),
+                        Vec3(10.0, 45.0, 50.02), Vec3(10.0, 12.0, owner_z(10.0) + 6.01)}));
   const detail::OwnerHeights h = detail::take_owner_heights(t.files, t.cores, t.owned);
-  EXPECT_EQ(h.terrain_seams, 1u);
+  EXPECT_EQ(h.terrain_seams, 2u);  // the ground and the opening's top, each apart
   EXPECT_NEAR(h.terrain_seams_max_dz_m, 0.05, 1e-9);
   EXPECT_EQ(h.terrain_seams_at.head<2>(), Vec2(10.0, 12.0));
   const std::vector<Vec3>& a = t.files[0].meshes[1].vertices;
@@ -185,6 +188,8 @@ TEST(OwnerSurface, TheTerrainOnATileLineBesideARoadTakesTheCopyOfTheTileWhoseRoa
   EXPECT_EQ(a[0].z(), owner_z(10.0) + 1.0);
   EXPECT_EQ(b[0].z(), a[0].z());  // the same bits: no crack
   EXPECT_EQ(b[1].z(), 99.0);      // off the line: as built
+  EXPECT_EQ(a[3].z(), owner_z(10.0) + 6.0);
+  EXPECT_EQ(b[3].z(), a[3].z());  // the opening's top joined with its own copy, not the ground's
   EXPECT_EQ(a[2].z(), 50.0);
   EXPECT_EQ(b[2].z(), 50.02);
   const detail::SeamWeld weld = detail::weld_seams(t.files);
