@@ -7,6 +7,7 @@
 #include <numeric>
 #include <optional>
 #include <unordered_map>
+#include <unordered_set>
 #include <utility>
 
 #include "relief/core/atomic_file.h"
@@ -234,17 +235,16 @@ void join_terrain_borders(std::vector<MeshScene>& tiles, const std::vector<Aabb2
   }
   if (apart.empty()) return;
   // The paved vertices near those places, by tile: (plan position, how far it moved).
-  const double cell = kBatterReachM;
-  const auto cell_key = [cell](double x, double y) {
-    return (static_cast<std::uint64_t>(static_cast<long long>(std::floor(x / cell))) *
-            0x9E3779B97F4A7C15ull) ^
-           static_cast<std::uint64_t>(static_cast<long long>(std::floor(y / cell)));
+  const auto cell_of = [](double v) { return static_cast<long long>(std::floor(v / kBatterReachM)); };
+  const auto cell_key = [](long long x, long long y) {
+    return (static_cast<std::uint64_t>(x) * 0x9E3779B97F4A7C15ull) ^ static_cast<std::uint64_t>(y);
   };
-  std::unordered_map<std::uint64_t, int> near_cells;
+  std::unordered_set<std::uint64_t> near_cells;
   for (const auto& copies : apart) {
     const Vec3& p = tiles[copies[0].tile].meshes[copies[0].mesh].vertices[copies[0].vertex];
-    for (int dx = -1; dx <= 1; ++dx)
-      for (int dy = -1; dy <= 1; ++dy) near_cells[cell_key(p.x() + dx * cell, p.y() + dy * cell)] = 1;
+    for (long long dx = -1; dx <= 1; ++dx)
+      for (long long dy = -1; dy <= 1; ++dy)
+        near_cells.insert(cell_key(cell_of(p.x()) + dx, cell_of(p.y()) + dy));
   }
   struct Paved {
     Vec2 p;
@@ -256,7 +256,7 @@ void join_terrain_borders(std::vector<MeshScene>& tiles, const std::vector<Aabb2
       if (moved[t][m].empty()) continue;
       const TriangleMesh& mesh = tiles[t].meshes[m];
       for (std::size_t i = 0; i < mesh.vertices.size(); ++i) {
-        const std::uint64_t k = cell_key(mesh.vertices[i].x(), mesh.vertices[i].y());
+        const std::uint64_t k = cell_key(cell_of(mesh.vertices[i].x()), cell_of(mesh.vertices[i].y()));
         if (near_cells.contains(k)) paved[t][k].push_back({mesh.vertices[i].head<2>(), moved[t][m][i]});
       }
     }
@@ -265,9 +265,9 @@ void join_terrain_borders(std::vector<MeshScene>& tiles, const std::vector<Aabb2
   const auto nearest_move = [&](std::size_t t, const Vec2& p) {
     double best_d = kBatterReachM;
     double move = std::numeric_limits<double>::infinity();
-    for (int dx = -1; dx <= 1; ++dx) {
-      for (int dy = -1; dy <= 1; ++dy) {
-        const auto it = paved[t].find(cell_key(p.x() + dx * cell, p.y() + dy * cell));
+    for (long long dx = -1; dx <= 1; ++dx) {
+      for (long long dy = -1; dy <= 1; ++dy) {
+        const auto it = paved[t].find(cell_key(cell_of(p.x()) + dx, cell_of(p.y()) + dy));
         if (it == paved[t].end()) continue;
         for (const Paved& q : it->second) {
           const double d = (q.p - p).norm();
