@@ -217,7 +217,8 @@ void join_terrain_borders(std::vector<MeshScene>& tiles, const std::vector<Aabb2
   // top over a road's edge at the same place is another vertex): a run of two tiles' copies at
   // different heights is a seam apart.
   std::vector<std::vector<Copy>> apart;
-  for (auto& [key, copies] : places) {
+  for (auto& place : places) {
+    std::vector<Copy>& copies = place.second;
     if (copies.size() < 2) continue;
     std::stable_sort(copies.begin(), copies.end(),
                      [&](const Copy& a, const Copy& b) { return z_of(a) < z_of(b); });
