@@ -4,8 +4,12 @@
 
 #include <Eigen/Geometry>
 #include <cmath>
+#include <iterator>
+#include <set>
+#include <utility>
 
 #include "relief/core/errors.h"
+#include "support/plan_records.h"
 #include "support/road_models.h"
 
 namespace relief::detail {
@@ -65,6 +69,41 @@ TEST(LaneLoft, StraightFlatRoadHasItsStationsAreaAndEnds) {
                 {Vec3(100.0, 3.0, 5.0), Vec3(100.0, 0.0, 5.0), Vec3(100.0, -3.5, 5.0)}, 1e-9);
   EXPECT_TRUE(lofted.start.sidewalk_vertices.empty());
   EXPECT_TRUE(lofted.start.marking_vertices.empty());
+}
+
+// A plan view of three lines east over 20 m, the middle one a millimetre long (as the plan fit joins two
+// arcs whose tangents all but meet): its two ends are one break, so no two stations lie a
+// millimetre apart (triangles that thin fold over once a file rounds them). A record 6 cm long
+// keeps both its ends, and so does a short one that turns.
+TEST(LaneLoft, PlanRecordsAMillimetreApartAreOneBreakNotASliver) {
+  const auto road_with_middle = [](double middle_m) {
+    ModelRoad road = straight_road(5, Vec2::Zero(), 0.0, 10.0, 5.0, 0.0);
+    road.plan =
+        PlanView({test::line_record(0.0, Vec2(0.0, 0.0), 0.0, 10.0),
+                  test::line_record(10.0, Vec2(10.0, 0.0), 0.0, middle_m),
+                  test::line_record(10.0 + middle_m, Vec2(10.0 + middle_m, 0.0), 0.0, 10.0 - middle_m)});
+    return road;
+  };
+  for (const auto& [middle_m, stations] : {std::pair(0.001, 3u), std::pair(0.06, 4u)}) {
+    MeshBuilder road_mesh, sidewalk;
+    const LoftedRoad lofted =
+        loft_road(road_with_middle(middle_m), no_markings(), road_mesh, sidewalk, nullptr);
+    EXPECT_EQ(lofted.stations, stations) << middle_m;
+    EXPECT_NEAR(mesh_area(road_mesh.mesh), 20.0 * 6.5, 1e-9);
+    std::set<double> s;
+    for (const Vec2& uv : road_mesh.mesh.uvs) s.insert(uv.y());
+    for (auto it = std::next(s.begin()); it != s.end(); ++it)
+      EXPECT_GE(*it - *std::prev(it), 0.05) << middle_m;
+  }
+  // A short piece that turns keeps its station: a 3 cm arc of 1/3 m radius (5 degrees) between
+  // the two lines. Without it the cross-section after the bend would turn against the one before.
+  ModelRoad bend = straight_road(6, Vec2::Zero(), 0.0, 10.0, 5.0, 0.0);
+  const PlanGeometry arc = test::arc_record(10.0, Vec2(10.0, 0.0), 0.0, 0.03, 3.0);
+  const Pose2 after = PlanView({arc}).at(10.03);
+  bend.plan = PlanView({test::line_record(0.0, Vec2(0.0, 0.0), 0.0, 10.0), arc,
+                        test::line_record(10.03, after.position, after.heading, 9.97)});
+  MeshBuilder road_mesh, sidewalk;
+  EXPECT_EQ(loft_road(bend, no_markings(), road_mesh, sidewalk, nullptr).stations, 4u);
 }
 
 // Every triangle counter-clockwise seen from above (normals up), on a road heading north-west.
