@@ -262,9 +262,8 @@ std::optional<PairCount> pmp_self_intersections(const TriangleMesh& mesh) {
   return pairs;
 }
 
-// --- Geometry helpers -----------------------------------------------------------------------
+}  // namespace
 
-// Boundary edges (used by exactly one triangle) in the direction of their triangle.
 std::vector<std::pair<std::uint32_t, std::uint32_t>> boundary_edges(const TriangleMesh& mesh) {
   const std::vector<EdgeUse> uses = sorted_edge_uses(mesh);
   std::vector<std::pair<std::uint32_t, std::uint32_t>> out;
@@ -275,8 +274,6 @@ std::vector<std::pair<std::uint32_t, std::uint32_t>> boundary_edges(const Triang
   });
   return out;
 }
-
-}  // namespace
 
 MeshQuality analyse_mesh(const TriangleMesh& mesh, const MeshQualityOptions& options) {
   check_indices(mesh, "analyse_mesh");

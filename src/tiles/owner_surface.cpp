@@ -7,10 +7,10 @@
 #include <numeric>
 #include <optional>
 #include <unordered_map>
-#include <unordered_set>
 #include <utility>
 
 #include "relief/core/atomic_file.h"
+#include "relief/geometry/mesh_quality.h"
 #include "tiles/binary_file.h"
 #include "tiles/scene_seams.h"
 #include "tiles/xodr_merge.h"
@@ -165,20 +165,10 @@ std::vector<double> interpolate_unmatched(const TriangleMesh& mesh, const std::v
 // `core`: where another tile's file may hold the same vertex (the tiles' terrains are disjoint
 // pieces of one surface, cut at the tile lines but for triangles beside a road that cross one).
 std::vector<std::uint32_t> border_vertices(const TriangleMesh& mesh, const Aabb2& core, double band) {
-  std::unordered_map<std::uint64_t, int> edges;
-  edges.reserve(mesh.triangles.size() * 3);
-  for (const auto& t : mesh.triangles) {
-    for (std::size_t k = 0; k < 3; ++k) {
-      const std::uint32_t a = std::min(t[k], t[(k + 1) % 3]), b = std::max(t[k], t[(k + 1) % 3]);
-      ++edges[(static_cast<std::uint64_t>(a) << 32U) | b];
-    }
-  }
   const Aabb2 outer = core.inflated(band), inner = core.inflated(-band);
   std::vector<std::uint8_t> on(mesh.vertices.size(), 0);
-  for (const auto& [edge, count] : edges) {
-    if (count != 1) continue;
-    for (const std::uint32_t v :
-         {static_cast<std::uint32_t>(edge >> 32U), static_cast<std::uint32_t>(edge)}) {
+  for (const auto& [a, b] : boundary_edges(mesh)) {
+    for (const std::uint32_t v : {a, b}) {
       const Vec2 p = mesh.vertices[v].head<2>();
       if (outer.contains(p) && !inner.contains(p)) on[v] = 1;
     }
@@ -212,7 +202,10 @@ void join_terrain_borders(std::vector<MeshScene>& tiles, const std::vector<Aabb2
         places[plan_key(mesh.vertices[v])].push_back({t, m, v});
     }
   }
-  const auto z_of = [&](const Copy& c) { return tiles[c.tile].meshes[c.mesh].vertices[c.vertex].z(); };
+  const auto point_of = [&](const Copy& c) -> const Vec3& {
+    return tiles[c.tile].meshes[c.mesh].vertices[c.vertex];
+  };
+  const auto z_of = [&](const Copy& c) { return point_of(c).z(); };
   // The copies of one place, by height, in runs no more than kTerrainOnRoadM apart (an opening's
   // top over a road's edge at the same place is another vertex): a run of two tiles' copies at
   // different heights is a seam apart.
@@ -235,54 +228,37 @@ void join_terrain_borders(std::vector<MeshScene>& tiles, const std::vector<Aabb2
     }
   }
   if (apart.empty()) return;
-  // The paved vertices near those places, by tile: (plan position, how far it moved).
-  const auto cell_of = [](double v) { return static_cast<long long>(std::floor(v / kBatterReachM)); };
-  const auto cell_key = [](long long x, long long y) {
-    return (static_cast<std::uint64_t>(x) * 0x9E3779B97F4A7C15ull) ^ static_cast<std::uint64_t>(y);
-  };
-  std::unordered_set<std::uint64_t> near_cells;
-  for (const auto& copies : apart) {
-    const Vec3& p = tiles[copies[0].tile].meshes[copies[0].mesh].vertices[copies[0].vertex];
-    for (long long dx = -1; dx <= 1; ++dx)
-      for (long long dy = -1; dy <= 1; ++dy)
-        near_cells.insert(cell_key(cell_of(p.x()) + dx, cell_of(p.y()) + dy));
-  }
-  struct Paved {
-    Vec2 p;
-    float moved;
-  };
-  std::vector<std::unordered_map<std::uint64_t, std::vector<Paved>>> paved(tiles.size());
+  // Each tile's paved vertices near those places, as (x, y, how far it moved), in the order of
+  // the move: of two as near, the one that moved less is found.
+  std::vector<OwnerIndex::Entry> place_points;
+  place_points.reserve(apart.size());
+  for (const auto& copies : apart) place_points.push_back({point_of(copies[0]), 0});
+  const OwnerIndex near_place(std::move(place_points), kBatterReachM);
+  std::vector<OwnerIndex> paved;
+  paved.reserve(tiles.size());
   for (std::size_t t = 0; t < tiles.size(); ++t) {
+    std::vector<OwnerIndex::Entry> entries;
     for (std::size_t m = 0; m < tiles[t].meshes.size(); ++m) {
       if (moved[t][m].empty()) continue;
       const TriangleMesh& mesh = tiles[t].meshes[m];
       for (std::size_t i = 0; i < mesh.vertices.size(); ++i) {
-        const std::uint64_t k = cell_key(cell_of(mesh.vertices[i].x()), cell_of(mesh.vertices[i].y()));
-        if (near_cells.contains(k)) paved[t][k].push_back({mesh.vertices[i].head<2>(), moved[t][m][i]});
+        const Vec3& v = mesh.vertices[i];
+        if (near_place.nearest(v.head<2>(), kBatterReachM))
+          entries.push_back({Vec3(v.x(), v.y(), moved[t][m][i]), t});
       }
     }
+    std::stable_sort(
+        entries.begin(), entries.end(),
+        [](const OwnerIndex::Entry& a, const OwnerIndex::Entry& b) { return a.p.z() < b.p.z(); });
+    paved.emplace_back(std::move(entries), kBatterReachM);
   }
   // The move of tile t's paved vertex nearest p within the reach; infinity where it has none.
   const auto nearest_move = [&](std::size_t t, const Vec2& p) {
-    double best_d = kBatterReachM;
-    double move = std::numeric_limits<double>::infinity();
-    for (long long dx = -1; dx <= 1; ++dx) {
-      for (long long dy = -1; dy <= 1; ++dy) {
-        const auto it = paved[t].find(cell_key(cell_of(p.x()) + dx, cell_of(p.y()) + dy));
-        if (it == paved[t].end()) continue;
-        for (const Paved& q : it->second) {
-          const double d = (q.p - p).norm();
-          if (d < best_d || (d == best_d && q.moved < move)) {
-            best_d = d;
-            move = q.moved;
-          }
-        }
-      }
-    }
-    return move;
+    const std::optional<std::size_t> i = paved[t].nearest(p, kBatterReachM);
+    return i ? paved[t].entries()[*i].p.z() : std::numeric_limits<double>::infinity();
   };
   for (const auto& copies : apart) {
-    const Vec2 p = tiles[copies[0].tile].meshes[copies[0].mesh].vertices[copies[0].vertex].head<2>();
+    const Vec2 p = point_of(copies[0]).head<2>();
     const Copy* best = nullptr;
     double best_move = std::numeric_limits<double>::infinity();
     for (const Copy& c : copies) {

@@ -8,6 +8,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "relief/geometry/triangle_mesh.h"
@@ -77,6 +78,10 @@ struct MeshQuality {
 /// below mesh.vertices.size() (else InvalidInput). The self-intersection test takes about
 /// a few seconds per million triangles.
 [[nodiscard]] MeshQuality analyse_mesh(const TriangleMesh& mesh, const MeshQualityOptions& options = {});
+
+/// The edges used by exactly one triangle, each in its triangle's direction. Indices must be
+/// valid (not checked).
+[[nodiscard]] std::vector<std::pair<std::uint32_t, std::uint32_t>> boundary_edges(const TriangleMesh& mesh);
 
 struct SeamGap {
   std::size_t vertices_checked = 0;  ///< boundary vertices of `a` that have a boundary of `b` within reach
