@@ -408,6 +408,79 @@ TEST(TerrainTin, CrossingLoopsAreSplitAndTheOverlapIsTerrain) {
   EXPECT_NEAR(overlap_area, 40.0 * 40.0, 1e-6);
 }
 
+// ---------------------------------------------------------------- region tiles' core lines
+
+// How many triangles of the build's terrain (only those in its core: `core_only`) hold p strictly
+// inside (brute force).
+int faces_containing(const TerrainBuild& build, const Vec2& p, bool core_only) {
+  int n = 0;
+  const TriangleMesh& mesh = build.terrain;
+  for (std::size_t k = 0; k < mesh.triangles.size(); ++k) {
+    if (core_only && build.in_core[k] == 0) continue;
+    const auto& t = mesh.triangles[k];
+    const Vec3& a = mesh.vertices[t[0]];
+    const Vec3& b = mesh.vertices[t[1]];
+    const Vec3& c = mesh.vertices[t[2]];
+    const auto side = [&](const Vec3& u, const Vec3& w) {
+      return (w.x() - u.x()) * (p.y() - u.y()) - (w.y() - u.y()) * (p.x() - u.x());
+    };
+    if (side(a, b) > 0.0 && side(b, c) > 0.0 && side(c, a) > 0.0) ++n;
+  }
+  return n;
+}
+
+TEST(TerrainTin, NeighbouringCoresMeetOnALineTheDemDoesNotReach) {
+  // The DEM has heights west of x = -40 only; two roads run east across the tile line x = 0,
+  // beyond it, so the terrain reaches the line only over the roads' outline (Portland's DEM
+  // ends 42 to 73 m short of a tile line). Both tiles must still cut the line at the same
+  // vertices and keep one side each: before, the line had no point where the DEM had no height,
+  // and the flood telling the sides crossed the gap (104 leaks in one Portland tile).
+  const DemSampler dem = make_dem_with_voids("dem_edge", [](double x, double y) -> std::optional<double> {
+    if (x >= -40.0) return std::nullopt;
+    return plane(x, y);
+  });
+  const std::vector<Polyline3> outline{square(-141.0, -50.0, 139.0, -40.0, 4.0, plane),
+                                       square(-141.0, 40.0, 139.0, 50.0, 4.0, plane)};
+  const auto tile = [&](double x0, double x1, double core_x0, double core_x1) {
+    TerrainOptions options;
+    options.core = Aabb2{Vec2(core_x0, -150.0), Vec2(core_x1, 150.0)};
+    return build_terrain(dem, Aabb2{Vec2(x0, -150.0), Vec2(x1, 150.0)}, outline, options);
+  };
+  const TerrainBuild west = tile(-150.0, 60.0, -150.0, 0.0), east = tile(-60.0, 150.0, 0.0, 150.0);
+  for (const TerrainBuild* b : {&west, &east}) {
+    expect_well_formed(b->terrain);
+    ASSERT_EQ(b->in_core.size(), b->terrain.triangles.size());
+    EXPECT_EQ(b->core_leaks, 0u);
+    EXPECT_EQ(b->core_blocked, 0u);
+  }
+  // The line's vertices, to the bit, in both tiles' kept terrain.
+  const auto on_line = [](const TerrainBuild& b) {
+    std::set<Key> out;
+    for (std::size_t k = 0; k < b.terrain.triangles.size(); ++k) {
+      if (b.in_core[k] == 0) continue;
+      for (const std::uint32_t i : b.terrain.triangles[k]) {
+        const Vec3& v = b.terrain.vertices[i];
+        if (v.x() == 0.0) out.emplace(v.x(), v.y(), v.z());
+      }
+    }
+    return out;
+  };
+  const std::set<Key> west_line = on_line(west), east_line = on_line(east);
+  EXPECT_GE(west_line.size(), 20u);
+  EXPECT_EQ(west_line, east_line);
+  // Where both tiles have terrain near the line, exactly one of them keeps it: no overlap, no gap.
+  int checked = 0;
+  for (double y = -139.37; y < 140.0; y += 3.1) {
+    for (double x = -29.71; x < 30.0; x += 2.3) {
+      const Vec2 p(x, y);
+      if (faces_containing(west, p, false) == 0 || faces_containing(east, p, false) == 0) continue;
+      ++checked;
+      EXPECT_EQ(faces_containing(west, p, true) + faces_containing(east, p, true), 1) << p.transpose();
+    }
+  }
+  EXPECT_GT(checked, 1000);
+}
+
 // ---------------------------------------------------------------- voids and errors
 
 TEST(TerrainTin, VoidsGetNoVertexAndNoFakeHeight) {
