@@ -5,12 +5,13 @@
 // DEM and the road outline near it: points at whole multiples of the DEM step (where the other
 // lines cross it, and 0.5, 1, 2... m from each road edge it crosses), at the DEM's height moved
 // onto the batter like any sample (where the DEM has no height, in a void or beyond its edge,
-// the nearest valid heights around the point: the terrain may still reach the line there). Where the line crosses a road edge the chain leaves it for an
-// end of that edge (an outline vertex, which both tiles share), so the terrain meets the roads as
-// in any build (no vertex on a road edge), and goes on straight across the paved area to the next
-// edge's end. The TIN's own vertices keep clear of the chains, so the simplification (which
-// differs between windows) neither moves nor splits them. The faces are then told inside or
-// outside the core by the side of the chains they lie on.
+// the nearest valid heights around the point: the terrain may still reach the line there).
+// Where the line crosses a road edge the chain leaves it for an end of that edge (an outline
+// vertex, which both tiles share), so the terrain meets the roads as in any build (no vertex on a
+// road edge), and goes on straight across the paved area to the next edge's end. The TIN's own
+// vertices keep clear of the chains, so the simplification (which differs between windows)
+// neither moves nor splits them. The faces are then told inside or outside the core by the side
+// of the chains they lie on.
 
 #include <cstddef>
 #include <vector>
