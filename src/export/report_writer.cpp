@@ -207,6 +207,7 @@ std::string report_json(const RunReport& r) {
                       {"roads", o.roads},
                       {"connecting_roads", o.connecting_roads},
                       {"connecting_roads_off_surface", o.connecting_roads_off_surface},
+                      {"connecting_road_departure_max_m", o.connecting_road_departure_max_m},
                       {"junctions", o.junctions},
                       {"junctions_without_movements", o.junctions_without_movements},
                       {"junctions_joined", o.junctions_joined},

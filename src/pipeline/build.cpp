@@ -402,6 +402,7 @@ BuildResult build(const BuildOptions& options, Diagnostics& diagnostics, const P
       o.roads = built->stats.roads;
       o.connecting_roads = built->stats.connecting_roads;
       o.connecting_roads_off_surface = built->stats.connecting_roads_off_surface;
+      o.connecting_road_departure_max_m = built->stats.connecting_road_departure_max_m;
       o.junctions = built->stats.junctions;
       o.junctions_without_movements = built->stats.junctions_without_movements;
       o.junctions_joined = built->stats.junctions_joined;

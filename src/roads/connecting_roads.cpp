@@ -12,9 +12,8 @@
 #include "relief/geometry/cubic_profile.h"
 #include "relief/geometry/plane.h"
 #include "relief/geometry/reference_line_fit.h"
-#include "relief/roads/way_attributes.h"
 #include "relief/roads/junction_height.h"
-#include "roads/junction_planes.h"
+#include "relief/roads/way_attributes.h"
 #include "roads/lane_layout.h"
 
 namespace relief::detail {
@@ -64,13 +63,13 @@ std::vector<std::pair<int, int>> lane_pairs(const std::vector<std::string>& turn
 }
 
 // The connecting road `id` of junction `junction_id` from lane `la` of road a's end `in` to lane
-// `lb` of road b's end `to`, on the junction's surface where that keeps its grade within `cap`
-// (the larger fitted cap of the two roads + 2 %, less kCapMargin) or within the bound of
-// slope_bounded_profile; else that bounded profile between its ends, its roll blended from the
-// plane gradient g0 to g1.
+// `lb` of road b's end `to`, on the junction's surface wherever that keeps its grade within
+// `cap` (the larger fitted cap of the two roads + 2 %, less kCapMargin) or within the bound of
+// slope_bounded_profile, whichever is larger; where the surface is steeper along it, its heights
+// leave the surface there only (surface_profiles). `departure_m`: how far they leave it.
 ModelRoad connecting_road(int id, int junction_id, const ModelRoad& a, const EndRef& in, int la,
                           const ModelRoad& b, const EndRef& to, int lb, const JunctionHeight& surface,
-                          double cap, const Vec2& g0_plane, const Vec2& g1_plane, bool& on_surface) {
+                          double cap, double& departure_m) {
   ModelRoad c;
   c.id = id;
   c.junction = junction_id;
@@ -89,15 +88,10 @@ ModelRoad connecting_road(int id, int junction_id, const ModelRoad& a, const End
   const auto [z0, g0] = lane_end_height(a, in.at_start, la);
   const auto [z1, g1] = lane_end_height(b, to.at_start, lb);
   const double bound = slope_bound(len, z0, g0, z1, g1, kConnectionGradeAllowance);
-  SurfaceProfiles on = surface_profiles(c.plan, surface);
-  on_surface = on.max_grade <= std::max(bound, cap - kCapMargin);
-  if (on_surface) {
-    c.elevation = std::move(on.elevation);
-    c.superelevation = std::move(on.superelevation);
-  } else {
-    c.elevation = slope_bounded_profile(len, z0, g0, z1, g1, kConnectionGradeAllowance);
-    c.superelevation = plane_rolls(c.plan, g0_plane, g1_plane);
-  }
+  SurfaceProfiles on = surface_profiles(c.plan, surface, std::max(bound, cap - kCapMargin));
+  departure_m = on.max_departure_m;
+  c.elevation = std::move(on.elevation);
+  c.superelevation = std::move(on.superelevation);
   c.lane_offset = CubicProfile({CubicPiece{0.0, Poly3{0.5 * w0, 0.5 * (w1 - w0) / len, 0.0, 0.0}}});
   LaneSection sec;
   LaneModel lane;
@@ -122,8 +116,8 @@ int junction_of(const RoadNetwork& network, const EndRef& e) {
 }
 
 void add_junction(const RoadNetwork& network, const JunctionClusters& clusters, const Junction& j,
-                  const std::vector<EndRef>& ends, const std::vector<Vec2>& planes,
-                  const RoadModelOptions& options, RoadModelBuild& out, Diagnostics& diagnostics) {
+                  const std::vector<EndRef>& ends, const RoadModelOptions& options, RoadModelBuild& out,
+                  Diagnostics& diagnostics) {
   RoadModel& model = out.model;
   const auto model_of = [&](const EndRef& e) -> ModelRoad& {
     return model.roads[out.model_road_of[e.network_road]];
@@ -176,12 +170,12 @@ void add_junction(const RoadNetwork& network, const JunctionClusters& clusters, 
       const WayAttributes& in_attr = network.roads[in.network_road].attributes;
       const std::vector<std::string>& turns = in.at_start ? in_attr.turn_backward : in_attr.turn_forward;
       for (const auto& [la, lb] : lane_pairs(turns, arriving, departing, movement, slight)) {
-        bool on_surface = false;
-        ModelRoad c =
-            connecting_road(static_cast<int>(model.roads.size()) + 1, jm.id, a, in, la, b, to, lb, surface,
-                            cap_of(in, to) + kConnectionGradeAllowance, planes[junction_of(network, in)],
-                            planes[junction_of(network, to)], on_surface);
-        if (!on_surface) ++out.stats.connecting_roads_off_surface;
+        double departure_m = 0.0;
+        ModelRoad c = connecting_road(static_cast<int>(model.roads.size()) + 1, jm.id, a, in, la, b, to, lb,
+                                      surface, cap_of(in, to) + kConnectionGradeAllowance, departure_m);
+        if (departure_m > 0.0) ++out.stats.connecting_roads_off_surface;
+        out.stats.connecting_road_departure_max_m =
+            std::max(out.stats.connecting_road_departure_max_m, departure_m);
         JunctionConnection conn;
         conn.id = static_cast<int>(jm.connections.size());
         conn.incoming_road = a.id;

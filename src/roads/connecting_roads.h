@@ -28,11 +28,11 @@ struct EndRef {
 
 /// Adds the junction of intersection `j` (a cluster's representative in `clusters`) to
 /// out.model: links its road ends (`ends`, those with a model road) to it and adds a connecting
-/// road for every movement and lane pair (`planes`: per network junction, its plane's gradient).
+/// road for every movement and lane pair.
 /// Where no movement is possible (every road leads away, or the turn lanes allow none) the roads
 /// end there instead (codes::kOpendriveJunctionWithoutMovements) and no junction is added.
 void add_junction(const RoadNetwork& network, const JunctionClusters& clusters, const Junction& j,
-                  const std::vector<EndRef>& ends, const std::vector<Vec2>& planes,
-                  const RoadModelOptions& options, RoadModelBuild& out, Diagnostics& diagnostics);
+                  const std::vector<EndRef>& ends, const RoadModelOptions& options, RoadModelBuild& out,
+                  Diagnostics& diagnostics);
 
 }  // namespace relief::detail

@@ -6,6 +6,7 @@
 #include <Eigen/Dense>
 
 #include "relief/core/errors.h"
+#include "relief/geometry/grade_limit.h"
 #include "relief/roads/road_surface.h"
 #include "roads/junction_planes.h"
 
@@ -17,6 +18,7 @@ constexpr double kFade_m = 5.0;        // a road end's departure of grade from t
 constexpr double kSampleStep_m = 0.5;  // along a road inside the junction
 constexpr double kHeightTolerance_m = 1e-3;
 constexpr double kRollTolerance_rad = 1e-4;
+constexpr double kGradeBlend_m = 5.0;  // half-width of the mean that rounds a grade-limited stretch
 
 // Nearest point of segment ab to p.
 Vec2 nearest_on_segment(const Vec2& p, const Vec2& a, const Vec2& b) {
@@ -107,7 +109,7 @@ std::pair<double, Vec2> JunctionHeight::at(const Vec2& p) const {
   return {trend + residual, trend_gradient_ + (grad_num - residual * grad_den) / den};
 }
 
-SurfaceProfiles surface_profiles(const PlanView& plan, const JunctionHeight& surface) {
+SurfaceProfiles surface_profiles(const PlanView& plan, const JunctionHeight& surface, double grade_limit) {
   const double len = plan.length();
   const int n = std::max(2, static_cast<int>(std::ceil(len / kSampleStep_m)));
   std::vector<double> s(n + 1), z(n + 1), roll(n + 1);
@@ -124,7 +126,15 @@ SurfaceProfiles surface_profiles(const PlanView& plan, const JunctionHeight& sur
     if (i == n) slope1 = slope;
     if (i > 0) out.max_grade = std::max(out.max_grade, std::abs(z[i] - z[i - 1]) / (s[i] - s[i - 1]));
   }
-  out.elevation = fit_cubic_profile(s, z, kHeightTolerance_m, std::make_pair(slope0, slope1));
+  const auto end_slopes = std::make_pair(slope0, slope1);
+  if (out.max_grade <= grade_limit) {
+    out.elevation = fit_cubic_profile(s, z, kHeightTolerance_m, end_slopes);
+  } else {
+    const std::vector<double> limited = grade_limited(s, z, grade_limit, kGradeBlend_m);
+    for (int i = 0; i <= n; ++i)
+      out.max_departure_m = std::max(out.max_departure_m, std::abs(limited[i] - z[i]));
+    out.elevation = fit_grade_bounded_profile(s, limited, kHeightTolerance_m, end_slopes);
+  }
   out.superelevation = fit_cubic_profile(s, roll, kRollTolerance_rad);
   return out;
 }

@@ -47,7 +47,7 @@ void link_junctions(const RoadNetwork& network, const detail::JunctionEnds& trim
       detail::link_directly(model_of(ends[0]), ends[0].at_start, model_of(ends[1]), ends[1].at_start);
       ++out.stats.direct_links;
     } else if (j.kind == JunctionKind::intersection && ends.size() >= 2) {
-      detail::add_junction(network, trimmed.clusters, j, ends, planes, options, out, diagnostics);
+      detail::add_junction(network, trimmed.clusters, j, ends, options, out, diagnostics);
     }
   }
 }

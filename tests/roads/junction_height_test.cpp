@@ -6,10 +6,12 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <iostream>
 #include <numbers>
 #include <random>
 
 #include "relief/core/errors.h"
+#include "relief/geometry/cubic_profile.h"
 #include "roads/junction_planes.h"
 
 namespace relief::detail {
@@ -112,6 +114,48 @@ TEST(JunctionHeight, ARoadLaidOnTheSurfaceFollowsIt) {
   }
   EXPECT_LE(on.max_grade, steepest + 1e-9);
   EXPECT_GT(on.max_grade, steepest - 0.01);
+}
+
+// A road across a T junction whose side end lies 2 m over the plane of the other two: the
+// surface bulges towards it, steeper along the road than the plane's 12 %. Under a grade limit
+// between the two the road keeps the limit, leaves the surface only around the bulge (by less
+// than the cubic between its ends would), and keeps its ends' heights and grades exactly.
+TEST(JunctionHeight, ARoadTooSteepOnTheSurfaceLeavesItOnlyWhereItMust) {
+  const Vec2 g(0.12, 0.0);
+  std::vector<EndPlane> ends = {end_on(0.0, 8.0, 10.0, g), end_on(std::numbers::pi / 2, 8.0, 12.0, g),
+                                end_on(std::numbers::pi, 8.0, 10.0, g)};
+  const JunctionHeight s(ends);
+  PlanGeometry line;
+  line.kind = PlanGeometry::Kind::line;
+  line.start = Vec2(-8.0, -2.0);
+  line.heading = 0.0;
+  line.length = 16.0;
+  const PlanView plan({line});
+  const SurfaceProfiles free = surface_profiles(plan, s);
+  EXPECT_EQ(free.max_departure_m, 0.0);
+  ASSERT_GT(free.max_grade, 0.14);  // the bulge's flank
+  const double limit = 0.135;
+  const SurfaceProfiles on = surface_profiles(plan, s, limit);
+  EXPECT_EQ(on.max_grade, free.max_grade);
+  EXPECT_GT(on.max_departure_m, 0.0);
+  double steepest = 0.0, departure = 0.0, cubic_departure = 0.0;
+  const CubicProfile cubic = hermite_profile(16.0, 10.0 - 0.96, 0.12, 10.0 + 0.96, 0.12);
+  for (double t = 0.0; t <= 16.0; t += 0.05) {
+    const double surface = s.at(plan.at(t).position).first;
+    steepest = std::max(steepest, std::abs(on.elevation.derivative(t)));
+    departure = std::max(departure, std::abs(on.elevation.value(t) - surface));
+    cubic_departure = std::max(cubic_departure, std::abs(cubic.value(t) - surface));
+  }
+  EXPECT_LE(steepest, limit + 0.002);  // the cubics' grade, over the samples' chords
+  EXPECT_NEAR(departure, on.max_departure_m, 2e-3);
+  EXPECT_LT(departure, 0.5 * cubic_departure);
+  EXPECT_NEAR(on.elevation.value(0.0), free.elevation.value(0.0), 1e-12);
+  EXPECT_NEAR(on.elevation.value(16.0), free.elevation.value(16.0), 1e-9);
+  EXPECT_NEAR(on.elevation.derivative(0.0), 0.12, 1e-9);
+  EXPECT_NEAR(on.elevation.derivative(16.0), 0.12, 1e-9);
+  std::cout << "  surface grade " << free.max_grade << ", limited " << steepest << ", departure " << departure
+            << " m (the cubic between the ends: " << cubic_departure << " m)\n";
+  EXPECT_THROW((void)surface_profiles(plan, s, 0.1), InvalidInput);  // the ends rise 12 %
 }
 
 }  // namespace

@@ -69,7 +69,8 @@ struct OpenDriveSummary {
   std::string version;    ///< "1.7"
   std::size_t roads = 0;  ///< roads from the network
   std::size_t connecting_roads = 0;
-  std::size_t connecting_roads_off_surface = 0;  ///< not on their junction's height surface (grade bound)
+  std::size_t connecting_roads_off_surface = 0;  ///< leaving their junction's height surface somewhere
+  double connecting_road_departure_max_m = 0.0;  ///< the most one leaves it by (where it is too steep)
   std::size_t junctions = 0;
   std::size_t junctions_without_movements = 0;  ///< intersections left out: no movement possible
   std::size_t junctions_joined = 0;             ///< intersections joined into a neighbour's junction

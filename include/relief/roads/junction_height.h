@@ -16,6 +16,7 @@
 // or overlap they take their heights from the same S and agree; the junction's mesh patch,
 // whose interior points lie on their lane centres, follows it too.
 
+#include <limits>
 #include <utility>
 #include <vector>
 
@@ -59,10 +60,17 @@ class JunctionHeight {
 /// along its reference line, fitted by C1 cubic pieces within 1 mm and 1e-4 rad; the ends exact
 /// (the elevation's value and slope, the roll's value: the roll's rate follows the surface, not
 /// the zero rate a road ends with, which on a turn across a plane put the roll 1e-3 rad off it).
+/// Where the samples' chords are steeper than `grade_limit`, the heights leave the surface there
+/// and only there (grade_limited, blended over 5 m; the roll stays the surface's), and their
+/// cubics keep the samples' grades (fit_grade_bounded_profile): two roads from one lane then
+/// share the surface wherever they can, instead of one of them leaving it whole.
 struct SurfaceProfiles {
   CubicProfile elevation, superelevation;
-  double max_grade = 0.0;  ///< largest |slope| of the elevation samples' chords
+  double max_grade = 0.0;        ///< largest |slope| of the surface samples' chords
+  double max_departure_m = 0.0;  ///< largest |height - the surface's| at the samples
 };
-[[nodiscard]] SurfaceProfiles surface_profiles(const PlanView& plan, const JunctionHeight& surface);
+/// Throws InvalidInput when the ends lie further apart in height than `grade_limit` allows.
+[[nodiscard]] SurfaceProfiles surface_profiles(const PlanView& plan, const JunctionHeight& surface,
+                                               double grade_limit = std::numeric_limits<double>::infinity());
 
 }  // namespace relief

@@ -70,9 +70,10 @@ struct RoadModelOptions {
 struct RoadModelStats {
   std::size_t roads = 0;  ///< from the network
   std::size_t connecting_roads = 0;
-  /// Connecting roads that could not lie on their junction's height surface within their grade
-  /// bound (they take the bounded profile between their ends instead).
+  /// Connecting roads that leave their junction's height surface somewhere, where it is steeper
+  /// along them than their grade bound, and the largest height they leave it by.
   std::size_t connecting_roads_off_surface = 0;
+  double connecting_road_departure_max_m = 0.0;
   std::size_t junctions = 0;                    ///< OpenDRIVE junctions (= network intersections)
   std::size_t junctions_without_movements = 0;  ///< intersections where no movement is possible
   std::size_t direct_links = 0;                 ///< road-to-road links at attribute changes
