@@ -130,7 +130,10 @@ SurfaceProfiles surface_profiles(const PlanView& plan, const JunctionHeight& sur
   if (out.max_grade <= grade_limit) {
     out.elevation = fit_cubic_profile(s, z, kHeightTolerance_m, end_slopes);
   } else {
-    const std::vector<double> limited = grade_limited(s, z, grade_limit, kGradeBlend_m);
+    // The limit is never under the grade between the ends themselves (a short road whose ends'
+    // cross-sections meet the surface a little apart).
+    const double ends_grade = std::abs(z[n] - z[0]) / len * (1.0 + 1e-9);
+    const std::vector<double> limited = grade_limited(s, z, std::max(grade_limit, ends_grade), kGradeBlend_m);
     for (int i = 0; i <= n; ++i)
       out.max_departure_m = std::max(out.max_departure_m, std::abs(limited[i] - z[i]));
     out.elevation = fit_grade_bounded_profile(s, limited, kHeightTolerance_m, end_slopes);

@@ -69,7 +69,7 @@ struct SurfaceProfiles {
   double max_grade = 0.0;        ///< largest |slope| of the surface samples' chords
   double max_departure_m = 0.0;  ///< largest |height - the surface's| at the samples
 };
-/// Throws InvalidInput when the ends lie further apart in height than `grade_limit` allows.
+/// A limit under the grade between the road's two ends is raised to it.
 [[nodiscard]] SurfaceProfiles surface_profiles(const PlanView& plan, const JunctionHeight& surface,
                                                double grade_limit = std::numeric_limits<double>::infinity());
 
