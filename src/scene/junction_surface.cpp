@@ -56,6 +56,7 @@ constexpr double kInteriorMerge = 1.0;      // interior points this close are me
 constexpr double kInteriorClearance = 0.3;  // none this close to the outline (m)
 constexpr double kSurfaceSpacing = 2.0;     // the height surface's points on straight sides and inside (m)
 constexpr double kMaxSurfacePoints = 4000;  // a larger junction gets them farther apart
+constexpr double kDepartureReach = 4.0;     // a lane point's departure from the surface reaches (m)
 
 /// Nesting level of every face: a flood fill from the infinite face that counts the
 /// constrained edges crossed (the usual domain marking of a CDT).
@@ -264,23 +265,38 @@ std::vector<Vec3> surface_grid(const std::vector<Vec2>& outline, const std::vect
   }
   const Vec2 size = hi - lo;
   const double spacing = std::max(kSurfaceSpacing, std::sqrt(size.x() * size.y() / kMaxSurfacePoints));
-  // The lane points by 1 m cell, to skip the grid points near one.
-  std::unordered_set<std::uint64_t> near_lane;
+  // The lane points by 1 m cell, to skip the grid points near one, with their departure from
+  // the surface (a connecting road leaves it where it is too steep along the road).
   const auto key = [](std::int64_t cx, std::int64_t cy) {
     return (static_cast<std::uint64_t>(cx) << 32) ^ static_cast<std::uint64_t>(cy & 0xffffffff);
   };
   const auto cell = [&](double v) { return static_cast<std::int64_t>(std::floor(v / kInteriorMerge)); };
-  std::unordered_map<std::uint64_t, std::vector<Vec2>> lanes;
-  for (const Vec3& p : lane_points) lanes[key(cell(p.x()), cell(p.y()))].push_back(p.head<2>());
-  const auto near = [&](const Vec2& p) {
-    for (std::int64_t dx = -1; dx <= 1; ++dx)
-      for (std::int64_t dy = -1; dy <= 1; ++dy) {
+  std::unordered_map<std::uint64_t, std::vector<Vec3>> lanes;
+  for (const Vec3& p : lane_points)
+    lanes[key(cell(p.x()), cell(p.y()))].emplace_back(p.x(), p.y(), p.z() - surface.at(p.head<2>()).first);
+  const auto reach = static_cast<std::int64_t>(std::ceil(kDepartureReach / kInteriorMerge));
+  // Whether p lies within 1 m of a lane point, and else the lane points' departure there: a
+  // blend of theirs by w = (1 / d^2) (1 - d / R)^2 within R = kDepartureReach, beside the
+  // surface's own weight 1 / R^2 (so it fades to none at R: about 90 % of a lane point's at 1 m,
+  // half at 2 m, a tenth at 3 m).
+  const auto departure = [&](const Vec2& p, bool& near) {
+    double num = 0.0, den = 1.0 / (kDepartureReach * kDepartureReach);
+    near = false;
+    for (std::int64_t dx = -reach; dx <= reach; ++dx)
+      for (std::int64_t dy = -reach; dy <= reach; ++dy) {
         const auto it = lanes.find(key(cell(p.x()) + dx, cell(p.y()) + dy));
         if (it == lanes.end()) continue;
-        for (const Vec2& q : it->second)
-          if ((q - p).norm() < kInteriorMerge) return true;
+        for (const Vec3& q : it->second) {
+          const double d = (q.head<2>() - p).norm();
+          if (d < kInteriorMerge) near = true;
+          if (near || d >= kDepartureReach || q.z() == 0.0) continue;
+          const double fade = 1.0 - d / kDepartureReach;
+          const double w = fade * fade / (d * d);
+          num += w * q.z();
+          den += w;
+        }
       }
-    return false;
+    return num / den;
   };
   std::vector<Vec3> points;
   const auto nx = static_cast<int>(std::floor(size.x() / spacing));
@@ -290,7 +306,9 @@ std::vector<Vec3> surface_grid(const std::vector<Vec2>& outline, const std::vect
   for (int i = 0; i <= nx; ++i)
     for (int j = 0; j <= ny; ++j) {
       const Vec2 p = origin + spacing * Vec2(i, j);
-      if (!near(p)) points.emplace_back(p.x(), p.y(), surface.at(p).first);
+      bool near = false;
+      const double d = departure(p, near);
+      if (!near) points.emplace_back(p.x(), p.y(), surface.at(p).first + d);
     }
   return points;
 }

@@ -70,7 +70,10 @@ struct OutlineGap {
 /// Points of the junction's height surface on a square grid over the outline's bounding box
 /// (`outline`: the ends' vertices and the gaps' points), every 2 m (farther apart where that
 /// would give over 4000), except those within 1 m of a `lane_points` point: between its
-/// connecting roads the patch follows the surface, not a plane across tens of metres.
+/// connecting roads the patch follows the surface, not a plane across tens of metres. Where a
+/// lane point lies off the surface (its connecting road left it where it was too steep along the
+/// road), the grid points within 4 m take its departure, fading with distance (an inverse-square
+/// blend with the surface's own weight at 4 m): the patch does not stand a step off the road.
 [[nodiscard]] std::vector<Vec3> surface_grid(const std::vector<Vec2>& outline,
                                              const std::vector<Vec3>& lane_points,
                                              const JunctionHeight& surface);

@@ -105,6 +105,54 @@ TEST(JunctionSurface, ThePatchBetweenTheEndsFollowsTheJunctionsHeightSurface) {
   EXPECT_TRUE(all_facing_up(mesh.mesh));
 }
 
+// The surface grid beside a lane point 0.6 m over the surface (a connecting road that left it):
+// no grid point within 1 m of it, those within 4 m raised by a share of 0.6 m that falls with
+// their distance, those farther on the surface; a lane point on the surface moves nothing.
+TEST(JunctionSurface, TheGridTakesTheDepartureOfALaneThatLeftTheSurface) {
+  RoadModel model;
+  for (int k = 0; k < 4; ++k) {
+    const double heading = k * std::numbers::pi / 2.0;
+    const Vec2 dir(std::cos(heading), std::sin(heading));
+    model.roads.push_back(test::straight_road(k + 1, 5.0 * dir, heading, 50.0, 2.0, k % 2 == 0 ? 0.12 : 0.0));
+  }
+  std::vector<EndPlane> planes;
+  for (const ModelRoad& road : model.roads) planes.push_back(end_plane(road, true));
+  const JunctionHeight surface(planes);
+  const std::vector<Vec2> outline{{-10.0, -10.0}, {10.0, -10.0}, {10.0, 10.0}, {-10.0, 10.0}};
+  const Vec2 lane(0.5, 0.5);
+  const double raised = surface.at(lane).first + 0.6;
+  const std::vector<Vec3> on_surface =
+      surface_grid(outline, {Vec3(lane.x(), lane.y(), raised - 0.6)}, surface);
+  const std::vector<Vec3> beside = surface_grid(outline, {Vec3(lane.x(), lane.y(), raised)}, surface);
+  ASSERT_EQ(on_surface.size(), beside.size());
+  ASSERT_EQ(beside.size(), 11u * 11u - 1u);  // every 2 m from -10 to 10, less the one at (0, 0)
+  int raised_points = 0;
+  double previous_share = 1.0;
+  std::vector<std::pair<double, double>> by_distance;
+  for (std::size_t k = 0; k < beside.size(); ++k) {
+    const Vec2 p = beside[k].head<2>();
+    const double d = (p - lane).norm();
+    EXPECT_NEAR(on_surface[k].z(), surface.at(p).first, 1e-12) << p.transpose();
+    const double share = (beside[k].z() - surface.at(p).first) / 0.6;
+    if (d >= 4.0) {
+      EXPECT_NEAR(share, 0.0, 1e-12) << p.transpose();
+    } else {
+      EXPECT_GT(share, 0.0) << p.transpose();
+      EXPECT_LT(share, 1.0) << p.transpose();
+      by_distance.emplace_back(d, share);
+      ++raised_points;
+    }
+  }
+  std::sort(by_distance.begin(), by_distance.end());
+  for (const auto& [d, share] : by_distance) {
+    EXPECT_LE(share, previous_share + 1e-12) << d;
+    previous_share = share;
+  }
+  // Within 4 m of (0.5, 0.5): (+-2, 0), (0, +-2), (+-2, +-2), (4, 0), (0, 4), (4, 2), (2, 4).
+  EXPECT_EQ(raised_points, 12);
+  EXPECT_GT(by_distance.front().second, 0.4);  // 1.58 m away
+}
+
 // The L-shaped outline with interior points: one in the middle of the arm at (7, 2) 0.5 m
 // above the outline's heights is a vertex of the surface (its height kept); one 0.2 m from the
 // outline, one in the notch and one outside are not.
