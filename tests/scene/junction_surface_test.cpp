@@ -63,18 +63,25 @@ TEST(JunctionSurface, CrossingOfFourRoadEndsIsItsOctagon) {
   EXPECT_TRUE(all_facing_up(mesh.mesh));
 }
 
-// The same crossing in a valley: the east and west roads climb 12 % away from it, the north and
-// south ones are level. The junction's height surface (relief/roads/junction_height.h) sags
-// between the ends, so a plane through the corners is not it: every vertex the patch adds (on
-// the straight corner sides and inside) lies on the surface, and the middle of a corner side
-// lies 0.044 m below its chord, as connecting roads there do.
-TEST(JunctionSurface, ThePatchBetweenTheEndsFollowsTheJunctionsHeightSurface) {
+// Four roads 6 m wide starting 5 m from the centre, east, north, west and south, at 2 m: the
+// east and west ones climb 12 % away from it, the north and south ones are level.
+RoadModel crossing_in_a_valley() {
   RoadModel model;
   for (int k = 0; k < 4; ++k) {
     const double heading = k * std::numbers::pi / 2.0;
     const Vec2 dir(std::cos(heading), std::sin(heading));
     model.roads.push_back(test::straight_road(k + 1, 5.0 * dir, heading, 50.0, 2.0, k % 2 == 0 ? 0.12 : 0.0));
   }
+  return model;
+}
+
+// The same crossing in a valley: the east and west roads climb 12 % away from it, the north and
+// south ones are level. The junction's height surface (relief/roads/junction_height.h) sags
+// between the ends, so a plane through the corners is not it: every vertex the patch adds (on
+// the straight corner sides and inside) lies on the surface, and the middle of a corner side
+// lies 0.044 m below its chord, as connecting roads there do.
+TEST(JunctionSurface, ThePatchBetweenTheEndsFollowsTheJunctionsHeightSurface) {
+  const RoadModel model = crossing_in_a_valley();
   MeshBuilder mesh;
   std::vector<JunctionEnd> ends;
   std::vector<EndPlane> planes;
@@ -109,12 +116,7 @@ TEST(JunctionSurface, ThePatchBetweenTheEndsFollowsTheJunctionsHeightSurface) {
 // no grid point within 1 m of it, those within 4 m raised by a share of 0.6 m that falls with
 // their distance, those farther on the surface; a lane point on the surface moves nothing.
 TEST(JunctionSurface, TheGridTakesTheDepartureOfALaneThatLeftTheSurface) {
-  RoadModel model;
-  for (int k = 0; k < 4; ++k) {
-    const double heading = k * std::numbers::pi / 2.0;
-    const Vec2 dir(std::cos(heading), std::sin(heading));
-    model.roads.push_back(test::straight_road(k + 1, 5.0 * dir, heading, 50.0, 2.0, k % 2 == 0 ? 0.12 : 0.0));
-  }
+  const RoadModel model = crossing_in_a_valley();
   std::vector<EndPlane> planes;
   for (const ModelRoad& road : model.roads) planes.push_back(end_plane(road, true));
   const JunctionHeight surface(planes);
