@@ -22,6 +22,9 @@ namespace {
 constexpr double kPi = std::numbers::pi;
 constexpr double kUTurn_rad = 5.0 * kPi / 6.0;
 constexpr double kCapMargin = 0.005;  // a road on the junction's surface stays this far inside cap + 2 %
+// Rounds of the junction's surface taking the departures of the roads that left it (the first on
+// the surface alone).
+constexpr int kSurfaceRounds = 3;
 
 // The lane pairs (arriving lane, departing lane) that make `movement` ("through", "left",
 // "right"; `slight`: a turn under 60 degrees, which a through lane may make too). With
@@ -66,10 +69,11 @@ std::vector<std::pair<int, int>> lane_pairs(const std::vector<std::string>& turn
 // `lb` of road b's end `to`, on the junction's surface wherever that keeps its grade within
 // `cap` (the larger fitted cap of the two roads + 2 %, less kCapMargin) or within the bound of
 // slope_bounded_profile, whichever is larger; where the surface is steeper along it, its heights
-// leave the surface there only (surface_profiles). `departure_m`: how far they leave it.
+// leave the surface there only (surface_profiles). `departure_m`: how far they leave it (from the
+// surface without departures); `left`: where, if they left the surface given.
 ModelRoad connecting_road(int id, int junction_id, const ModelRoad& a, const EndRef& in, int la,
                           const ModelRoad& b, const EndRef& to, int lb, const JunctionHeight& surface,
-                          double cap, double& departure_m) {
+                          double cap, double& departure_m, std::vector<Vec3>& left) {
   ModelRoad c;
   c.id = id;
   c.junction = junction_id;
@@ -90,6 +94,7 @@ ModelRoad connecting_road(int id, int junction_id, const ModelRoad& a, const End
   const double bound = slope_bound(len, z0, g0, z1, g1, kConnectionGradeAllowance);
   SurfaceProfiles on = surface_profiles(c.plan, surface, std::max(bound, cap - kCapMargin));
   departure_m = on.max_departure_m;
+  left = std::move(on.left);
   c.elevation = std::move(on.elevation);
   c.superelevation = std::move(on.superelevation);
   c.lane_offset = CubicProfile({CubicPiece{0.0, Poly3{0.5 * w0, 0.5 * (w1 - w0) / len, 0.0, 0.0}}});
@@ -138,10 +143,12 @@ void add_junction(const RoadNetwork& network, const JunctionClusters& clusters, 
     if (options.grade_caps.empty()) return 0.0;
     return std::max(options.grade_caps[x.network_road], options.grade_caps[y.network_road]);
   };
-  std::vector<EndPlane> end_planes;
-  end_planes.reserve(ends.size());
-  for (const EndRef& e : ends) end_planes.push_back(end_plane(model_of(e), e.at_start));
-  const JunctionHeight surface(std::move(end_planes));
+  // The movements: (arriving end, departing end, their lanes).
+  struct Movement {
+    std::size_t in, to;
+    int la, lb;
+  };
+  std::vector<Movement> movements;
   for (std::size_t ia = 0; ia < ends.size(); ++ia) {
     for (std::size_t ib = 0; ib < ends.size(); ++ib) {
       if (ia == ib) continue;
@@ -150,9 +157,8 @@ void add_junction(const RoadNetwork& network, const JunctionClusters& clusters, 
       // A movement between two member junctions follows the absorbed roads between them,
       // one-ways only forward.
       if (!clusters.reachable(network, junction_of(network, in), junction_of(network, to))) continue;
-      // Copies: adding connecting roads may reallocate model.roads.
-      const ModelRoad a = model_of(in);
-      const ModelRoad b = model_of(to);
+      const ModelRoad& a = model_of(in);
+      const ModelRoad& b = model_of(to);
       const std::vector<int> arriving = arriving_lanes(a, in.at_start);
       const std::vector<int> departing = departing_lanes(b, to.at_start);
       if (arriving.empty() || departing.empty()) continue;
@@ -169,25 +175,53 @@ void add_junction(const RoadNetwork& network, const JunctionClusters& clusters, 
       const bool slight = std::abs(turn) < kPi / 3.0;
       const WayAttributes& in_attr = network.roads[in.network_road].attributes;
       const std::vector<std::string>& turns = in.at_start ? in_attr.turn_backward : in_attr.turn_forward;
-      for (const auto& [la, lb] : lane_pairs(turns, arriving, departing, movement, slight)) {
-        double departure_m = 0.0;
-        ModelRoad c = connecting_road(static_cast<int>(model.roads.size()) + 1, jm.id, a, in, la, b, to, lb,
-                                      surface, cap_of(in, to) + kConnectionGradeAllowance, departure_m);
-        if (departure_m > 0.0) ++out.stats.connecting_roads_off_surface;
-        out.stats.connecting_road_departure_max_m =
-            std::max(out.stats.connecting_road_departure_max_m, departure_m);
-        JunctionConnection conn;
-        conn.id = static_cast<int>(jm.connections.size());
-        conn.incoming_road = a.id;
-        conn.connecting_road = c.id;
-        conn.contact = RoadLink::Contact::start;
-        conn.lane_links = {{la, -1}};
-        jm.connections.push_back(conn);
-        model.roads.push_back(std::move(c));
-        ++out.stats.connecting_roads;
-      }
+      for (const auto& [la, lb] : lane_pairs(turns, arriving, departing, movement, slight))
+        movements.push_back({ia, ib, la, lb});
     }
   }
+
+  // Every connecting road on the junction's surface; where some left it (too steep along them),
+  // again on the surface with their departures, so that the roads crossing them meet them there.
+  std::vector<EndPlane> end_planes;
+  end_planes.reserve(ends.size());
+  for (const EndRef& e : ends) end_planes.push_back(end_plane(model_of(e), e.at_start));
+  const JunctionHeight base(std::move(end_planes));
+  JunctionHeight surface = base;
+  const int first_id = static_cast<int>(model.roads.size()) + 1;
+  std::vector<ModelRoad> roads(movements.size());
+  std::vector<double> departure(movements.size(), 0.0);
+  std::vector<std::vector<Vec3>> left(movements.size());
+  for (int round = 0; round < kSurfaceRounds; ++round) {
+    bool any_left = false;
+    for (std::size_t k = 0; k < movements.size(); ++k) {
+      const Movement& m = movements[k];
+      std::vector<Vec3> now_left;
+      roads[k] =
+          connecting_road(first_id + static_cast<int>(k), jm.id, model_of(ends[m.in]), ends[m.in], m.la,
+                          model_of(ends[m.to]), ends[m.to], m.lb, surface,
+                          cap_of(ends[m.in], ends[m.to]) + kConnectionGradeAllowance, departure[k], now_left);
+      if (!now_left.empty()) {
+        left[k] = std::move(now_left);
+        any_left = true;
+      }
+    }
+    if (!any_left || round + 1 == kSurfaceRounds) break;
+    surface = base.with_departures(left);
+  }
+  for (std::size_t k = 0; k < movements.size(); ++k) {
+    if (!left[k].empty()) ++out.stats.connecting_roads_off_surface;
+    out.stats.connecting_road_departure_max_m =
+        std::max(out.stats.connecting_road_departure_max_m, departure[k]);
+    JunctionConnection conn;
+    conn.id = static_cast<int>(jm.connections.size());
+    conn.incoming_road = model_of(ends[movements[k].in]).id;
+    conn.connecting_road = roads[k].id;
+    conn.contact = RoadLink::Contact::start;
+    conn.lane_links = {{movements[k].la, -1}};
+    jm.connections.push_back(conn);
+    ++out.stats.connecting_roads;
+  }
+  for (ModelRoad& c : roads) model.roads.push_back(std::move(c));
   if (jm.connections.empty()) {
     // No movement is possible here (every road leads away, or the turn lanes allow nothing):
     // the roads end at the junction's edge instead.

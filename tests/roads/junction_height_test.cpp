@@ -9,6 +9,7 @@
 #include <iostream>
 #include <numbers>
 #include <random>
+#include <tuple>
 
 #include "relief/core/errors.h"
 #include "relief/geometry/cubic_profile.h"
@@ -159,6 +160,95 @@ TEST(JunctionHeight, ARoadTooSteepOnTheSurfaceLeavesItOnlyWhereItMust) {
   const SurfaceProfiles straight = surface_profiles(plan, s, 0.1);
   for (double t = 0.0; t <= 16.0; t += 0.5)
     EXPECT_NEAR(straight.elevation.value(t), 9.04 + 0.12 * t, 1e-6) << t;
+}
+
+// A line of departures (linear along it) across the junction of EveryEndIsMet...: on every end's
+// cross-section the surface and its gradient stay the end's plane; on the line, more than 1 m
+// from the ends, it is the surface plus the line's departure; 4 m from the line it is the surface
+// alone; and the gradient is the derivative of it all.
+TEST(JunctionHeight, DeparturesAreTakenOnTheirLineAndFadeAway) {
+  std::vector<EndPlane> ends{end_on(0.0, 8.0, 10.0, Vec2(0.10, 0.02)),
+                             end_on(std::numbers::pi / 2, 8.0, 10.6, Vec2(-0.03, 0.15)),
+                             end_on(std::numbers::pi, 9.0, 10.2, Vec2(0.04, -0.01))};
+  const JunctionHeight s(ends);
+  std::vector<Vec3> line;
+  for (double x = -4.0; x <= 4.0; x += 0.5) line.emplace_back(x, -1.0, 0.2 + 0.05 * x);
+  const JunctionHeight moved = s.with_departures({line});
+  EXPECT_TRUE(moved.has_departures());
+  EXPECT_FALSE(s.has_departures());
+  for (const EndPlane& e : ends) {
+    for (const double f : {0.0, 0.3, 0.5, 1.0}) {
+      const Vec2 p = e.right + f * (e.left - e.right);
+      const auto [z, g] = moved.at(p);
+      EXPECT_NEAR(z, e.z + e.gradient.dot(p - e.point), 1e-12);
+      EXPECT_LT((g - e.gradient).norm(), 1e-12);
+    }
+  }
+  for (double x = -4.0; x <= 4.0; x += 0.25) {
+    const Vec2 p(x, -1.0);
+    EXPECT_NEAR(moved.at(p).first - s.at(p).first, 0.2 + 0.05 * x, 1e-9) << x;
+    EXPECT_NEAR(moved.base_at(p).first, s.at(p).first, 1e-15) << x;
+    const Vec2 far(x, -5.0);
+    EXPECT_EQ(moved.at(far).first, s.at(far).first) << x;
+  }
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(-6.0, 6.0);
+  const double h = 1e-6;
+  for (int i = 0; i < 300; ++i) {
+    const Vec2 p(u(rng), u(rng));
+    const Vec2 g = moved.at(p).second;
+    const double gx = (moved.at(p + Vec2(h, 0.0)).first - moved.at(p - Vec2(h, 0.0)).first) / (2.0 * h);
+    const double gy = (moved.at(p + Vec2(0.0, h)).first - moved.at(p - Vec2(0.0, h)).first) / (2.0 * h);
+    EXPECT_NEAR(g.x(), gx, 1e-5) << p.transpose();
+    EXPECT_NEAR(g.y(), gy, 1e-5) << p.transpose();
+  }
+}
+
+// The road of ARoadTooSteep... leaves the surface around its bulge; a road crossing it where it
+// leaves the surface most, laid on the surface alone, passes a step above it. Laid on the surface
+// with the first road's departures, the two meet within the fits' millimetres, and the first road
+// still keeps its limit and its ends.
+TEST(JunctionHeight, ARoadCrossingOneThatLeftTheSurfaceMeetsItThere) {
+  const Vec2 g(0.12, 0.0);
+  const JunctionHeight s({end_on(0.0, 8.0, 10.0, g), end_on(std::numbers::pi / 2, 8.0, 12.0, g),
+                          end_on(std::numbers::pi, 8.0, 10.0, g)});
+  const auto straight = [](const Vec2& start, double heading, double length) {
+    PlanGeometry line;
+    line.kind = PlanGeometry::Kind::line;
+    line.start = start;
+    line.heading = heading;
+    line.length = length;
+    return PlanView({line});
+  };
+  const PlanView across = straight(Vec2(-8.0, -2.0), 0.0, 16.0);
+  const double limit = 0.135;
+  const SurfaceProfiles left = surface_profiles(across, s, limit);
+  ASSERT_FALSE(left.left.empty());
+  double t_most = 0.0, most = 0.0;
+  for (double t = 0.0; t <= 16.0; t += 0.05) {
+    const double d = std::abs(left.elevation.value(t) - s.at(across.at(t).position).first);
+    if (d > most) std::tie(most, t_most) = std::make_pair(d, t);
+  }
+  const PlanView crossing = straight(Vec2(-8.0 + t_most, 7.0), -std::numbers::pi / 2, 14.0);
+  const double t_crossing = 9.0;  // where it crosses y = -2
+  const double step_before =
+      std::abs(surface_profiles(crossing, s).elevation.value(t_crossing) - left.elevation.value(t_most));
+  const JunctionHeight moved = s.with_departures({left.left});
+  const SurfaceProfiles again = surface_profiles(across, moved, limit);
+  const double step_after =
+      std::abs(surface_profiles(crossing, moved).elevation.value(t_crossing) - again.elevation.value(t_most));
+  std::cout << "  departure " << most << " m at s = " << t_most << "; step where a road crosses it "
+            << step_before << " m on the surface alone, " << step_after << " m with its departures\n";
+  EXPECT_GT(step_before, 0.015);
+  EXPECT_LT(step_after, 0.002);
+  double steepest = 0.0;
+  for (double t = 0.0; t <= 16.0; t += 0.05)
+    steepest = std::max(steepest, std::abs(again.elevation.derivative(t)));
+  EXPECT_LE(steepest, limit + 0.002);
+  EXPECT_NEAR(again.elevation.value(0.0), left.elevation.value(0.0), 1e-12);
+  EXPECT_NEAR(again.elevation.value(16.0), left.elevation.value(16.0), 1e-9);
+  EXPECT_NEAR(again.elevation.derivative(0.0), 0.12, 1e-9);
+  EXPECT_NEAR(again.elevation.derivative(16.0), 0.12, 1e-9);
 }
 
 }  // namespace

@@ -70,7 +70,8 @@ struct OpenDriveSummary {
   std::size_t roads = 0;  ///< roads from the network
   std::size_t connecting_roads = 0;
   std::size_t connecting_roads_off_surface = 0;  ///< leaving their junction's height surface somewhere
-  double connecting_road_departure_max_m = 0.0;  ///< the most one leaves it by (where it is too steep)
+  /// The most one lies off it by (where it is too steep, or crossing one that left it)
+  double connecting_road_departure_max_m = 0.0;
   std::size_t junctions = 0;
   std::size_t junctions_without_movements = 0;  ///< intersections left out: no movement possible
   std::size_t junctions_joined = 0;             ///< intersections joined into a neighbour's junction

@@ -15,6 +15,10 @@
 // the road's grade and roll (C1 across the junction's edge). Where two connecting roads cross
 // or overlap they take their heights from the same S and agree; the junction's mesh patch,
 // whose interior points lie on their lane centres, follows it too.
+//
+// Where S is too steep along a connecting road, that road leaves it (surface_profiles); the
+// surface then takes the road's departure (with_departures), so that the roads crossing it
+// follow it there too instead of passing a step above or below it.
 
 #include <limits>
 #include <utility>
@@ -46,14 +50,30 @@ class JunctionHeight {
   /// Throws InvalidInput for no ends.
   explicit JunctionHeight(std::vector<EndPlane> ends);
 
-  /// Height and gradient of the surface at p.
+  /// Height and gradient of the surface at p, its departures included.
   [[nodiscard]] std::pair<double, Vec2> at(const Vec2& p) const;
+  /// The same without the departures.
+  [[nodiscard]] std::pair<double, Vec2> base_at(const Vec2& p) const;
+
+  /// This surface raised or lowered by the departures of roads that left it, each a line of
+  /// points (x, y, dz) along the road: S'(p) = S(p) + K(p) F(p), F = sum_l w_l dz_l / (1 / R^2 +
+  /// sum_l w_l), dz_l the departure of line l at its point nearest p (linear between its
+  /// points), w_l = (1 / d_l^2) (1 - d_l / R)^2 within R = 4 m of it (each line's own departure
+  /// on it, none 4 m from every line, as the junction's mesh patch blends its lane points), K =
+  /// smoothstep(min(1, d / 1 m)) of the distance d to the nearest end's cross-section, so that
+  /// every end keeps its plane and its gradient exactly. Replaces any departures it had.
+  [[nodiscard]] JunctionHeight with_departures(std::vector<std::vector<Vec3>> departures) const;
+  [[nodiscard]] bool has_departures() const { return !departures_.empty(); }
 
  private:
+  // K(p) F(p) and its gradient.
+  [[nodiscard]] std::pair<double, Vec2> departure_at(const Vec2& p) const;
+
   std::vector<EndPlane> ends_;
   Vec2 centre_ = Vec2::Zero();  // of the ends' reference points
   double trend_z_ = 0.0;        // the trend plane's height at centre_
   Vec2 trend_gradient_ = Vec2::Zero();
+  std::vector<std::vector<Vec3>> departures_;
 };
 
 /// Elevation and roll of a road inside the junction laid on the surface: sampled every 0.5 m
@@ -64,10 +84,14 @@ class JunctionHeight {
 /// and only there (grade_limited, blended over 5 m; the roll stays the surface's), and their
 /// cubics keep the samples' grades (fit_grade_bounded_profile): two roads from one lane then
 /// share the surface wherever they can, instead of one of them leaving it whole.
+/// `max_departure_m` is measured from the surface without its departures (base_at); `left` holds
+/// the samples (x, y, height - base height) of a road that left the given surface, for
+/// with_departures (empty when it did not).
 struct SurfaceProfiles {
   CubicProfile elevation, superelevation;
   double max_grade = 0.0;        ///< largest |slope| of the surface samples' chords
-  double max_departure_m = 0.0;  ///< largest |height - the surface's| at the samples
+  double max_departure_m = 0.0;  ///< largest |height - the surface's without departures| at the samples
+  std::vector<Vec3> left;
 };
 /// A limit under the grade between the road's two ends is raised to it.
 [[nodiscard]] SurfaceProfiles surface_profiles(const PlanView& plan, const JunctionHeight& surface,

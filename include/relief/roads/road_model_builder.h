@@ -71,7 +71,8 @@ struct RoadModelStats {
   std::size_t roads = 0;  ///< from the network
   std::size_t connecting_roads = 0;
   /// Connecting roads that leave their junction's height surface somewhere, where it is steeper
-  /// along them than their grade bound, and the largest height they leave it by.
+  /// along them than their grade bound; and the largest height any connecting road lies off that
+  /// surface (those roads, and the roads crossing them, which take their departures).
   std::size_t connecting_roads_off_surface = 0;
   double connecting_road_departure_max_m = 0.0;
   std::size_t junctions = 0;                    ///< OpenDRIVE junctions (= network intersections)
