@@ -214,6 +214,7 @@ std::string report_json(const RunReport& r) {
                       {"roads_absorbed", o.roads_absorbed},
                       {"direct_links", o.direct_links},
                       {"transition_roads", o.transition_roads},
+                      {"transitions_as_junctions", o.transitions_as_junctions},
                       {"roads_skipped", o.roads_skipped},
                       {"max_link_gap_m", o.max_link_gap_m},
                       {"max_link_step_m", o.max_link_step_m},

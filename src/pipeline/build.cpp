@@ -409,6 +409,7 @@ BuildResult build(const BuildOptions& options, Diagnostics& diagnostics, const P
       o.roads_absorbed = built->stats.roads_absorbed;
       o.direct_links = built->stats.direct_links;
       o.transition_roads = built->stats.transition_roads;
+      o.transitions_as_junctions = built->stats.transitions_as_junctions;
       o.roads_skipped = built->stats.roads_skipped;
       o.max_link_gap_m = links.max_horizontal_m;
       o.max_link_step_m = links.max_vertical_m;

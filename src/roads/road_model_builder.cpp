@@ -40,9 +40,14 @@ void link_junctions(const RoadNetwork& network, const detail::JunctionEnds& trim
       detail::report_no_passage(j, model_of(ends[0]), model_of(ends[1]), diagnostics);
       ++out.stats.ends_without_passage;
     } else if (transition[j.id] && ends.size() == 2) {
-      detail::add_transition_road(model, model_of(ends[0]), ends[0].at_start, model_of(ends[1]).id,
-                                  ends[1].at_start, planes[j.id]);
-      ++out.stats.transition_roads;
+      if (detail::add_transition_road(model, model_of(ends[0]), ends[0].at_start, model_of(ends[1]).id,
+                                      ends[1].at_start, planes[j.id], options.min_radius_margin_m)) {
+        ++out.stats.transition_roads;
+      } else {
+        detail::report_transition_as_junction(j, model_of(ends[0]), model_of(ends[1]), diagnostics);
+        ++out.stats.transitions_as_junctions;
+        detail::add_junction(network, trimmed.clusters, j, ends, options, out, diagnostics);
+      }
     } else if (end_to_end) {
       detail::link_directly(model_of(ends[0]), ends[0].at_start, model_of(ends[1]), ends[1].at_start);
       ++out.stats.direct_links;

@@ -12,12 +12,15 @@
 #include "relief/geometry/plane.h"
 #include "relief/geometry/polyline.h"
 #include "relief/geometry/reference_line_fit.h"
+#include "relief/roads/road_surface.h"
 #include "roads/junction_planes.h"
 #include "roads/lane_layout.h"
 #include "roads/road_records.h"
 
 namespace relief::detail {
 namespace {
+
+constexpr double kFoldStep_m = 0.25;  // stations along a transition road checked for folding
 
 // Direction in which a road leaves junction `at_start ? start : end`, `along` metres into it:
 // that of the polyline segment there (unit vector).
@@ -37,6 +40,27 @@ Vec2 leaving_direction(const Road& road, bool at_start, double along = 0.0) {
 std::pair<int, int> arriving_departing(const WayAttributes& a, bool at_start) {
   const int forward = a.lanes_forward, backward = a.oneway ? 0 : a.lanes_backward;
   return at_start ? std::pair{backward, forward} : std::pair{forward, backward};
+}
+
+// Whether a border of the road's lanes comes within `margin_m` of the centre of its reference
+// line's curvature, or beyond it (where the lofted border folds back on itself): sampled every
+// 0.25 m, and at every geometry record's ends.
+bool folds(const ModelRoad& road, double margin_m) {
+  const double len = road.length();
+  std::vector<double> stations;
+  for (double s = 0.0; s < len; s += kFoldStep_m) stations.push_back(s);
+  for (const PlanGeometry& g : road.plan.records()) stations.push_back(std::min(g.s + g.length, len));
+  for (const double s : stations) {
+    const double k = road.plan.at(s).curvature;
+    if (k == 0.0) continue;
+    const LaneSection& sec = section_at(road, s);
+    const double ds = s - sec.s;
+    double t = road.lane_offset.value(s);  // the border on the inside of the bend
+    for (const LaneModel& lane : k > 0.0 ? sec.left : sec.right)
+      t += (k > 0.0 ? 1.0 : -1.0) * lane.width.value(ds);
+    if (std::abs(t) + margin_m >= 1.0 / std::abs(k) && t * k > 0.0) return true;
+  }
+  return false;
 }
 
 }  // namespace
@@ -111,10 +135,10 @@ bool needs_transition(const RoadNetwork& network, const Junction& j) {
          std::abs(a.attributes.lane_width_m - b.attributes.lane_width_m) > 1e-9;
 }
 
-void add_transition_road(RoadModel& model, ModelRoad& a_ref, bool a_at_start, int b_id, bool b_at_start,
-                         const Vec2& gradient) {
-  const ModelRoad a = a_ref;
-  const ModelRoad b = model.roads[model.road_index(b_id)];
+bool add_transition_road(RoadModel& model, ModelRoad& a_ref, bool a_at_start, int b_id, bool b_at_start,
+                         const Vec2& gradient, double margin_m) {
+  const ModelRoad& a = a_ref;
+  const ModelRoad& b = model.roads[model.road_index(b_id)];
   ModelRoad t;
   t.id = static_cast<int>(model.roads.size()) + 1;
   t.name = a.name == b.name ? a.name : a.name + " / " + b.name;
@@ -150,30 +174,34 @@ void add_transition_road(RoadModel& model, ModelRoad& a_ref, bool a_at_start, in
       lane.width = hermite_profile(len, width_or_zero(a, a_at_start, at_a, k), 0.0,
                                    width_or_zero(b, b_at_start, at_b, k), 0.0);
       lane.mark = k + 1 == n ? mark(RoadMark::Type::solid) : mark(RoadMark::Type::broken);
-      if (k < at_a.size()) {
-        lane.predecessor = at_a[k];
-        set_lane_link(a_ref, a_at_start, at_a[k], lane.id);
-      }
-      if (k < at_b.size()) {
-        lane.successor = at_b[k];
-        set_lane_link(model.roads[model.road_index(b_id)], b_at_start, at_b[k], lane.id);
-      }
+      if (k < at_a.size()) lane.predecessor = at_a[k];
+      if (k < at_b.size()) lane.successor = at_b[k];
       side.push_back(lane);
     }
   };
   make_side(a_in, b_out, -1, sec.right);
   make_side(a_out, b_in, +1, sec.left);
   t.sections = {sec};
-  t.predecessor =
-      RoadLink{RoadLink::Element::road, a.id, a_at_start ? RoadLink::Contact::start : RoadLink::Contact::end};
+  if (folds(t, margin_m)) return false;
+
+  for (const std::vector<LaneModel>* side : {&t.sections.front().right, &t.sections.front().left}) {
+    for (const LaneModel& lane : *side) {
+      if (lane.predecessor) set_lane_link(a_ref, a_at_start, *lane.predecessor, lane.id);
+      if (lane.successor)
+        set_lane_link(model.roads[model.road_index(b_id)], b_at_start, *lane.successor, lane.id);
+    }
+  }
+  t.predecessor = RoadLink{RoadLink::Element::road, a_ref.id,
+                           a_at_start ? RoadLink::Contact::start : RoadLink::Contact::end};
   t.successor =
-      RoadLink{RoadLink::Element::road, b.id, b_at_start ? RoadLink::Contact::start : RoadLink::Contact::end};
+      RoadLink{RoadLink::Element::road, b_id, b_at_start ? RoadLink::Contact::start : RoadLink::Contact::end};
   (a_at_start ? a_ref.predecessor : a_ref.successor) =
       RoadLink{RoadLink::Element::road, t.id, RoadLink::Contact::start};
   ModelRoad& b_ref = model.roads[model.road_index(b_id)];
   (b_at_start ? b_ref.predecessor : b_ref.successor) =
       RoadLink{RoadLink::Element::road, t.id, RoadLink::Contact::end};
   model.roads.push_back(std::move(t));
+  return true;
 }
 
 void link_directly(ModelRoad& a, bool a_at_start, ModelRoad& b, bool b_at_start) {
@@ -199,6 +227,19 @@ void link_directly(ModelRoad& a, bool a_at_start, ModelRoad& b, bool b_at_start)
     link_side(ar, bl);
     link_side(al, br);
   }
+}
+
+void report_transition_as_junction(const Junction& j, const ModelRoad& a, const ModelRoad& b,
+                                   Diagnostics& diagnostics) {
+  Diagnostic d;
+  d.severity = Severity::info;
+  d.code = codes::kModelTransitionAsJunction;
+  d.message = "roads " + std::to_string(a.id) + " and " + std::to_string(b.id) + " meet at OSM node " +
+              std::to_string(j.osm_node_id) +
+              " in a bend too tight for their lanes (a transition road's lanes would fold over "
+              "themselves); the node is a junction, one connecting road per movement";
+  d.osm_node_id = j.osm_node_id;
+  diagnostics.report(std::move(d));
 }
 
 void report_no_passage(const Junction& j, const ModelRoad& a, const ModelRoad& b, Diagnostics& diagnostics) {

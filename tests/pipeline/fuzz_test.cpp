@@ -169,5 +169,36 @@ TEST(Fuzz, RandomNetworksOnRandomTerrainBuildAndCheckThemselves) {
   }
 }
 
+// Seeds whose two-road bends were too sharp for their short roads to be trimmed back far enough:
+// a transition road's inner lane border passed the bend's centre and Road_Road intersected
+// itself (10 and 11 pairs). Such a bend is now a junction (model.transition_as_junction).
+TEST(Fuzz, BendsTooTightForATransitionRoadAreJunctionsThatDoNotFold) {
+  for (const unsigned seed : {234u, 309u}) {
+    SCOPED_TRACE("seed " + std::to_string(seed));
+    const std::filesystem::path dir = test::scratch_dir("fuzz_" + std::to_string(seed));
+    const FuzzCase c = make_case(seed, dir);
+    BuildOptions o;
+    o.osm_path = c.osm;
+    o.dem_paths = {c.dem};
+    o.out_dir = dir / "out";
+    o.crs = test::synthetic_frame().crs();
+    Diagnostics d;
+    BuildResult result;
+    ASSERT_NO_THROW(result = build(o, d));
+    const RunReport& r = result.report;
+    EXPECT_EQ(d.count("model.transition_as_junction"), 1u);
+    ASSERT_TRUE(r.opendrive);
+    EXPECT_EQ(r.opendrive->transitions_as_junctions, 1u);
+    bool checked = false;
+    for (const Gate& g : r.gates) {
+      if (g.name != "road_self_intersections") continue;
+      EXPECT_EQ(g.value, 0.0) << g.where;
+      checked = true;
+    }
+    EXPECT_TRUE(checked);
+    EXPECT_EQ(r.junctions.max_gap_m, 0.0);
+  }
+}
+
 }  // namespace
 }  // namespace relief

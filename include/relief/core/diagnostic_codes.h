@@ -81,6 +81,9 @@ inline constexpr DiagnosticCode kModelJunctionEndsOverlap{
     "model.junction_ends_overlap", "road ends at a junction still overlap after the largest trim allowed"};
 inline constexpr DiagnosticCode kModelNoPassage{
     "model.no_passage", "two roads meet but no lane leads from one into the other (opposed one-ways)"};
+inline constexpr DiagnosticCode kModelTransitionAsJunction{
+    "model.transition_as_junction",
+    "a bend between two roads too tight for their lanes is a junction, one connecting road per movement"};
 inline constexpr DiagnosticCode kOpendriveRoadTooShort{
     "opendrive.road_too_short", "a road with no length left between its junctions is left out"};
 inline constexpr DiagnosticCode kOpendriveJunctionWithoutMovements{
@@ -170,6 +173,7 @@ inline constexpr std::array kAll{kDemDatumGridMissing,
                                  kModelCornerRounded,
                                  kModelJunctionEndsOverlap,
                                  kModelNoPassage,
+                                 kModelTransitionAsJunction,
                                  kOpendriveRoadTooShort,
                                  kOpendriveJunctionWithoutMovements,
                                  kMeshRoadTooShort,

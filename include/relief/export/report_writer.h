@@ -78,6 +78,7 @@ struct OpenDriveSummary {
   std::size_t roads_absorbed = 0;               ///< network roads inside joined junctions
   std::size_t direct_links = 0;
   std::size_t transition_roads = 0;
+  std::size_t transitions_as_junctions = 0;  ///< two-road bends too tight for a transition road
   std::size_t roads_skipped = 0;
   double max_link_gap_m = 0.0;   ///< horizontal, between linked lane borders
   double max_link_step_m = 0.0;  ///< vertical, the same

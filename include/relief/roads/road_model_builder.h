@@ -79,7 +79,9 @@ struct RoadModelStats {
   std::size_t junctions_without_movements = 0;  ///< intersections where no movement is possible
   std::size_t direct_links = 0;                 ///< road-to-road links at attribute changes
   std::size_t transition_roads = 0;  ///< short roads where two roads meet at an angle or change lanes
-  std::size_t roads_skipped = 0;     ///< roads without height or too short once trimmed
+  /// Two-road nodes whose bend was too tight for a transition road's lanes: junctions instead.
+  std::size_t transitions_as_junctions = 0;
+  std::size_t roads_skipped = 0;  ///< roads without height or too short once trimmed
   /// Largest |elevation record - fitted profile| over the profile's stations (mapped onto the
   /// reference line) of every road.
   double max_elevation_deviation_m = 0.0;
