@@ -44,7 +44,8 @@ void link_junctions(const RoadNetwork& network, const detail::JunctionEnds& trim
                                       ends[1].at_start, planes[j.id], options.min_radius_margin_m)) {
         ++out.stats.transition_roads;
       } else {
-        detail::report_transition_as_junction(j, model_of(ends[0]), model_of(ends[1]), diagnostics);
+        detail::report_transition_as_junction(j, model_of(ends[0]), model_of(ends[1]),
+                                              options.min_radius_margin_m, diagnostics);
         ++out.stats.transitions_as_junctions;
         detail::add_junction(network, trimmed.clusters, j, ends, options, out, diagnostics);
       }

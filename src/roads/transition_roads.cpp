@@ -8,6 +8,7 @@
 #include <utility>
 
 #include "relief/core/diagnostic_codes.h"
+#include "relief/core/number_format.h"
 #include "relief/geometry/cubic_profile.h"
 #include "relief/geometry/plane.h"
 #include "relief/geometry/polyline.h"
@@ -229,15 +230,19 @@ void link_directly(ModelRoad& a, bool a_at_start, ModelRoad& b, bool b_at_start)
   }
 }
 
-void report_transition_as_junction(const Junction& j, const ModelRoad& a, const ModelRoad& b,
+void report_transition_as_junction(const Junction& j, const ModelRoad& a, const ModelRoad& b, double radius_m,
                                    Diagnostics& diagnostics) {
   Diagnostic d;
   d.severity = Severity::info;
   d.code = codes::kModelTransitionAsJunction;
-  d.message = "roads " + std::to_string(a.id) + " and " + std::to_string(b.id) + " meet at OSM node " +
-              std::to_string(j.osm_node_id) +
-              " in a bend too tight for their lanes (a transition road's lanes would fold over "
-              "themselves); the node is a junction, one connecting road per movement";
+  std::string radius;
+  append_shortest(radius, radius_m);
+  d.message =
+      "roads " + std::to_string(a.id) + " and " + std::to_string(b.id) + " meet at OSM node " +
+      std::to_string(j.osm_node_id) +
+      " in a bend too tight for their lanes (a transition road's inner lane border would pass within " +
+      radius +
+      " m of the bend's centre, or beyond it); the node is a junction, one connecting road per movement";
   d.osm_node_id = j.osm_node_id;
   diagnostics.report(std::move(d));
 }

@@ -45,8 +45,8 @@ namespace relief::detail {
 /// a's to b's with cubics, so every linked lane border meets exactly. Its roll lays it on the
 /// plane of `gradient`. Appended to model.roads; a's and b's links and lane links point to it.
 /// `a_ref` is an element of model.roads, `b_id` the id of another. Where the corner is too
-/// tight for the lanes (a border on the inside of the bend within `margin_m` of its centre or
-/// beyond, where the lofted lanes would fold over themselves) nothing is added or changed, and
+/// tight for the lanes (a border on the inside of the bend within `margin_m` of its centre, or
+/// beyond it, where the lofted lanes would fold over themselves) nothing is added or changed, and
 /// it returns false.
 [[nodiscard]] bool add_transition_road(RoadModel& model, ModelRoad& a_ref, bool a_at_start, int b_id,
                                        bool b_at_start, const Vec2& gradient, double margin_m);
@@ -56,8 +56,9 @@ namespace relief::detail {
 void link_directly(ModelRoad& a, bool a_at_start, ModelRoad& b, bool b_at_start);
 
 /// Reports (info) that the two roads of junction j meet in a bend too tight for a transition
-/// road, and that the node is built as a junction.
-void report_transition_as_junction(const Junction& j, const ModelRoad& a, const ModelRoad& b,
+/// road (its inner border within `radius_m` of the bend's centre), and that the node is built as
+/// a junction.
+void report_transition_as_junction(const Junction& j, const ModelRoad& a, const ModelRoad& b, double radius_m,
                                    Diagnostics& diagnostics);
 
 /// Reports two roads meeting at junction j without passage between them (codes::kModelNoPassage).
