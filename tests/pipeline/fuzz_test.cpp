@@ -131,21 +131,27 @@ FuzzCase make_case(unsigned seed, const std::filesystem::path& dir) {
   return c;
 }
 
+// Writes seed's case into a scratch folder and builds it with every output into its out/.
+BuildResult build_seed(unsigned seed, FuzzCase& c, Diagnostics& d) {
+  const std::filesystem::path dir = test::scratch_dir("fuzz_" + std::to_string(seed));
+  c = make_case(seed, dir);
+  BuildOptions o;
+  o.osm_path = c.osm;
+  o.dem_paths = {c.dem};
+  o.out_dir = dir / "out";
+  o.crs = test::synthetic_frame().crs();
+  return build(o, d);
+}
+
 TEST(Fuzz, RandomNetworksOnRandomTerrainBuildAndCheckThemselves) {
   const char* env = std::getenv("RELIEF_FUZZ_SEEDS");
   const unsigned seeds = env != nullptr ? static_cast<unsigned>(std::max(1, std::atoi(env))) : 30u;
   for (unsigned seed = 1; seed <= seeds; ++seed) {
     SCOPED_TRACE("seed " + std::to_string(seed));
-    const std::filesystem::path dir = test::scratch_dir("fuzz_" + std::to_string(seed));
-    const FuzzCase c = make_case(seed, dir);
-    BuildOptions o;
-    o.osm_path = c.osm;
-    o.dem_paths = {c.dem};
-    o.out_dir = dir / "out";
-    o.crs = test::synthetic_frame().crs();
+    FuzzCase c;
     Diagnostics d;
     BuildResult result;
-    ASSERT_NO_THROW(result = build(o, d));
+    ASSERT_NO_THROW(result = build_seed(seed, c, d));
     const RunReport& r = result.report;
     // Every output written, every gate evaluated with a finite value.
     EXPECT_GE(result.written.size(), 10u);
@@ -175,16 +181,10 @@ TEST(Fuzz, RandomNetworksOnRandomTerrainBuildAndCheckThemselves) {
 TEST(Fuzz, BendsTooTightForATransitionRoadAreJunctionsThatDoNotFold) {
   for (const unsigned seed : {234u, 309u}) {
     SCOPED_TRACE("seed " + std::to_string(seed));
-    const std::filesystem::path dir = test::scratch_dir("fuzz_" + std::to_string(seed));
-    const FuzzCase c = make_case(seed, dir);
-    BuildOptions o;
-    o.osm_path = c.osm;
-    o.dem_paths = {c.dem};
-    o.out_dir = dir / "out";
-    o.crs = test::synthetic_frame().crs();
+    FuzzCase c;
     Diagnostics d;
     BuildResult result;
-    ASSERT_NO_THROW(result = build(o, d));
+    ASSERT_NO_THROW(result = build_seed(seed, c, d));
     const RunReport& r = result.report;
     EXPECT_GE(d.count("model.transition_as_junction"), 1u);
     ASSERT_TRUE(r.opendrive);

@@ -39,6 +39,23 @@ std::vector<EndPlane> t_on_a_plane() {
           end_on(std::numbers::pi, 8.0, 10.0, g)};
 }
 
+// At `points` random points of [-extent, extent]^2 the surface's gradient is its derivative
+// (central differences) within `tolerance`.
+void expect_gradient_is_derivative(const JunctionHeight& s, unsigned seed, int points, double extent,
+                                   double tolerance) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(-extent, extent);
+  const double h = 1e-6;
+  for (int i = 0; i < points; ++i) {
+    const Vec2 p(u(rng), u(rng));
+    const Vec2 g = s.at(p).second;
+    const double gx = (s.at(p + Vec2(h, 0.0)).first - s.at(p - Vec2(h, 0.0)).first) / (2.0 * h);
+    const double gy = (s.at(p + Vec2(0.0, h)).first - s.at(p - Vec2(0.0, h)).first) / (2.0 * h);
+    EXPECT_NEAR(g.x(), gx, tolerance) << p.transpose();
+    EXPECT_NEAR(g.y(), gy, tolerance) << p.transpose();
+  }
+}
+
 TEST(JunctionHeight, APlaneStaysThePlane) {
   const JunctionHeight s(t_on_a_plane());
   std::mt19937 rng(7);
@@ -75,17 +92,7 @@ TEST(JunctionHeight, EveryEndIsMetWithItsOwnHeightGradeAndRoll) {
 TEST(JunctionHeight, TheGradientIsTheSurfacesDerivative) {
   const JunctionHeight s({end_on(0.3, 8.0, 10.0, Vec2(0.10, 0.02)), end_on(1.9, 7.0, 11.0, Vec2(-0.2, 0.05)),
                           end_on(3.5, 9.0, 10.2, Vec2(0.04, -0.01)), end_on(4.9, 6.0, 9.5, Vec2(0.0, 0.3))});
-  std::mt19937 rng(11);
-  std::uniform_real_distribution<double> u(-5.0, 5.0);
-  const double h = 1e-6;
-  for (int i = 0; i < 200; ++i) {
-    const Vec2 p(u(rng), u(rng));
-    const Vec2 g = s.at(p).second;
-    const double gx = (s.at(p + Vec2(h, 0.0)).first - s.at(p - Vec2(h, 0.0)).first) / (2.0 * h);
-    const double gy = (s.at(p + Vec2(0.0, h)).first - s.at(p - Vec2(0.0, h)).first) / (2.0 * h);
-    EXPECT_NEAR(g.x(), gx, 1e-6);
-    EXPECT_NEAR(g.y(), gy, 1e-6);
-  }
+  expect_gradient_is_derivative(s, 11, 200, 5.0, 1e-6);
 }
 
 TEST(JunctionHeight, NoEndIsRefused) {
@@ -191,17 +198,7 @@ TEST(JunctionHeight, DeparturesAreTakenOnTheirLineAndFadeAway) {
     const Vec2 far(x, -5.0);
     EXPECT_EQ(moved.at(far).first, s.at(far).first) << x;
   }
-  std::mt19937 rng(5);
-  std::uniform_real_distribution<double> u(-6.0, 6.0);
-  const double h = 1e-6;
-  for (int i = 0; i < 300; ++i) {
-    const Vec2 p(u(rng), u(rng));
-    const Vec2 g = moved.at(p).second;
-    const double gx = (moved.at(p + Vec2(h, 0.0)).first - moved.at(p - Vec2(h, 0.0)).first) / (2.0 * h);
-    const double gy = (moved.at(p + Vec2(0.0, h)).first - moved.at(p - Vec2(0.0, h)).first) / (2.0 * h);
-    EXPECT_NEAR(g.x(), gx, 1e-5) << p.transpose();
-    EXPECT_NEAR(g.y(), gy, 1e-5) << p.transpose();
-  }
+  expect_gradient_is_derivative(moved, 5, 300, 6.0, 1e-5);
 }
 
 // The road of ARoadTooSteep... leaves the surface around its bulge; a road crossing it where it
