@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <vector>
 
 #include "relief/core/errors.h"
@@ -40,12 +41,20 @@ void link_junctions(const RoadNetwork& network, const detail::JunctionEnds& trim
       detail::report_no_passage(j, model_of(ends[0]), model_of(ends[1]), diagnostics);
       ++out.stats.ends_without_passage;
     } else if (transition[j.id] && ends.size() == 2) {
-      if (detail::add_transition_road(model, model_of(ends[0]), ends[0].at_start, model_of(ends[1]).id,
-                                      ends[1].at_start, planes[j.id], options.min_radius_margin_m)) {
+      // Its lanes within the cap a connecting road there would keep (connecting_roads.cpp).
+      const double max_lane_grade =
+          options.grade_caps.empty()
+              ? std::numeric_limits<double>::infinity()
+              : std::max(options.grade_caps[ends[0].network_road], options.grade_caps[ends[1].network_road]) +
+                    detail::kConnectionGradeAllowance;
+      const detail::TransitionOutcome outcome = detail::add_transition_road(
+          model, model_of(ends[0]), ends[0].at_start, model_of(ends[1]).id, ends[1].at_start, planes[j.id],
+          options.min_radius_margin_m, max_lane_grade);
+      if (outcome == detail::TransitionOutcome::added) {
         ++out.stats.transition_roads;
       } else {
-        detail::report_transition_as_junction(j, model_of(ends[0]), model_of(ends[1]),
-                                              options.min_radius_margin_m, diagnostics);
+        detail::report_transition_as_junction(j, model_of(ends[0]), model_of(ends[1]), outcome,
+                                              options.min_radius_margin_m, max_lane_grade, diagnostics);
         ++out.stats.transitions_as_junctions;
         detail::add_junction(network, trimmed.clusters, j, ends, options, out, diagnostics);
       }

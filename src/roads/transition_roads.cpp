@@ -21,7 +21,8 @@
 namespace relief::detail {
 namespace {
 
-constexpr double kFoldStep_m = 0.25;  // stations along a transition road checked for folding
+constexpr double kFoldStep_m = 0.25;     // stations along a transition road checked for folding
+constexpr double kLaneGradeRun_m = 0.5;  // a lane centre's grade is taken over this much of its length
 
 // Direction in which a road leaves junction `at_start ? start : end`, `along` metres into it:
 // that of the polyline segment there (unit vector).
@@ -62,6 +63,38 @@ bool folds(const ModelRoad& road, double margin_m) {
     if (std::abs(t) + margin_m >= 1.0 / std::abs(k) && t * k > 0.0) return true;
   }
   return false;
+}
+
+// The steepest grade of any lane centre of the road over runs of kLaneGradeRun_m of the lane's
+// own plan length (the stations every kFoldStep_m; a last run shorter than half of it joins
+// the one before).
+double steepest_lane_grade(const ModelRoad& road) {
+  const double len = road.length();
+  double steepest = 0.0;
+  const LaneSection& sec = road.sections.front();
+  for (const std::vector<LaneModel>* side : {&sec.left, &sec.right}) {
+    for (const LaneModel& lane : *side) {
+      Vec3 last = surface_point(road, 0.0, lane_centre_t(road, 0.0, lane.id));
+      Vec3 before = last;
+      for (double s = kFoldStep_m;; s += kFoldStep_m) {
+        s = std::min(s, len);
+        const Vec3 p = surface_point(road, s, lane_centre_t(road, s, lane.id));
+        double run = (p - last).head<2>().norm();
+        if (s == len && run < 0.5 * kLaneGradeRun_m) {
+          steepest = std::max(steepest,
+                              std::abs(p.z() - before.z()) / std::max((p - before).head<2>().norm(), 1e-9));
+          break;
+        }
+        if (run >= kLaneGradeRun_m || s == len) {
+          steepest = std::max(steepest, std::abs(p.z() - last.z()) / std::max(run, 1e-9));
+          before = last;
+          last = p;
+        }
+        if (s == len) break;
+      }
+    }
+  }
+  return steepest;
 }
 
 }  // namespace
@@ -136,8 +169,9 @@ bool needs_transition(const RoadNetwork& network, const Junction& j) {
          std::abs(a.attributes.lane_width_m - b.attributes.lane_width_m) > 1e-9;
 }
 
-bool add_transition_road(RoadModel& model, ModelRoad& a_ref, bool a_at_start, int b_id, bool b_at_start,
-                         const Vec2& gradient, double margin_m) {
+TransitionOutcome add_transition_road(RoadModel& model, ModelRoad& a_ref, bool a_at_start, int b_id,
+                                      bool b_at_start, const Vec2& gradient, double margin_m,
+                                      double max_lane_grade) {
   const ModelRoad& a = a_ref;
   const ModelRoad& b = model.roads[model.road_index(b_id)];
   ModelRoad t;
@@ -183,7 +217,8 @@ bool add_transition_road(RoadModel& model, ModelRoad& a_ref, bool a_at_start, in
   make_side(a_in, b_out, -1, sec.right);
   make_side(a_out, b_in, +1, sec.left);
   t.sections = {sec};
-  if (folds(t, margin_m)) return false;
+  if (folds(t, margin_m)) return TransitionOutcome::folds;
+  if (steepest_lane_grade(t) > max_lane_grade) return TransitionOutcome::too_steep;
 
   for (const std::vector<LaneModel>* side : {&t.sections.front().right, &t.sections.front().left}) {
     for (const LaneModel& lane : *side) {
@@ -202,7 +237,7 @@ bool add_transition_road(RoadModel& model, ModelRoad& a_ref, bool a_at_start, in
   (b_at_start ? b_ref.predecessor : b_ref.successor) =
       RoadLink{RoadLink::Element::road, t.id, RoadLink::Contact::end};
   model.roads.push_back(std::move(t));
-  return true;
+  return TransitionOutcome::added;
 }
 
 void link_directly(ModelRoad& a, bool a_at_start, ModelRoad& b, bool b_at_start) {
@@ -230,19 +265,25 @@ void link_directly(ModelRoad& a, bool a_at_start, ModelRoad& b, bool b_at_start)
   }
 }
 
-void report_transition_as_junction(const Junction& j, const ModelRoad& a, const ModelRoad& b, double radius_m,
+void report_transition_as_junction(const Junction& j, const ModelRoad& a, const ModelRoad& b,
+                                   TransitionOutcome why, double radius_m, double max_lane_grade,
                                    Diagnostics& diagnostics) {
   Diagnostic d;
   d.severity = Severity::info;
   d.code = codes::kModelTransitionAsJunction;
-  std::string radius;
-  append_shortest(radius, radius_m);
-  d.message =
-      "roads " + std::to_string(a.id) + " and " + std::to_string(b.id) + " meet at OSM node " +
-      std::to_string(j.osm_node_id) +
-      " in a bend too tight for their lanes (a transition road's inner lane border would pass within " +
-      radius +
-      " m of the bend's centre, or beyond it); the node is a junction, one connecting road per movement";
+  std::string reason;
+  if (why == TransitionOutcome::too_steep) {
+    reason = "a transition road's inner lane would climb steeper than ";
+    append_shortest(reason, 100.0 * max_lane_grade);
+    reason += " % over its shortened length";
+  } else {
+    reason = "a transition road's inner lane border would pass within ";
+    append_shortest(reason, radius_m);
+    reason += " m of the bend's centre, or beyond it";
+  }
+  d.message = "roads " + std::to_string(a.id) + " and " + std::to_string(b.id) + " meet at OSM node " +
+              std::to_string(j.osm_node_id) + " in a bend too tight for their lanes (" + reason +
+              "); the node is a junction, one connecting road per movement";
   d.osm_node_id = j.osm_node_id;
   diagnostics.report(std::move(d));
 }

@@ -39,6 +39,13 @@ namespace relief::detail {
 /// needs_transition for every network junction (1 where it holds).
 [[nodiscard]] std::vector<std::uint8_t> transition_junctions(const RoadNetwork& network);
 
+/// What became of a transition road (add_transition_road).
+enum class TransitionOutcome {
+  added,
+  folds,     ///< a lane border on the inside of the bend within the margin of its centre, or beyond
+  too_steep  ///< a lane centre climbs steeper than the lane grade allowed
+};
+
 /// A road from road `a`'s end at a junction to road `b`'s end there (no OpenDRIVE junction: two
 /// ends only). Its right lanes carry the traffic from a to b, its left lanes the traffic back;
 /// lanes missing on one side taper to width 0; the lane offset, heights and slopes blend from
@@ -46,19 +53,23 @@ namespace relief::detail {
 /// plane of `gradient`. Appended to model.roads; a's and b's links and lane links point to it.
 /// `a_ref` is an element of model.roads, `b_id` the id of another. Where the corner is too
 /// tight for the lanes (a border on the inside of the bend within `margin_m` of its centre, or
-/// beyond it, where the lofted lanes would fold over themselves) nothing is added or changed, and
-/// it returns false.
-[[nodiscard]] bool add_transition_road(RoadModel& model, ModelRoad& a_ref, bool a_at_start, int b_id,
-                                       bool b_at_start, const Vec2& gradient, double margin_m);
+/// beyond it, where the lofted lanes would fold over themselves), or a lane centre climbs
+/// steeper than `max_lane_grade` over any 0.5 m of its own length (the inner lane of a tight
+/// bend is much shorter than the reference line it climbs with), nothing is added or changed,
+/// and it says which.
+[[nodiscard]] TransitionOutcome add_transition_road(RoadModel& model, ModelRoad& a_ref, bool a_at_start,
+                                                    int b_id, bool b_at_start, const Vec2& gradient,
+                                                    double margin_m, double max_lane_grade);
 
 /// Direct link, lane to lane, between two roads' ends: same direction (end meets start) pairs
 /// right lanes with right lanes, opposite directions right with left.
 void link_directly(ModelRoad& a, bool a_at_start, ModelRoad& b, bool b_at_start);
 
 /// Reports (info) that the two roads of junction j meet in a bend too tight for a transition
-/// road (its inner border within `radius_m` of the bend's centre), and that the node is built as
-/// a junction.
-void report_transition_as_junction(const Junction& j, const ModelRoad& a, const ModelRoad& b, double radius_m,
+/// road (`why`: its inner border within `radius_m` of the bend's centre, or a lane centre
+/// steeper than `max_lane_grade`), and that the node is built as a junction.
+void report_transition_as_junction(const Junction& j, const ModelRoad& a, const ModelRoad& b,
+                                   TransitionOutcome why, double radius_m, double max_lane_grade,
                                    Diagnostics& diagnostics);
 
 /// Reports two roads meeting at junction j without passage between them (codes::kModelNoPassage).

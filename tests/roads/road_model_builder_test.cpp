@@ -699,6 +699,38 @@ TEST(RoadModelBuilder, ATransitionRoadCuttingASharpCornerKeepsTheGradeCap) {
   EXPECT_LE(steepest, cap + 0.01);
 }
 
+TEST(RoadModelBuilder, ATransitionRoadWhoseInnerLaneClimbsPastTheCapIsAJunction) {
+  // Two streets (two lanes each way) meet at a node in a right-angle turn on a 13 % slope. The
+  // transition road's lanes are shorter on the inside of the bend than its reference line, and
+  // steeper: past the cap a connecting road there would keep (the roads' cap + 2 %), the node is
+  // built as a junction, whose connecting roads keep it; within it the transition road stays.
+  const RoadNetwork net =
+      test::make_network({{{-80, 0}, {0, 0}}, {{0, 0}, {0, 80}}}, {street(2, 2), street(2, 2)});
+  const std::vector<RoadProfile> raw =
+      test::drape(net, [](const Vec2& p) { return 0.12 * p.y() + 0.05 * p.x(); });
+  Diagnostics d;
+  const ProfileFitResult fit = fit_profiles(net, raw, {}, d, junction_end_trims(net, raw, {}));
+  ASSERT_TRUE(fit.converged) << fit.solver_status;
+  for (const double cap : {1.0, 0.0}) {
+    SCOPED_TRACE("cap " + std::to_string(cap));
+    RoadModelOptions options;
+    options.grade_caps.assign(net.roads.size(), cap);
+    Diagnostics dm;
+    const RoadModelBuild b = build_road_model(net, fit.profiles, options, dm, fit.junction_gradient);
+    const bool kept = cap > 0.5;
+    EXPECT_EQ(b.stats.transition_roads, kept ? 1u : 0u);
+    EXPECT_EQ(b.stats.transitions_as_junctions, kept ? 0u : 1u);
+    ASSERT_EQ(dm.count("model.transition_as_junction"), kept ? 0u : 1u);
+    if (!kept) {
+      std::string message;
+      for (const Diagnostic& x : dm.kept())
+        if (x.code == "model.transition_as_junction") message = x.message;
+      EXPECT_NE(message.find("inner lane would climb steeper than 2 %"), std::string::npos) << message;
+      EXPECT_EQ(b.stats.connecting_roads, 2u);  // one per direction
+    }
+  }
+}
+
 TEST(RoadModelBuilder, DrivenStationsFollowTheRoundedReferenceLine) {
   // A straight road is driven as drawn.
   const RoadNetwork line = test::make_network({{{0, 0}, {100, 0}}});

@@ -83,7 +83,8 @@ inline constexpr DiagnosticCode kModelNoPassage{
     "model.no_passage", "two roads meet but no lane leads from one into the other (opposed one-ways)"};
 inline constexpr DiagnosticCode kModelTransitionAsJunction{
     "model.transition_as_junction",
-    "a bend between two roads too tight for their lanes is a junction, one connecting road per movement"};
+    "a bend between two roads too tight for their lanes (they would fold, or the inner lane climb past the "
+    "cap + 2 %) is a junction, one connecting road per movement"};
 inline constexpr DiagnosticCode kOpendriveRoadTooShort{
     "opendrive.road_too_short", "a road with no length left between its junctions is left out"};
 inline constexpr DiagnosticCode kOpendriveJunctionWithoutMovements{
