@@ -23,13 +23,15 @@ constexpr double kPlaneDetermined = 0.5;
 constexpr double kPlaneUndetermined = 0.05;
 constexpr double kRollTolerance_rad = 1e-5;  // 0.02 mm at 2 m from the reference line
 
+}  // namespace
+
 // The part of a junction's plane gradient its roads determine. The fit's plane is pinned only
 // along the roads' directions: across a road that runs straight through, or across the two
 // roads of a fork at a shallow angle, it is set by a few centimetres of height over a lateral
 // offset of a metre or by nothing at all, and tilting the lanes by it would twist a wide road
 // for no reason. With M = sum of u u^T over the roads' unit directions u leaving the junction,
 // each eigen-direction e of M (eigenvalue lambda) keeps the share of G . e that lambda says.
-Vec2 determined_gradient(const RoadNetwork& network, const Junction& j, const Vec2& g) {
+Eigen::Matrix2d determined_share(const RoadNetwork& network, const Junction& j) {
   Eigen::Matrix2d m = Eigen::Matrix2d::Zero();
   for (const RoadEnd& e : j.ends) {
     const Polyline2& pts = network.roads[e.road].points;
@@ -40,23 +42,21 @@ Vec2 determined_gradient(const RoadNetwork& network, const Junction& j, const Ve
     m += u * u.transpose();
   }
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(m);
-  Vec2 out = Vec2::Zero();
+  Eigen::Matrix2d out = Eigen::Matrix2d::Zero();
   for (int k = 0; k < 2; ++k) {
     const double x = std::clamp(
         (eig.eigenvalues()[k] - kPlaneUndetermined) / (kPlaneDetermined - kPlaneUndetermined), 0.0, 1.0);
     const Vec2 e = eig.eigenvectors().col(k);
-    out += x * x * (3.0 - 2.0 * x) * g.dot(e) * e;
+    out += x * x * (3.0 - 2.0 * x) * e * e.transpose();
   }
   return out;
 }
-
-}  // namespace
 
 std::vector<Vec2> junction_planes(const RoadNetwork& network, const std::vector<Vec2>& junction_gradient) {
   std::vector<Vec2> planes(network.junctions.size(), Vec2::Zero());
   if (!junction_gradient.empty()) {
     for (const Junction& j : network.junctions)
-      planes[j.id] = determined_gradient(network, j, junction_gradient[j.id]);
+      planes[j.id] = determined_share(network, j) * junction_gradient[j.id];
   }
   return planes;
 }
@@ -74,6 +74,17 @@ CubicProfile end_rolls(double length, double r0, double r1) {
   if (length > 2.0 * e) pieces.push_back({e, Poly3{0.0, 0.0, 0.0, 0.0}});
   pieces.push_back({length - e, Poly3{0.0, 0.0, 3.0 * r1 / e2, -2.0 * r1 / e3}});
   return CubicProfile(std::move(pieces));
+}
+
+std::array<double, 2> end_roll_weights(double length, double s) {
+  s = std::clamp(s, 0.0, std::max(length, 0.0));
+  const auto rise = [](double x) { return x * x * (3.0 - 2.0 * x); };  // 0 to 1, level at both
+  if (length < 2.0 * kRollEase_m) {
+    const double x = length > 0.0 ? s / length : 0.0;
+    return {1.0 - rise(x), rise(x)};
+  }
+  const double e = kRollEase_m;
+  return {s < e ? 1.0 - rise(s / e) : 0.0, s > length - e ? rise((s - length + e) / e) : 0.0};
 }
 
 CubicProfile plane_rolls(const PlanView& plan, const Vec2& g0, const Vec2& g1) {

@@ -4,7 +4,10 @@
 // tilts the roads' cross-sections (superelevation): a road's ends take the roll of their
 // junction's plane, eased to level within 50 m, and a road inside a junction lies across it.
 
+#include <array>
 #include <vector>
+
+#include <Eigen/Core>
 
 #include "relief/geometry/cubic_profile.h"
 #include "relief/geometry/plan_view.h"
@@ -12,6 +15,12 @@
 #include "relief/roads/road_network.h"
 
 namespace relief::detail {
+
+/// The part of a junction plane's gradient G its roads determine, as the linear map S (the
+/// determined gradient is S G): with M = sum of u u^T over the roads' unit directions u leaving
+/// the junction, each eigen-direction e of M keeps the share of G . e its eigenvalue lambda says:
+/// all from lambda = 0.5, none under 0.05, a smoothstep between (junction_planes).
+[[nodiscard]] Eigen::Matrix2d determined_share(const RoadNetwork& network, const Junction& j);
 
 /// Per network junction, the gradient of its plane that the roads build on: of
 /// `junction_gradient` (parallel to network.junctions, or empty for level junctions), the share
@@ -30,6 +39,10 @@ namespace relief::detail {
 /// slope at both ends of the ease within 50 m; a road shorter than two eases turns from r0 to r1
 /// in one.
 [[nodiscard]] CubicProfile end_rolls(double length, double r0, double r1);
+
+/// The weights (w0, w1) of the end rolls in end_rolls(length, r0, r1) at station s: its roll
+/// there is w0 r0 + w1 r1 (s clamped to the road).
+[[nodiscard]] std::array<double, 2> end_roll_weights(double length, double s);
 
 /// Roll along a road inside a junction: at every station the roll that lays its cross-section
 /// on the junction's plane, the gradient blended from g0 at its start to g1 at its end (they

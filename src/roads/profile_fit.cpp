@@ -20,6 +20,7 @@
 #include "relief/geometry/plane.h"
 #include "relief/geometry/soft_qp.h"
 #include "relief/roads/vertical_curves.h"
+#include "roads/junction_planes.h"
 #include "roads/transition_roads.h"
 
 namespace relief {
@@ -36,8 +37,17 @@ constexpr double kPinnedStiffness = 30.0;  // data weight factor there (a prefer
 // Two-sided rows on the junction plane's gradient G in this many directions: |G| <= g / cos(pi / 16).
 constexpr int kJunctionPlaneDirections = 8;
 constexpr double kJunctionRoomMargin_m = 2.0;  // a junction's room: its widest half-width plus this
-constexpr double kPlaneLevelWeight = 0.01;     // per (grade)^2, see fit_profiles
-constexpr double kSpanWeight = 1e-3;           // per metre of structure, towards its span (fit_profiles)
+// The rows between two road ends across a junction hold their height difference to this share of
+// the cap over their distance: a connecting road between them also bends from one road's grade
+// to the other's, and at the full cap on average it would pass it there (Liechtenstein: 37 %
+// under a 35 % cap with the full share; 0.9 leaves 3.5 % at that cap).
+constexpr double kPairGradeShare = 0.9;
+// Lane rows where a roll eases (fit_profiles) only where the ground is within this of the cap
+// once the roll's largest lane climb is added, the ground's grade taken over this reach.
+constexpr double kLaneRowMargin = 0.03;
+constexpr double kGroundGradeReach_m = 5.0;
+constexpr double kPlaneLevelWeight = 0.01;  // per (grade)^2, see fit_profiles
+constexpr double kSpanWeight = 1e-3;        // per metre of structure, towards its span (fit_profiles)
 
 // Prices of the soft limits per metre of violation, one level per priority (FitLimit order):
 // each level is 10x the next, and the lowest is far above any force the data term can exert
@@ -145,6 +155,27 @@ std::array<double, 3> curvature_row(double h1, double h2) {
 // taken; the OSM polyline's when unknown.
 double driven(const RoadProfile& p, std::size_t i) {
   return p.driven_s.empty() ? p.s[i] : p.driven_s[i];
+}
+
+// The ground's grade about segment i (stations i, i + 1) of a measured profile: the steepest of
+// the chords over kGroundGradeReach_m either side (one sample's noise does not decide), or
+// infinity where a height is missing.
+double ground_grade(const RoadProfile& p, std::size_t i) {
+  const auto reach = [&](std::size_t k, int dir) {
+    while (true) {
+      const std::size_t next = dir < 0 ? (k == 0 ? k : k - 1) : std::min(k + 1, p.size() - 1);
+      if (next == k || std::abs(p.s[next] - p.s[i]) > kGroundGradeReach_m) return k;
+      k = next;
+    }
+  };
+  const std::size_t lo = reach(i, -1), hi = reach(i + 1, 1);
+  double steepest = 0.0;
+  for (const auto& [a, b] : {std::pair{lo, i + 1}, std::pair{i, hi}, std::pair{i, i + 1}}) {
+    const double dz = p.z[b] - p.z[a], ds = p.s[b] - p.s[a];
+    if (!std::isfinite(dz)) return kInf;
+    if (ds > 0.0) steepest = std::max(steepest, std::abs(dz) / ds);
+  }
+  return steepest;
 }
 
 bool is_structure(const Road& road) {
@@ -538,6 +569,78 @@ std::pair<double, double> curvature_bounds(const Road& road, const ProfileFitOpt
   return {crest, sag};
 }
 
+// Grade rows on the outermost lane centres where a road's roll eases (fit_profiles).
+void add_lane_roll_rows(const RoadNetwork& network, const std::vector<RoadProfile>& raw,
+                        const VariableMap& vars, const ProfileFitOptions& options,
+                        const std::vector<std::array<double, 2>>& end_trims,
+                        const std::vector<double>& junction_cap, FitRows& rows) {
+  // The outer lanes climb more than the road where its roll eases from its junctions' planes
+  // (junction_planes.h): a lane t from the reference line by t d tan(roll) / ds, up to
+  // 1.5 t tan(roll0) / 50 m (3.4 % at 3.25 m under a 35 % cross slope), and a road shorter than
+  // 100 m turns from one end's roll to the other's in one. The roll is linear in the planes'
+  // gradients, tan(roll0) = n0 . S0 G0 at the cut (S the share the roads determine), eased by
+  // the weights w0(s), w1(s) between the cuts (the tangent of the eased roll taken as the eased
+  // tangent: its slope off by at most 8 % of the roll's share at a 35 % cross slope), so the
+  // grade rows hold on the outermost lane centres either side too, wherever a roll eases.
+  std::vector<Eigen::Matrix2d> shares(network.junctions.size(), Eigen::Matrix2d::Zero());
+  for (const Junction& j : network.junctions)
+    if (j.ends.size() >= 2) shares[j.id] = detail::determined_share(network, j);
+  for (std::size_t r = 0; r < raw.size(); ++r) {
+    const RoadProfile& p = raw[r];
+    const Road& road = network.roads[r];
+    const double t = std::max(0.5 * road.attributes.lane_width_m *
+                                  (road.attributes.lanes_forward + road.attributes.lanes_backward - 1),
+                              0.0);
+    if (!p.has_height || p.size() < 3 || !(t > 0.0)) continue;
+    const double trim0 = end_trims.empty() ? 0.0 : end_trims[r][0];
+    const double trim1 = end_trims.empty() ? 0.0 : end_trims[r][1];
+    const double length = p.s.back() - trim0 - trim1;
+    if (!(length > 0.0)) continue;
+    // The left normal of the segment holding station s.
+    const auto normal_at = [&](double s) {
+      const auto it = std::upper_bound(p.s.begin(), p.s.end(), s);
+      const std::size_t i =
+          std::min(static_cast<std::size_t>(std::max<std::ptrdiff_t>(1, it - p.s.begin())) - 1, p.size() - 2);
+      const Vec2 d = p.xy[i + 1] - p.xy[i];
+      return Vec2(Vec2(-d.y(), d.x()) / std::max(d.norm(), 1e-9));
+    };
+    const Vec2 c0 = shares[road.start_junction] * normal_at(trim0);  // tan(roll0) = c0 . G0
+    const Vec2 c1 = shares[road.end_junction] * normal_at(p.s.back() - trim1);
+    const bool rolls0 = !c0.isZero(0.0), rolls1 = !c1.isZero(0.0);
+    if (!rolls0 && !rolls1) continue;
+    // A plane without a roll borrows the other's variables with a zero weight.
+    const std::size_t g0 = vars.gradient(rolls0 ? road.start_junction : road.end_junction);
+    const std::size_t g1 = vars.gradient(rolls1 ? road.end_junction : road.start_junction);
+    const double g = grade_limit(options, road.attributes);
+    std::array<double, 2> w = detail::end_roll_weights(length, p.s[0] - trim0);
+    for (std::size_t i = 0; i + 1 < p.size(); ++i) {
+      const std::array<double, 2> next = detail::end_roll_weights(length, p.s[i + 1] - trim0);
+      const double dw0 = rolls0 ? next[0] - w[0] : 0.0, dw1 = rolls1 ? next[1] - w[1] : 0.0;
+      w = next;
+      const std::size_t a = vars.of(r, i, p.size()), b = vars.of(r, i + 1, p.size());
+      if (a == b || (dw0 == 0.0 && dw1 == 0.0)) continue;
+      const double ds = driven(p, i + 1) - driven(p, i);
+      // Where the ground is gentler than the cap by more than the largest lane climb the roll
+      // can add (the planes within their caps) and a margin, the road's own rows keep its lanes
+      // within the cap: no rows there, as each one ties the road's stations to both planes (a
+      // structure's ground says nothing: its rows stay).
+      const double lift = t * (std::abs(dw0) * c0.norm() * junction_cap[road.start_junction] +
+                               std::abs(dw1) * c1.norm() * junction_cap[road.end_junction]);
+      if (!is_structure(road) && ground_grade(p, i) + lift / std::max(ds, 1e-9) + kLaneRowMargin <= g)
+        continue;
+      for (const double side : {-t, t}) {
+        rows.add({{b, 1.0},
+                  {a, -1.0},
+                  {g0, side * dw0 * c0.x()},
+                  {g0 + 1, side * dw0 * c0.y()},
+                  {g1, side * dw1 * c1.x()},
+                  {g1 + 1, side * dw1 * c1.y()}},
+                 -g * ds, g * ds, {FitLimit::grade, static_cast<int>(r), static_cast<std::uint32_t>(i)});
+      }
+    }
+  }
+}
+
 // Station of a row on its road, for reporting.
 struct Place {
   double s = 0.0;
@@ -734,6 +837,7 @@ ProfileFitResult fit_profiles(const RoadNetwork& network, const std::vector<Road
                {FitLimit::grade, static_cast<int>(r), static_cast<std::uint32_t>(i)});
     }
   }
+  add_lane_roll_rows(network, raw, vars, options, end_trims, junction_cap, rows);
   // The junction's plane is no steeper than the steepest road it joins, in every direction
   // (16 directions: |G| within 2 % of the cap), so neither are the connecting roads across it.
   for (const Junction& j : network.junctions) {
@@ -748,25 +852,37 @@ ProfileFitResult fit_profiles(const RoadNetwork& network, const std::vector<Road
 
   // Across a junction the connecting roads run from one road's trimmed end to another's, and
   // those ends can lie much closer together than their paths through the junction's centre (the
-  // two legs of a hairpin meeting a side road): between every two road ends, at the stations
-  // where the model cuts the roads (end_trims; else the junction's widest half-width plus 2 m),
-  // the height difference stays within the steeper road's cap over their plan distance, a lower
-  // bound of the connecting road's length. Those stations (and the next, as curvature rows span
-  // three) go to the elimination order's block.
+  // two legs of a hairpin meeting a side road): between every two road ends, where the model
+  // cuts the roads (end_trims; else the junction's widest half-width plus 2 m), the height
+  // difference of their lane centres stays within a share of the steeper road's cap over their
+  // plan distance, a lower bound of the connecting road's length. The stations either side of
+  // the cuts (and the next, as curvature rows span three) go to the elimination order's block.
   std::unordered_map<std::size_t, std::pair<double, double>> pair_rows;  // row -> distance, cap
   std::vector<std::vector<std::size_t>> block_stations(network.roads.size());
   const auto half_width = [&](int road) {
     const WayAttributes& a = network.roads[road].attributes;
     return 0.5 * a.lane_width_m * (a.lanes_forward + a.lanes_backward);
   };
-  // The centres of a road's outermost lanes and its middle at station k.
-  const auto lane_points = [&](int road, std::size_t k) {
+  // Where a road's end is cut for its junction: the stations a, a + 1 either side of the cut and
+  // the cut's share t between them, its height (1 - t) z_a + t z_(a+1); the cut's place and the
+  // left normal there.
+  struct Cut {
+    int road;
+    std::size_t a;
+    double t;
+    Vec2 xy, normal;
+  };
+  const auto cut_at = [&](int road, std::size_t a, double s_cut) {
     const RoadProfile& p = raw[road];
-    const Vec2 d = p.xy[std::min(k + 1, p.size() - 1)] - p.xy[k == 0 ? 0 : k - 1];
-    const Vec2 normal = Vec2(-d.y(), d.x()) / std::max(d.norm(), 1e-9);
+    const Vec2 d = p.xy[a + 1] - p.xy[a];
+    const double t = std::clamp((s_cut - p.s[a]) / (p.s[a + 1] - p.s[a]), 0.0, 1.0);
+    return Cut{road, a, t, p.xy[a] + t * d, Vec2(-d.y(), d.x()) / std::max(d.norm(), 1e-9)};
+  };
+  // The offsets of a road's outermost lane centres from its reference line, and its middle.
+  const auto lane_offsets = [&](int road) {
     const WayAttributes& a = network.roads[road].attributes;
     const double t = std::max(half_width(road) - 0.5 * a.lane_width_m, 0.0);
-    return std::array<Vec2, 3>{p.xy[k] - t * normal, p.xy[k], p.xy[k] + t * normal};
+    return t > 0.0 ? std::vector<double>{-t, 0.0, t} : std::vector<double>{0.0};
   };
   for (const Junction& j : network.junctions) {
     // Two ends: where one road continues the other their own grade rows hold; where a transition
@@ -775,7 +891,7 @@ ProfileFitResult fit_profiles(const RoadNetwork& network, const std::vector<Road
     if (j.ends.size() < 2 || (j.ends.size() == 2 && !detail::needs_transition(network, j))) continue;
     double room = 0.0;
     for (const RoadEnd& e : j.ends) room = std::max(room, half_width(e.road) + kJunctionRoomMargin_m);
-    std::vector<std::pair<int, std::size_t>> leaving;  // road, station
+    std::vector<Cut> leaving;
     for (const RoadEnd& e : j.ends) {
       const RoadProfile& p = raw[e.road];
       if (!p.has_height || p.size() < 5) continue;
@@ -788,28 +904,46 @@ ProfileFitResult fit_profiles(const RoadNetwork& network, const std::vector<Road
         k = it == p.s.begin() ? 0 : static_cast<std::size_t>(it - p.s.begin()) - 1;
       }
       if (k < 1 || k + 2 >= p.size()) continue;  // no interior station that far out
-      leaving.emplace_back(e.road, k);
-      block_stations[e.road].push_back(k);
-      block_stations[e.road].push_back(e.at_start ? k + 1 : k - 1);
+      const std::size_t a = e.at_start ? k - 1 : k;
+      leaving.push_back(cut_at(e.road, a, e.at_start ? cut : p.s.back() - cut));
+      block_stations[e.road].push_back(a);
+      block_stations[e.road].push_back(a + 1);
+      block_stations[e.road].push_back(e.at_start ? a + 2 : a - 1);
     }
+    // The rows hold between the lane centres at the cuts, as the model builds them: each road's
+    // cross-section there tilted by the roll of the junction's plane, tan(roll) = n . S G (S the
+    // share of the plane its roads determine, junction_planes.h). At the station beyond the cut
+    // and on the reference lines alone they did not bound the connecting roads: the roads may
+    // climb at their cap over that last metre while two ends leaving at an acute angle draw
+    // apart by much less, and the rolls lift one lane and lower another (Fuzz seed 350: lane
+    // ends 2 m apart in height across a 4 m connecting road, its grade 50 % under a 35 % cap).
+    const Eigen::Matrix2d share = detail::determined_share(network, j);
+    const std::size_t gx = vars.gradient(j.id);
     for (std::size_t x = 0; x < leaving.size(); ++x) {
       for (std::size_t y = x + 1; y < leaving.size(); ++y) {
-        const auto [ra, ka] = leaving[x];
-        const auto [rb, kb] = leaving[y];
-        if (ra == rb) continue;  // a loop's two ends: its own grade rows hold
-        const RoadProfile& pa = raw[ra];
-        const RoadProfile& pb = raw[rb];
-        // The connecting roads join lane centres: the nearest of the two cross-sections' lane
-        // centres (outermost either side and the middle) bound their length from below.
-        double d = kInf;
-        for (const Vec2& qa : lane_points(ra, ka))
-          for (const Vec2& qb : lane_points(rb, kb)) d = std::min(d, (qa - qb).norm());
-        d = std::max(d, kMinCurvatureSpacing);
-        const double g = std::max(grade_limit(options, network.roads[ra].attributes),
-                                  grade_limit(options, network.roads[rb].attributes));
-        pair_rows[rows.size()] = {d, g};
-        rows.add({{vars.of(rb, kb, pb.size()), 1.0}, {vars.of(ra, ka, pa.size()), -1.0}}, -g * d, g * d,
-                 {FitLimit::junction_grade, ra, static_cast<std::uint32_t>(ka)});
+        const Cut& ca = leaving[x];
+        const Cut& cb = leaving[y];
+        if (ca.road == cb.road) continue;  // a loop's two ends: its own grade rows hold
+        const std::size_t na = raw[ca.road].size(), nb = raw[cb.road].size();
+        const double g = std::max(grade_limit(options, network.roads[ca.road].attributes),
+                                  grade_limit(options, network.roads[cb.road].attributes));
+        const Vec2 roll_a = share * ca.normal, roll_b = share * cb.normal;  // tan(roll) = roll . G
+        for (const double ta : lane_offsets(ca.road)) {
+          for (const double tb : lane_offsets(cb.road)) {
+            const Vec2 tilt = tb * roll_b - ta * roll_a;
+            const double d =
+                std::max(((cb.xy + tb * cb.normal) - (ca.xy + ta * ca.normal)).norm(), kMinCurvatureSpacing);
+            pair_rows[rows.size()] = {d, kPairGradeShare * g};
+            rows.add({{vars.of(cb.road, cb.a, nb), 1.0 - cb.t},
+                      {vars.of(cb.road, cb.a + 1, nb), cb.t},
+                      {vars.of(ca.road, ca.a, na), ca.t - 1.0},
+                      {vars.of(ca.road, ca.a + 1, na), -ca.t},
+                      {gx, tilt.x()},
+                      {gx + 1, tilt.y()}},
+                     -kPairGradeShare * g * d, kPairGradeShare * g * d,
+                     {FitLimit::junction_grade, ca.road, static_cast<std::uint32_t>(ca.a)});
+          }
+        }
       }
     }
   }
