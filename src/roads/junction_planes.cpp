@@ -76,17 +76,6 @@ CubicProfile end_rolls(double length, double r0, double r1) {
   return CubicProfile(std::move(pieces));
 }
 
-std::array<double, 2> end_roll_weights(double length, double s) {
-  s = std::clamp(s, 0.0, std::max(length, 0.0));
-  const auto rise = [](double x) { return x * x * (3.0 - 2.0 * x); };  // 0 to 1, level at both
-  if (length < 2.0 * kRollEase_m) {
-    const double x = length > 0.0 ? s / length : 0.0;
-    return {1.0 - rise(x), rise(x)};
-  }
-  const double e = kRollEase_m;
-  return {s < e ? 1.0 - rise(s / e) : 0.0, s > length - e ? rise((s - length + e) / e) : 0.0};
-}
-
 CubicProfile plane_rolls(const PlanView& plan, const Vec2& g0, const Vec2& g1) {
   if (g0.isZero(0.0) && g1.isZero(0.0)) return CubicProfile::constant(0.0);
   const double len = plan.length();

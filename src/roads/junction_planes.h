@@ -4,7 +4,6 @@
 // tilts the roads' cross-sections (superelevation): a road's ends take the roll of their
 // junction's plane, eased to level within 50 m, and a road inside a junction lies across it.
 
-#include <array>
 #include <vector>
 
 #include <Eigen/Core>
@@ -39,10 +38,6 @@ namespace relief::detail {
 /// slope at both ends of the ease within 50 m; a road shorter than two eases turns from r0 to r1
 /// in one.
 [[nodiscard]] CubicProfile end_rolls(double length, double r0, double r1);
-
-/// The weights (w0, w1) of the end rolls in end_rolls(length, r0, r1) at station s: its roll
-/// there is w0 r0 + w1 r1 (s clamped to the road).
-[[nodiscard]] std::array<double, 2> end_roll_weights(double length, double s);
 
 /// Roll along a road inside a junction: at every station the roll that lays its cross-section
 /// on the junction's plane, the gradient blended from g0 at its start to g1 at its end (they

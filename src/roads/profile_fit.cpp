@@ -42,10 +42,6 @@ constexpr double kJunctionRoomMargin_m = 2.0;  // a junction's room: its widest 
 // to the other's, and at the full cap on average it would pass it there (Liechtenstein: 37 %
 // under a 35 % cap with the full share; 0.9 leaves 3.5 % at that cap).
 constexpr double kPairGradeShare = 0.9;
-// Lane rows where a roll eases (fit_profiles) only where the ground is within this of the cap
-// once the roll's largest lane climb is added, the ground's grade taken over this reach.
-constexpr double kLaneRowMargin = 0.03;
-constexpr double kGroundGradeReach_m = 5.0;
 constexpr double kPlaneLevelWeight = 0.01;  // per (grade)^2, see fit_profiles
 constexpr double kSpanWeight = 1e-3;        // per metre of structure, towards its span (fit_profiles)
 
@@ -155,27 +151,6 @@ std::array<double, 3> curvature_row(double h1, double h2) {
 // taken; the OSM polyline's when unknown.
 double driven(const RoadProfile& p, std::size_t i) {
   return p.driven_s.empty() ? p.s[i] : p.driven_s[i];
-}
-
-// The ground's grade about segment i (stations i, i + 1) of a measured profile: the steepest of
-// the chords over kGroundGradeReach_m either side (one sample's noise does not decide), or
-// infinity where a height is missing.
-double ground_grade(const RoadProfile& p, std::size_t i) {
-  const auto reach = [&](std::size_t k, int dir) {
-    while (true) {
-      const std::size_t next = dir < 0 ? (k == 0 ? k : k - 1) : std::min(k + 1, p.size() - 1);
-      if (next == k || std::abs(p.s[next] - p.s[i]) > kGroundGradeReach_m) return k;
-      k = next;
-    }
-  };
-  const std::size_t lo = reach(i, -1), hi = reach(i + 1, 1);
-  double steepest = 0.0;
-  for (const auto& [a, b] : {std::pair{lo, i + 1}, std::pair{i, hi}, std::pair{i, i + 1}}) {
-    const double dz = p.z[b] - p.z[a], ds = p.s[b] - p.s[a];
-    if (!std::isfinite(dz)) return kInf;
-    if (ds > 0.0) steepest = std::max(steepest, std::abs(dz) / ds);
-  }
-  return steepest;
 }
 
 bool is_structure(const Road& road) {
@@ -489,8 +464,10 @@ class FitRows {
     std::uint32_t station;  // station index on the road; the junction id for junction rows
   };
 
+  /// `price_share`: the share of its limit's price the row costs (a place held by k rows at once
+  /// shares it, 1 / k, so that together they weigh like one and the priorities hold).
   void add(std::initializer_list<std::pair<std::size_t, double>> row, double lo, double hi, Tag tag,
-           bool always = false) {
+           bool always = false, double price_share = 1.0) {
     // Straight into compressed rows (the rows come in order): columns ascending within the row,
     // a repeated column summed, as Eigen's setFromTriplets would, without the triplets and the
     // transposed copy it builds (on a 414 km network 1.1 M rows: about 150 MB at once).
@@ -511,6 +488,7 @@ class FitRows {
     upper_.push_back(hi);
     tags_.push_back(tag);
     always_.push_back(always ? 1 : 0);
+    price_share_.push_back(price_share);
     group_.push_back(tag.road);
   }
   [[nodiscard]] std::size_t size() const { return tags_.size(); }
@@ -533,7 +511,11 @@ class FitRows {
     release(lower_);
     release(upper_);
     qp.price.resize(m);
-    for (Eigen::Index r = 0; r < m; ++r) qp.price[r] = price(tags_[static_cast<std::size_t>(r)].limit);
+    for (Eigen::Index r = 0; r < m; ++r) {
+      const auto k = static_cast<std::size_t>(r);
+      qp.price[r] = price(tags_[k].limit) * price_share_[k];
+    }
+    std::vector<double>().swap(price_share_);
     qp.always = std::move(always_);
     qp.group = std::move(group_);
   }
@@ -550,6 +532,7 @@ class FitRows {
   std::vector<double> lower_, upper_;
   std::vector<Tag> tags_;
   std::vector<std::uint8_t> always_;
+  std::vector<double> price_share_;
   std::vector<int> group_;  // the road, for screening a road's rows together
 };
 
@@ -567,78 +550,6 @@ std::pair<double, double> curvature_bounds(const Road& road, const ProfileFitOpt
     sag = std::min(sag, k.sag_curvature_per_m());
   }
   return {crest, sag};
-}
-
-// Grade rows on the outermost lane centres where a road's roll eases (fit_profiles).
-void add_lane_roll_rows(const RoadNetwork& network, const std::vector<RoadProfile>& raw,
-                        const VariableMap& vars, const ProfileFitOptions& options,
-                        const std::vector<std::array<double, 2>>& end_trims,
-                        const std::vector<double>& junction_cap, FitRows& rows) {
-  // The outer lanes climb more than the road where its roll eases from its junctions' planes
-  // (junction_planes.h): a lane t from the reference line by t d tan(roll) / ds, up to
-  // 1.5 t tan(roll0) / 50 m (3.4 % at 3.25 m under a 35 % cross slope), and a road shorter than
-  // 100 m turns from one end's roll to the other's in one. The roll is linear in the planes'
-  // gradients, tan(roll0) = n0 . S0 G0 at the cut (S the share the roads determine), eased by
-  // the weights w0(s), w1(s) between the cuts (the tangent of the eased roll taken as the eased
-  // tangent: its slope off by at most 8 % of the roll's share at a 35 % cross slope), so the
-  // grade rows hold on the outermost lane centres either side too, wherever a roll eases.
-  std::vector<Eigen::Matrix2d> shares(network.junctions.size(), Eigen::Matrix2d::Zero());
-  for (const Junction& j : network.junctions)
-    if (j.ends.size() >= 2) shares[j.id] = detail::determined_share(network, j);
-  for (std::size_t r = 0; r < raw.size(); ++r) {
-    const RoadProfile& p = raw[r];
-    const Road& road = network.roads[r];
-    const double t = std::max(0.5 * road.attributes.lane_width_m *
-                                  (road.attributes.lanes_forward + road.attributes.lanes_backward - 1),
-                              0.0);
-    if (!p.has_height || p.size() < 3 || !(t > 0.0)) continue;
-    const double trim0 = end_trims.empty() ? 0.0 : end_trims[r][0];
-    const double trim1 = end_trims.empty() ? 0.0 : end_trims[r][1];
-    const double length = p.s.back() - trim0 - trim1;
-    if (!(length > 0.0)) continue;
-    // The left normal of the segment holding station s.
-    const auto normal_at = [&](double s) {
-      const auto it = std::upper_bound(p.s.begin(), p.s.end(), s);
-      const std::size_t i =
-          std::min(static_cast<std::size_t>(std::max<std::ptrdiff_t>(1, it - p.s.begin())) - 1, p.size() - 2);
-      const Vec2 d = p.xy[i + 1] - p.xy[i];
-      return Vec2(Vec2(-d.y(), d.x()) / std::max(d.norm(), 1e-9));
-    };
-    const Vec2 c0 = shares[road.start_junction] * normal_at(trim0);  // tan(roll0) = c0 . G0
-    const Vec2 c1 = shares[road.end_junction] * normal_at(p.s.back() - trim1);
-    const bool rolls0 = !c0.isZero(0.0), rolls1 = !c1.isZero(0.0);
-    if (!rolls0 && !rolls1) continue;
-    // A plane without a roll borrows the other's variables with a zero weight.
-    const std::size_t g0 = vars.gradient(rolls0 ? road.start_junction : road.end_junction);
-    const std::size_t g1 = vars.gradient(rolls1 ? road.end_junction : road.start_junction);
-    const double g = grade_limit(options, road.attributes);
-    std::array<double, 2> w = detail::end_roll_weights(length, p.s[0] - trim0);
-    for (std::size_t i = 0; i + 1 < p.size(); ++i) {
-      const std::array<double, 2> next = detail::end_roll_weights(length, p.s[i + 1] - trim0);
-      const double dw0 = rolls0 ? next[0] - w[0] : 0.0, dw1 = rolls1 ? next[1] - w[1] : 0.0;
-      w = next;
-      const std::size_t a = vars.of(r, i, p.size()), b = vars.of(r, i + 1, p.size());
-      if (a == b || (dw0 == 0.0 && dw1 == 0.0)) continue;
-      const double ds = driven(p, i + 1) - driven(p, i);
-      // Where the ground is gentler than the cap by more than the largest lane climb the roll
-      // can add (the planes within their caps) and a margin, the road's own rows keep its lanes
-      // within the cap: no rows there, as each one ties the road's stations to both planes (a
-      // structure's ground says nothing: its rows stay).
-      const double lift = t * (std::abs(dw0) * c0.norm() * junction_cap[road.start_junction] +
-                               std::abs(dw1) * c1.norm() * junction_cap[road.end_junction]);
-      if (!is_structure(road) && ground_grade(p, i) + lift / std::max(ds, 1e-9) + kLaneRowMargin <= g)
-        continue;
-      for (const double side : {-t, t}) {
-        rows.add({{b, 1.0},
-                  {a, -1.0},
-                  {g0, side * dw0 * c0.x()},
-                  {g0 + 1, side * dw0 * c0.y()},
-                  {g1, side * dw1 * c1.x()},
-                  {g1 + 1, side * dw1 * c1.y()}},
-                 -g * ds, g * ds, {FitLimit::grade, static_cast<int>(r), static_cast<std::uint32_t>(i)});
-      }
-    }
-  }
 }
 
 // Station of a row on its road, for reporting.
@@ -837,7 +748,6 @@ ProfileFitResult fit_profiles(const RoadNetwork& network, const std::vector<Road
                {FitLimit::grade, static_cast<int>(r), static_cast<std::uint32_t>(i)});
     }
   }
-  add_lane_roll_rows(network, raw, vars, options, end_trims, junction_cap, rows);
   // The junction's plane is no steeper than the steepest road it joins, in every direction
   // (16 directions: |G| within 2 % of the cap), so neither are the connecting roads across it.
   for (const Junction& j : network.junctions) {
@@ -910,14 +820,21 @@ ProfileFitResult fit_profiles(const RoadNetwork& network, const std::vector<Road
       block_stations[e.road].push_back(a + 1);
       block_stations[e.road].push_back(e.at_start ? a + 2 : a - 1);
     }
-    // The rows hold between the lane centres at the cuts, as the model builds them: each road's
-    // cross-section there tilted by the roll of the junction's plane, tan(roll) = n . S G (S the
-    // share of the plane its roads determine, junction_planes.h). At the station beyond the cut
-    // and on the reference lines alone they did not bound the connecting roads: the roads may
-    // climb at their cap over that last metre while two ends leaving at an acute angle draw
-    // apart by much less, and the rolls lift one lane and lower another (Fuzz seed 350: lane
-    // ends 2 m apart in height across a 4 m connecting road, its grade 50 % under a 35 % cap).
-    const Eigen::Matrix2d share = detail::determined_share(network, j);
+    // The rows hold between the lane centres at the cuts. At an intersection the model tilts
+    // each road's cross-section there by the roll of the junction's plane, tan(roll) = n . S G
+    // (S the share of the plane its roads determine, junction_planes.h), and the connecting
+    // roads join those lane centres: every pair of them (outermost either side and the middle)
+    // gets a row with its rolls. At the station beyond the cut and on the reference lines alone
+    // the rows did not bound the connecting roads: the roads may climb at their cap over that
+    // last metre while two ends leaving at an acute angle draw apart by much less, and the rolls
+    // lift one lane and lower another (Fuzz seed 350: lane ends 2 m apart in height across a 4 m
+    // connecting road, its grade 50 % under a 35 % cap). At a two-road node the transition road
+    // checks its own lanes (too steep: a junction), and a row with rolls there lets the fit tilt
+    // the plane to meet it, rolling the roads' ends more and their outer lanes past the cap
+    // where the roll eases (RoadModelBuilder.ATransitionRoadCuttingASharpCorner: 36.8 % under
+    // 35 %): one row on the reference lines, over the nearest lane centres' distance.
+    const bool rolled = j.ends.size() >= 3;
+    const Eigen::Matrix2d share = rolled ? detail::determined_share(network, j) : Eigen::Matrix2d::Zero();
     const std::size_t gx = vars.gradient(j.id);
     for (std::size_t x = 0; x < leaving.size(); ++x) {
       for (std::size_t y = x + 1; y < leaving.size(); ++y) {
@@ -925,25 +842,45 @@ ProfileFitResult fit_profiles(const RoadNetwork& network, const std::vector<Road
         const Cut& cb = leaving[y];
         if (ca.road == cb.road) continue;  // a loop's two ends: its own grade rows hold
         const std::size_t na = raw[ca.road].size(), nb = raw[cb.road].size();
-        const double g = std::max(grade_limit(options, network.roads[ca.road].attributes),
-                                  grade_limit(options, network.roads[cb.road].attributes));
-        const Vec2 roll_a = share * ca.normal, roll_b = share * cb.normal;  // tan(roll) = roll . G
-        for (const double ta : lane_offsets(ca.road)) {
-          for (const double tb : lane_offsets(cb.road)) {
-            const Vec2 tilt = tb * roll_b - ta * roll_a;
-            const double d =
-                std::max(((cb.xy + tb * cb.normal) - (ca.xy + ta * ca.normal)).norm(), kMinCurvatureSpacing);
-            pair_rows[rows.size()] = {d, kPairGradeShare * g};
-            rows.add({{vars.of(cb.road, cb.a, nb), 1.0 - cb.t},
-                      {vars.of(cb.road, cb.a + 1, nb), cb.t},
-                      {vars.of(ca.road, ca.a, na), ca.t - 1.0},
-                      {vars.of(ca.road, ca.a + 1, na), -ca.t},
-                      {gx, tilt.x()},
-                      {gx + 1, tilt.y()}},
-                     -kPairGradeShare * g * d, kPairGradeShare * g * d,
-                     {FitLimit::junction_grade, ca.road, static_cast<std::uint32_t>(ca.a)});
+        const double g = kPairGradeShare * std::max(grade_limit(options, network.roads[ca.road].attributes),
+                                                    grade_limit(options, network.roads[cb.road].attributes));
+        const FitRows::Tag tag{FitLimit::junction_grade, ca.road, static_cast<std::uint32_t>(ca.a)};
+        double share_of_pair = 1.0;
+        const auto add_row = [&](const Vec2& tilt, double d) {
+          d = std::max(d, kMinCurvatureSpacing);
+          pair_rows[rows.size()] = {d, g};
+          const std::size_t a0 = vars.of(ca.road, ca.a, na), a1 = vars.of(ca.road, ca.a + 1, na);
+          const std::size_t b0 = vars.of(cb.road, cb.a, nb), b1 = vars.of(cb.road, cb.a + 1, nb);
+          if (!rolled) {
+            rows.add({{b0, 1.0 - cb.t}, {b1, cb.t}, {a0, ca.t - 1.0}, {a1, -ca.t}}, -g * d, g * d, tag);
+            return;
           }
+          rows.add({{b0, 1.0 - cb.t},
+                    {b1, cb.t},
+                    {a0, ca.t - 1.0},
+                    {a1, -ca.t},
+                    {gx, tilt.x()},
+                    {gx + 1, tilt.y()}},
+                   -g * d, g * d, tag, false, share_of_pair);
+        };
+        const auto lane_point = [](const Cut& c, double t) { return Vec2(c.xy + t * c.normal); };
+        if (!rolled) {
+          double d = kInf;
+          for (const double ta : lane_offsets(ca.road))
+            for (const double tb : lane_offsets(cb.road))
+              d = std::min(d, (lane_point(cb, tb) - lane_point(ca, ta)).norm());
+          add_row(Vec2::Zero(), d);
+          continue;
         }
+        const Vec2 roll_a = share * ca.normal, roll_b = share * cb.normal;  // tan(roll) = roll . G
+        // The pair's rows together weigh like the one row a pair had: 9 rows per pair at a 4-way
+        // crossing at the full price outweighed the ground departure above them (a conflict
+        // case left a road 2.7 m off the DEM under a 0.5 m bound to spare junction grades).
+        share_of_pair =
+            1.0 / static_cast<double>(lane_offsets(ca.road).size() * lane_offsets(cb.road).size());
+        for (const double ta : lane_offsets(ca.road))
+          for (const double tb : lane_offsets(cb.road))
+            add_row(tb * roll_b - ta * roll_a, (lane_point(cb, tb) - lane_point(ca, ta)).norm());
       }
     }
   }

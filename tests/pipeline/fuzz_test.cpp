@@ -4,13 +4,14 @@
 // quality gate evaluated (the CLI then exits 0 or 4), junctions exactly continuous, and never
 // throw, crash or hang. 30 seeds in CI (about 5 s); more by hand:
 // RELIEF_FUZZ_SEEDS=1000 build/tests/relief_pipeline_tests --gtest_filter="Fuzz.Random*" (1000
-// seeds, 8.9 min on one core, 2026-11-28: all built, every fit converged, 998 by the interior
-// point; 845 passed every gate, 160 before two-road bends too tight for a transition road became
-// junctions and connecting roads took the departures of those that left their surface; of the
-// 155 others, which exit 4, 118 fail the ground's RMSE on the steepest terrains (roads capped at
-// their grade cannot follow them), 51 connecting roads' grade (54), 15 SUMO height steps (19: an
-// inner lane of a tight transition bend), 1 a limit the fit left violated, and none a
-// self-intersection (2); a seed can fail several).
+// seeds, 9.8 min on one core, 2026-11-28: all built, every fit converged, 972 by the interior
+// point and 28 by the method of multipliers after it stalled (2 before the rows between road
+// ends took the lanes' rolls); 891 passed every gate, 845 before those rows and before
+// transition roads whose inner lane climbs past the cap became junctions, 840 before two-road
+// bends too tight for a transition road became junctions; the 109 others, which exit 4, all
+// fail the ground's RMSE on the steepest terrains (roads capped at their grade cannot follow
+// them), and none connecting roads' grade (51 before), SUMO height steps (15: an inner lane of
+// a tight transition bend), a limit the fit left violated (1) or a self-intersection (2)).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -177,7 +178,9 @@ TEST(Fuzz, RandomNetworksOnRandomTerrainBuildAndCheckThemselves) {
 
 // Seeds whose two-road bends were too sharp for their short roads to be trimmed back far enough:
 // a transition road's inner lane border passed the bend's centre and Road_Road intersected
-// itself (11 and 10 pairs). Such a bend is now a junction (model.transition_as_junction).
+// itself (11 and 10 pairs). Such a bend is now a junction (model.transition_as_junction): seed
+// 234's is; seed 309's roads, with the heights fitted since the rows between road ends hold at
+// their cuts, are trimmed back far enough for a transition road whose lanes do not fold.
 TEST(Fuzz, BendsTooTightForATransitionRoadAreJunctionsThatDoNotFold) {
   for (const unsigned seed : {234u, 309u}) {
     SCOPED_TRACE("seed " + std::to_string(seed));
@@ -186,7 +189,9 @@ TEST(Fuzz, BendsTooTightForATransitionRoadAreJunctionsThatDoNotFold) {
     BuildResult result;
     ASSERT_NO_THROW(result = build_seed(seed, c, d));
     const RunReport& r = result.report;
-    EXPECT_GE(d.count("model.transition_as_junction"), 1u);
+    if (seed == 234u) {
+      EXPECT_GE(d.count("model.transition_as_junction"), 1u);
+    }
     ASSERT_TRUE(r.opendrive);
     EXPECT_EQ(r.opendrive->transitions_as_junctions, d.count("model.transition_as_junction"));
     int checked = 0;

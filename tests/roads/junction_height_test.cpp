@@ -248,24 +248,5 @@ TEST(JunctionHeight, ARoadCrossingOneThatLeftTheSurfaceMeetsItThere) {
   EXPECT_NEAR(again.elevation.derivative(16.0), 0.12, 1e-9);
 }
 
-// The fit holds lane grades where a road's roll eases with the weights end_roll_weights gives:
-// they are end_rolls' own, on a road shorter than two eases (one turn from r0 to r1) and longer.
-TEST(JunctionPlanes, EndRollWeightsAreThoseOfEndRolls) {
-  for (const double length : {12.0, 99.5, 100.0, 180.0}) {
-    const double r0 = 0.31, r1 = -0.17;
-    const CubicProfile roll = end_rolls(length, r0, r1);
-    for (int i = 0; i <= 200; ++i) {
-      const double s = length * i / 200.0;
-      const std::array<double, 2> w = end_roll_weights(length, s);
-      EXPECT_NEAR(w[0] * r0 + w[1] * r1, roll.value(s), 1e-12) << "length " << length << " s " << s;
-      EXPECT_GE(w[0], 0.0);
-      EXPECT_LE(w[0] + w[1], 1.0 + 1e-12);
-    }
-    EXPECT_EQ(end_roll_weights(length, 0.0)[0], 1.0);
-    EXPECT_EQ(end_roll_weights(length, length)[1], 1.0);
-    EXPECT_EQ(end_roll_weights(length, -5.0)[0], 1.0);  // clamped to the road
-  }
-}
-
 }  // namespace
 }  // namespace relief::detail
