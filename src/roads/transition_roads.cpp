@@ -22,7 +22,7 @@ namespace relief::detail {
 namespace {
 
 constexpr double kFoldStep_m = 0.25;     // stations along a transition road checked for folding
-constexpr double kLaneGradeRun_m = 0.5;  // a lane centre's grade is taken over this much of its length
+constexpr double kLaneGradeRun_m = 0.2;  // a lane centre's grade is taken over this much of its length
 
 // Direction in which a road leaves junction `at_start ? start : end`, `along` metres into it:
 // that of the polyline segment there (unit vector).

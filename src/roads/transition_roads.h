@@ -54,7 +54,7 @@ enum class TransitionOutcome {
 /// `a_ref` is an element of model.roads, `b_id` the id of another. Where the corner is too
 /// tight for the lanes (a border on the inside of the bend within `margin_m` of its centre, or
 /// beyond it, where the lofted lanes would fold over themselves), or a lane centre climbs
-/// steeper than `max_lane_grade` over any 0.5 m of its own length (the inner lane of a tight
+/// steeper than `max_lane_grade` over any 0.2 m of its own length (the inner lane of a tight
 /// bend is much shorter than the reference line it climbs with), nothing is added or changed,
 /// and it says which.
 [[nodiscard]] TransitionOutcome add_transition_road(RoadModel& model, ModelRoad& a_ref, bool a_at_start,
