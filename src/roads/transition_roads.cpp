@@ -79,7 +79,7 @@ double steepest_lane_grade(const ModelRoad& road) {
       for (double s = kFoldStep_m;; s += kFoldStep_m) {
         s = std::min(s, len);
         const Vec3 p = surface_point(road, s, lane_centre_t(road, s, lane.id));
-        double run = (p - last).head<2>().norm();
+        const double run = (p - last).head<2>().norm();
         if (s == len && run < 0.5 * kLaneGradeRun_m) {
           steepest = std::max(steepest,
                               std::abs(p.z() - before.z()) / std::max((p - before).head<2>().norm(), 1e-9));

@@ -4,14 +4,15 @@
 // quality gate evaluated (the CLI then exits 0 or 4), junctions exactly continuous, and never
 // throw, crash or hang. 30 seeds in CI (about 5 s); more by hand:
 // RELIEF_FUZZ_SEEDS=1000 build/tests/relief_pipeline_tests --gtest_filter="Fuzz.Random*" (1000
-// seeds, 9.8 min on one core, 2026-11-28: all built, every fit converged, 972 by the interior
-// point and 28 by the method of multipliers after it stalled (2 before the rows between road
-// ends took the lanes' rolls); 891 passed every gate, 845 before those rows and before
+// seeds, 6.6 min on one core, 2026-11-28: all built, every fit converged, 995 by the interior
+// point and 5 by the method of multipliers after it stalled (2 before); 892 passed every gate,
+// 845 before the rows between road ends held at the lane centres where the model cuts them and
 // transition roads whose inner lane climbs past the cap became junctions, 840 before two-road
-// bends too tight for a transition road became junctions; the 109 others, which exit 4, all
+// bends too tight for a transition road became junctions; the 108 others, which exit 4, all
 // fail the ground's RMSE on the steepest terrains (roads capped at their grade cannot follow
-// them), and none connecting roads' grade (51 before), SUMO height steps (15: an inner lane of
-// a tight transition bend), a limit the fit left violated (1) or a self-intersection (2)).
+// them: 118 before), and none connecting roads' grade (51 before), SUMO height steps (15: an
+// inner lane of a tight transition bend), a limit the fit left violated (1) or a
+// self-intersection (2)).
 #include <gtest/gtest.h>
 
 #include <cmath>
