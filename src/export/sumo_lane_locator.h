@@ -171,6 +171,17 @@ class LaneLocator {
         }
       }
     }
+    // The internal lanes each lane leads into and comes out of (its point past its road's end
+    // into a junction lies on one of their roads).
+    for (const pugi::xml_node& c : net.children("connection")) {
+      const std::string via = c.attribute("via").as_string();
+      const std::string from = c.attribute("from").as_string();
+      if (via.empty() || from.empty() || from[0] == ':') continue;
+      leads_into_[from + "_" + c.attribute("fromLane").as_string()].push_back(via);
+      const std::string to = c.attribute("to").as_string();
+      if (!to.empty() && to[0] != ':')
+        comes_out_of_[to + "_" + c.attribute("toLane").as_string()].push_back(via);
+    }
     // A connection's internal lane may be split (":J_0_0" -> ":J_1_0"): follow the chain.
     for (bool changed = true; changed;) {
       changed = false;
@@ -189,8 +200,11 @@ class LaneLocator {
   /// The OpenDRIVE road, lane and (s, t) of point p of SUMO lane `lane_id`; nullopt when the
   /// lane has no road in the model. A point past an end of its road (netconvert stretches an
   /// internal lane to where it cut the next lane) lies on the road linked there, if any: the
-  /// surface at that (x, y) is that road's. `near`: (OpenDRIVE road id, station) of a point a
-  /// few metres from p, used as the projection's start on that road (RoadProjector::project).
+  /// surface at that (x, y) is that road's; past a road's end into a junction (netconvert
+  /// drawing a lane on into the junction's outline), on the connecting road of an internal lane
+  /// it leads into or comes out of, not on its own road's last cross-section drawn on. `near`: (OpenDRIVE
+  /// road id, station) of a point a few metres from p, used as the projection's start on that road
+  /// (RoadProjector::project).
   [[nodiscard]] std::optional<LanePoint> locate(const std::string& lane_id, const Vec2& p,
                                                 std::optional<std::pair<int, double>> near = std::nullopt) {
     const auto hint = [&](const ModelRoad& r) {
@@ -203,21 +217,46 @@ class LaneLocator {
     const Projection at = projector(*road).project(p, hint(*road));
     if (std::abs(at.beyond) > kPastEnd_m) {
       const std::optional<RoadLink>& link = at.beyond < 0.0 ? road->predecessor : road->successor;
-      const ModelRoad* next = link && link->element == RoadLink::Element::road ? road_of(link->id) : nullptr;
-      if (next != nullptr) {
-        const Projection on = projector(*next).project(p, hint(*next));
-        if (std::abs(on.beyond) <= kPastEnd_m) {
-          LaneRoad lane = it->second;
-          lane.lane.reset();  // not on this road's lane centre: height only
-          return LanePoint{next, on.s, on.t, lane, on.beyond};
+      std::vector<const ModelRoad*> next;
+      bool in_junction = false;
+      if (link && link->element == RoadLink::Element::road) {
+        next.push_back(road_of(link->id));
+      } else if (link && link->element == RoadLink::Element::junction &&
+                 std::abs(at.beyond) > kIntoJunction_m) {
+        in_junction = true;
+        const auto& vias = at.beyond < 0.0 ? comes_out_of_ : leads_into_;
+        if (const auto v = vias.find(lane_id); v != vias.end()) {
+          for (const std::string& via : v->second) {
+            const auto mapped = lanes_.find(via);
+            if (mapped != lanes_.end() && mapped->second.road != road->id)
+              next.push_back(road_of(mapped->second.road));
+          }
         }
       }
+      // Of the roads that reach p, the one whose centre it lies nearest; in a junction only a
+      // connecting road whose lane p lies on (its reference line is the lane's centre).
+      std::optional<LanePoint> best;
+      for (const ModelRoad* n : next) {
+        if (n == nullptr) continue;
+        const Projection on = projector(*n).project(p, hint(*n));
+        if (std::abs(on.beyond) > kPastEnd_m || (best && std::abs(on.t) >= std::abs(best->t))) continue;
+        if (in_junction && std::abs(on.t) > kOnConnectingLane_m) continue;
+        LaneRoad lane = it->second;
+        lane.lane.reset();  // not on this road's lane centre: height only
+        best = LanePoint{n, on.s, on.t, lane, on.beyond};
+      }
+      if (best) return best;
     }
     return LanePoint{road, at.s, at.t, it->second, at.beyond};
   }
 
  private:
   static constexpr double kPastEnd_m = 0.01;
+  // A lane end past its road's end by more than this lies in the junction (netconvert drawing
+  // it on to the junction's outline: 7.7 m at NE's J216); less is netconvert's rounding and
+  // offsetting, on the road's own end.
+  static constexpr double kIntoJunction_m = 0.5;
+  static constexpr double kOnConnectingLane_m = 2.0;  // half the widest lane (4 m), off its centre
 
   [[nodiscard]] const ModelRoad* road_of(int id) const {
     const int index = model_.road_index(id);
@@ -232,6 +271,7 @@ class LaneLocator {
 
   const RoadModel& model_;
   std::unordered_map<std::string, LaneRoad> lanes_;
+  std::unordered_map<std::string, std::vector<std::string>> leads_into_, comes_out_of_;  ///< lane -> vias
   std::unordered_map<int, RoadProjector> projectors_;
 };
 

@@ -100,6 +100,22 @@ TEST(SumoSeams, AnInternalLaneEndBesideOrBehindItsLanesEndIsMovedOntoIt) {
   EXPECT_NEAR(length, 7.05, 1e-9);
 }
 
+TEST(SumoSeams, ALaneDrawnOnIntoTheJunctionTakesTheConnectingRoadsHeightThere) {
+  // netconvert drew lane 1_0 on to x = 106, 6 m past road 1's end into the junction (NE's J216:
+  // 7.7 m). Its last point lies on connecting road 2 (z = 10.6 on the ramp), not on road 1's last
+  // cross-section drawn on (z = 10), and so does the internal lane's start, cut to meet it: no
+  // height step at the hand-over.
+  std::string net = ramp_net_with("shape=\"0,-1.5,0 100,-1.5,10\"", "shape=\"0,-1.5,0 106,-1.5,10\"");
+  const SumoDrape drape = drape_sumo_net(net, ramp_model(), "ramp.net.xml");
+  EXPECT_EQ(drape.ends_snapped, 1u);
+  EXPECT_EQ(lane_of(net, "1_0").first, "0,-1.5,0.000 106,-1.5,10.600");
+  EXPECT_EQ(lane_of(net, ":J_0_0").first, "106.00,-1.50,10.600 110.00,-1.50,11.000");
+  const SumoNetCheck check = check_sumo_net(net, ramp_model(), "ramp.net.xml");
+  EXPECT_EQ(check.height_steps, 0u);
+  EXPECT_LT(check.max_handover_step_m, 1e-9);
+  EXPECT_LT(check.z_max_m, 5e-4);
+}
+
 TEST(SumoSeams, NetconvertsOwnCentimetresAreLeftAlone) {
   // 4 cm apart (under the 5 cm tolerance): nothing changes but the heights.
   std::string net = ramp_net_with("shape=\"110,-1.5,11 210,-1.5,21\"", "shape=\"110,-1.46,11 210,-1.5,21\"");
