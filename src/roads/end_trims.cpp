@@ -12,6 +12,7 @@
 #include "roads/lane_layout.h"
 #include "roads/stray_ends.h"
 #include "roads/transition_roads.h"
+#include "roads/turn_room.h"
 
 namespace relief::detail {
 namespace {
@@ -47,8 +48,9 @@ bool in_path(const EndShape& c, const EndShape& a, const EndShape& b) {
   return hull.size() >= 3 && segment_polygon_distance(c.right, c.left, hull) <= 0.0;
 }
 
-// Grows the trims of the usable road ends at junction j in steps until no two overlap and none
-// lies between two others (in_path). Overlapping ends that reach their cap mark their roads
+// Grows the trims of the usable road ends at junction j in steps until no two overlap, none
+// lies between two others (in_path) and, at an intersection, every turn between two of them is
+// at least min_turn_radius_m round (turn_room). Overlapping ends that reach their cap mark their roads
 // `stuck`; where ends still overlap, the junction goes into `overlaps` and is made level in
 // `planes`. Returns the ends whose trims grew.
 std::size_t grow_apart(JunctionEnds& state, const Junction& j, std::vector<std::uint8_t>& stuck,
@@ -65,6 +67,11 @@ std::size_t grow_apart(JunctionEnds& state, const Junction& j, std::vector<std::
     if (!shape[k]) shape[k] = state.end_shape_at(*ends[k]);
     return *shape[k];
   };
+  std::vector<EndLanes> lanes;
+  lanes.reserve(ends.size());
+  for (const RoadEnd* e : ends) lanes.push_back(end_lanes(network.roads[e->road], e->at_start));
+  const bool turns_need_room =
+      options.min_turn_radius_m > 0.0 && (ends.size() >= 3 || j.kind == JunctionKind::intersection);
   std::vector<std::uint8_t> grown(ends.size(), 0), capped(ends.size(), 0);
   bool clear = false;
   for (int pass = 0; pass < kMaxTrimPasses; ++pass) {
@@ -87,17 +94,36 @@ std::size_t grow_apart(JunctionEnds& state, const Junction& j, std::vector<std::
         }
       }
     }
+    // Ends too close to a turn's crossing for its connecting road to be round enough: the end
+    // with the shorter tangent grows (at intersections; a transition road's bend has its own
+    // reach, transition_reach).
+    std::vector<std::uint8_t> tight(ends.size(), 0);
+    if (turns_need_room) {
+      for (std::size_t a = 0; a < ends.size(); ++a) {
+        for (std::size_t b = 0; b < ends.size(); ++b) {
+          if (ends[a]->road == ends[b]->road) continue;
+          const TurnRoom room = turn_room(shape_of(a), lanes[a], shape_of(b), lanes[b]);
+          if (room.radius < options.min_turn_radius_m) tight[room.shorter == 0 ? a : b] = 1;
+        }
+      }
+    }
     bool any = false;
     for (std::size_t k = 0; k < ends.size(); ++k) {
-      if (!grow[k] && !between[k]) continue;
+      if (!grow[k] && !between[k] && !tight[k]) continue;
       const Road& road = network.roads[ends[k]->road];
       const double length = state.cumulative[road.id].back();
       double& t = state.trim[road.id][ends[k]->at_start ? 0 : 1];
       // Both ends of a road draw on its length, leaving it min_kept_length_m; a loop's two
-      // ends overlap each other whatever is cut, so it keeps the per-end share.
-      const double cap = state.loop(road) ? options.max_trim_fraction * length
-                                          : length - state.trim[road.id][ends[k]->at_start ? 1 : 0] -
-                                                options.min_kept_length_m;
+      // ends overlap each other whatever is cut, so it keeps the per-end share. An end grown
+      // only for a turn's room keeps that share too, and leaves its road at least as long as it
+      // is wide: a rounder turn never makes a road a stub between two junctions, whose lanes
+      // would turn from one junction's roll to the other's within a few metres.
+      const double other = state.trim[road.id][ends[k]->at_start ? 1 : 0];
+      double cap = length - other - options.min_kept_length_m;
+      if (state.loop(road)) cap = options.max_trim_fraction * length;
+      if (!grow[k] && !between[k])
+        cap =
+            std::max(t, std::min({cap, options.max_trim_fraction * length, length - other - lanes[k].width}));
       const double next = std::min(t + kTrimStep, cap);
       if (next - t < 1e-9) {
         if (grow[k]) capped[k] = state.loop(road) ? 0 : 1;

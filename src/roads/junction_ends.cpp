@@ -38,6 +38,8 @@ EndShape end_shape(const PlanView& plan, double outer_t, bool at_start, double m
     right.push_back(pose.position - outer_t * n);
   }
   EndShape e;
+  const double heading = plan.at(at_start ? 0.0 : length).heading;
+  e.out = (at_start ? -1.0 : 1.0) * Vec2(std::cos(heading), std::sin(heading));
   e.left = left.front();
   e.right = right.front();
   e.strip = right;

@@ -26,7 +26,8 @@ inline constexpr double kStripLength = 50.0;    ///< m of lanes next to a juncti
 /// lane border) and the outline of its lanes over the first metres from that end.
 struct EndShape {
   Vec2 left = Vec2::Zero(), right = Vec2::Zero();
-  Polyline2 strip;  ///< closed implicitly
+  Vec2 out = Vec2::UnitX();  ///< unit direction from the end into its junction
+  Polyline2 strip;           ///< closed implicitly
 };
 
 /// The EndShape of the end of `plan` (at its start or its end) whose outermost lane borders lie

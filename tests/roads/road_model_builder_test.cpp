@@ -44,7 +44,9 @@ TEST(RoadModelBuilder, TJunctionOnASlope) {
   EXPECT_EQ(b.stats.junctions, 1u);
   EXPECT_EQ(b.stats.connecting_roads, 6u);  // every arm to the two others, one lane each
   ASSERT_EQ(b.model.roads.size(), 9u);
-  // Trimmed by the junction radius: widest half-width 3 m + 2 m margin.
+  // Trimmed by the junction radius: widest half-width 3 m + 2 m margin. The right turns' lane
+  // centres (1.5 m inside the roads' axes) are then 3.5 m round (a right angle's radius is its
+  // tangent, trim - 1.5 m), rounder than min_turn_radius_m: no further trim.
   const ModelRoad& west = b.model.roads[b.model_road_of[0]];
   EXPECT_NEAR(west.length(), 95.0, 1e-6);
   EXPECT_NEAR(west.elevation.value(0.0), plane({-100, 0}), 1e-6);
@@ -235,8 +237,12 @@ TEST(RoadModelBuilder, ARoadEndingBetweenTwoOthersIsTrimmedOutOfTheirConnectingR
       test::make_network({{{-100, 0}, {0, 0}}, {{0, 0}, {100, 0}}, {{0, 0}, {0, -100}}, {{0, 0}, {d, -d}}},
                          {street(3, 3), street(3, 3), street(1, 1), street(1, 1)});
   const auto bowl = [](const Vec2& p) { return 10.0 + 0.003 * p.squaredNorm(); };
+  // Without the room turns need (which trims the diagonal and the east end further still, for
+  // the 135 degree right turn between them: AcuteTurnsAreTrimmedRoundEnough).
+  RoadModelOptions options;
+  options.min_turn_radius_m = 0.0;
   Diagnostics diag;
-  const RoadModelBuild b = build_road_model(net, test::drape(net, bowl), {}, diag);
+  const RoadModelBuild b = build_road_model(net, test::drape(net, bowl), options, diag);
   EXPECT_EQ(b.stats.junctions, 1u);
   EXPECT_EQ(b.stats.junction_ends_overlap, 0u);
   // The diagonal's end line runs along y = x - r sqrt(2) at trim r, its corners 3 m either side:
@@ -244,7 +250,7 @@ TEST(RoadModelBuilder, ARoadEndingBetweenTwoOthersIsTrimmedOutOfTheirConnectingR
   // grows in steps of 0.5 m from the radius; the east end, passed by the diagonal's corner, grows
   // and the south end, between the west end and the diagonal's, a little too. The west end,
   // which no other end's connecting roads pass, stays at the radius.
-  const std::vector<std::array<double, 2>> trims = junction_end_trims(net, test::drape(net, bowl), {});
+  const std::vector<std::array<double, 2>> trims = junction_end_trims(net, test::drape(net, bowl), options);
   EXPECT_NEAR(trims[0][1], 11.0, 1e-9);
   EXPECT_GE(trims[3][0], 14.5 - 1e-9);
   for (const int r : {1, 2, 3}) EXPECT_LE(trims[r][0], 20.0 + 1e-9) << r;
@@ -342,6 +348,51 @@ TEST(RoadModelBuilder, ADeadEndOnAnotherRoadIsTrimmedOffItsPavement) {
   EXPECT_NEAR(b.end_trims[2][1], 0.0, 1e-9);
   const ModelRoad& side = b.model.roads[static_cast<std::size_t>(b.model_road_of[1])];
   EXPECT_NEAR(side.plan.at(side.length()).position.y(), -3.5, 1e-6);
+}
+
+// The tightest radius of a connecting road's reference line (its lane centre), sampled every 5 cm.
+double tightest_radius(const ModelRoad& r) {
+  double curvature = 0.0;
+  for (double s = 0.0; s <= r.length(); s += 0.05)
+    curvature = std::max(curvature, std::abs(r.plan.at(s).curvature));
+  return 1.0 / curvature;
+}
+
+TEST(RoadModelBuilder, AcuteTurnsAreTrimmedRoundEnough) {
+  // Three two-lane streets (3 m lanes) to one node: east, 40 degrees south of east, and west. The
+  // right turn from the south-east street into the east one turns by 140 degrees; its lane
+  // centres, 1.5 m inside the axes, cross on the bisector, 1.5 / tan(20°) = 4.12 m out along
+  // either axis. At the junction radius (5 m) its tangents would be 0.88 m, a radius of 0.32 m;
+  // for 3 m they must be 3 tan(70°) = 8.24 m, trims of 12.36 m: 12.5 m in steps of 0.5 m.
+  const double a = 40.0 * std::numbers::pi / 180.0;
+  const Vec2 south_east(100.0 * std::cos(a), -100.0 * std::sin(a));
+  const RoadNetwork net = test::make_network({{{0, 0}, {100, 0}}, {{0, 0}, south_east}, {{-100, 0}, {0, 0}}},
+                                             {street(1, 1), street(1, 1), street(1, 1)});
+  Diagnostics d;
+  const RoadModelBuild b = build_road_model(net, drape(net), {}, d);
+  EXPECT_EQ(b.stats.junctions, 1u);
+  EXPECT_EQ(b.stats.junction_ends_overlap, 0u);
+  EXPECT_NEAR(b.end_trims[0][0], 12.5, 1e-9);
+  EXPECT_NEAR(b.end_trims[1][0], 12.5, 1e-9);
+  EXPECT_NEAR(b.end_trims[2][1], 5.0, 1e-9);  // the west end's turns are round at the radius
+  double tightest = 1e9;
+  for (const ModelRoad& r : b.model.roads) {
+    if (r.junction >= 0) tightest = std::min(tightest, tightest_radius(r));
+  }
+  EXPECT_GE(tightest, 3.0);
+  EXPECT_LT(tightest, 3.0 + 0.5 / std::tan(0.5 * std::numbers::pi - 0.5 * a) + 1e-6);
+  // Without: the turn is as tight as the ends' trims for their overlap leave it (1.78 m).
+  RoadModelOptions any_turn;
+  any_turn.min_turn_radius_m = 0.0;
+  const RoadModelBuild loose = build_road_model(net, drape(net), any_turn, d);
+  double loosest = 1e9;
+  for (const ModelRoad& r : loose.model.roads) {
+    if (r.junction >= 0) loosest = std::min(loosest, tightest_radius(r));
+  }
+  EXPECT_LT(loosest, 2.0);
+  const LinkContinuity c = check_link_continuity(b.model);
+  EXPECT_LT(c.max_horizontal_m, 1e-6);
+  EXPECT_LT(c.max_vertical_m, 1e-6);
 }
 
 TEST(RoadModelBuilder, AShortRoadBetweenTwoJoinedJunctionsLiesInsideTheJoinedJunction) {

@@ -29,6 +29,9 @@
 //   stuck (its ends still overlap) or no more than 10 m longer than the two radii (longer roads
 //   used up at a sharp fork keep their junctions apart); "model.junction_ends_overlap" where
 //   the ends still overlap then.
+// - At an intersection, an end is trimmed further in the same steps while a turn from or into it
+//   is tighter than min_turn_radius_m at its lane centre (the end nearer the turn's corner
+//   grows), by at most max_trim_fraction of its road and leaving the road as long as it is wide.
 // - A dead end that stops on another road's pavement at about its height, without a shared
 //   node (an OSM "almost junction", ways closer than their widths), is trimmed back in steps
 //   until its end cross-section clears that pavement by junction_end_gap_m
@@ -59,7 +62,13 @@ struct RoadModelOptions {
   double min_kept_length_m = 1.0;    ///< least length a road keeps when its ends are trimmed further
   double min_radius_margin_m = 0.5;  ///< smallest arc radius beyond the outermost lane border
   double junction_end_gap_m = 0.5;   ///< least distance between road ends at a junction
-  bool u_turns = false;              ///< U-turns: back into the arriving road, or any turn over 150 degrees
+  /// Least radius of a turn's lane centre at an intersection (0: any): road ends are trimmed back
+  /// until the connecting roads between them are this round, each end by at most
+  /// max_trim_fraction of its road and leaving it at least as long as it is wide. 3 m: SUMO
+  /// draws a 5 m car as a chord behind its front bumper, whose middle then stays on a 3 m lane
+  /// (for R > 2.83 m).
+  double min_turn_radius_m = 3.0;
+  bool u_turns = false;  ///< U-turns: back into the arriving road, or any turn over 150 degrees
   /// Per network road, the grade cap its profile was fitted to (fraction; empty: none known). A
   /// connecting road follows its junction's height surface where that keeps it within the larger
   /// cap of the two roads it joins (less 0.5 %, inside the grade gate's 2 %), else within the
