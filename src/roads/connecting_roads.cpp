@@ -15,12 +15,12 @@
 #include "relief/roads/junction_height.h"
 #include "relief/roads/way_attributes.h"
 #include "roads/lane_layout.h"
+#include "roads/turn_room.h"
 
 namespace relief::detail {
 namespace {
 
 constexpr double kPi = std::numbers::pi;
-constexpr double kUTurn_rad = 5.0 * kPi / 6.0;
 constexpr double kCapMargin = 0.005;  // a road on the junction's surface stays this far inside cap + 2 %
 // Rounds of the junction's surface taking the departures of the roads that left it (the first on
 // the surface alone).
@@ -168,9 +168,9 @@ void add_junction(const RoadNetwork& network, const JunctionClusters& clusters, 
       // A U-turn goes back into the arriving road, or turns back by more than 150 degrees into
       // another (the two carriageways where a divided street splits: their ends lie a metre
       // apart and the hairpin between them cannot carry a lane).
-      const bool u_turn = in.network_road == to.network_road || std::abs(turn) > kUTurn_rad;
+      const bool u_turn = in.network_road == to.network_road || std::abs(turn) > kUTurnAngle_rad;
       if (u_turn && !options.u_turns) continue;
-      const char* movement = std::abs(turn) < kPi / 6.0 ? "through" : turn > 0.0 ? "left" : "right";
+      const char* movement = std::abs(turn) < kThroughAngle_rad ? "through" : turn > 0.0 ? "left" : "right";
       // A slight turn (under 60 degrees) may also be made from a through lane: streets bend.
       const bool slight = std::abs(turn) < kPi / 3.0;
       const WayAttributes& in_attr = network.roads[in.network_road].attributes;

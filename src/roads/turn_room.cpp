@@ -3,15 +3,11 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <numbers>
 
 #include "relief/geometry/plane.h"
 
 namespace relief::detail {
 namespace {
-
-constexpr double kThrough_rad = std::numbers::pi / 6.0;  // a turn under 30 degrees goes through
-constexpr double kUTurn_rad = 5.0 * std::numbers::pi / 6.0;
 
 // Unit normal on the right of direction u.
 Vec2 right_of(const Vec2& u) {
@@ -37,7 +33,7 @@ TurnRoom turn_room(const EndShape& a, const EndLanes& la, const EndShape& b, con
   const Vec2 d0 = a.out;   // driving into the junction from a
   const Vec2 d1 = -b.out;  // and out of it into b
   const double turn = std::atan2(cross(d0, d1), d0.dot(d1));
-  if (std::abs(turn) < kThrough_rad || std::abs(turn) > kUTurn_rad) return {kNone, 0};
+  if (std::abs(turn) < kThroughAngle_rad || std::abs(turn) > kUTurnAngle_rad) return {kNone, 0};
   // Lane centres to the right of the direction of travel: the outermost lane for a right turn,
   // the innermost for a left turn.
   const auto offset = [&](const EndLanes& l, int lanes) {

@@ -6,11 +6,19 @@
 // is at least min_turn_radius_m round (end_trims.h), the roads' lengths allowing, so that a car's
 // body, which SUMO draws as a chord behind its front bumper, stays on the lane it turns along.
 
+#include <numbers>
+
 #include "relief/geometry/types.h"
 #include "relief/roads/road_network.h"
 #include "roads/junction_ends.h"
 
 namespace relief::detail {
+
+/// A turn under this angle goes through (30 degrees); one over kUTurnAngle_rad is a U-turn (150
+/// degrees), which connecting roads leave out unless asked. Shared by the movements
+/// (connecting_roads.cpp) and the room their turns need.
+inline constexpr double kThroughAngle_rad = std::numbers::pi / 6.0;
+inline constexpr double kUTurnAngle_rad = 5.0 * std::numbers::pi / 6.0;
 
 /// The lanes of a road end, across its travel direction into the junction: `arriving` lanes
 /// drive into it, `departing` lanes out of it (right-hand traffic: each on the right of its
