@@ -215,6 +215,11 @@ CosimInputs find_cosim_inputs(const std::filesystem::path& sumocfg) {
                                                           : sumocfg.parent_path() / value;
   if (!std::filesystem::is_regular_file(inputs.net))
     throw IoError("cannot read the net '" + inputs.net.string() + "' named by '" + sumocfg.string() + "'");
+  // SUMO reads the files a configuration names from its folder and splits file options at
+  // commas: a comma in that path cuts it apart, and SUMO fails on a file that does not exist.
+  if (std::filesystem::absolute(inputs.net).string().find(',') != std::string::npos)
+    throw InvalidInput("SUMO cannot read '" + std::filesystem::absolute(inputs.net).string() +
+                       "': it splits file paths at commas; move or link the build to a path without one");
   inputs.xodr = inputs.net.parent_path() / (sumo_net_name(inputs.net) + ".xodr");
   if (!std::filesystem::is_regular_file(inputs.xodr))
     throw IoError("cannot read '" + inputs.xodr.string() +

@@ -88,20 +88,24 @@ NetconvertRun run_netconvert(const SumoPlainNetwork& net, const std::filesystem:
   write_text(nod, [&](std::ostream& o) { write_sumo_nodes(o, net); });
   write_text(edg, [&](std::ostream& o) { write_sumo_edges(o, net); });
   write_text(con, [&](std::ostream& o) { write_sumo_connections(o, net); });
-  std::vector<std::string> argv = {
-      sumo_tool("netconvert").string(), "--node-files", nod.string(), "--edge-files", edg.string(),
-      "--connection-files", con.string(), "--output-file", out.string(),
-      // Heights are relief's: no grade "fix", no offset normalisation.
-      "--geometry.max-grade.fix", "false", "--offset.disable-normalization", "true",
-      // Movements are relief's connections; no U-turns added.
-      "--no-turnarounds", "true", "--precision", "3", "--output.street-names", "true", "--tls.default-type",
-      "static"};
+  // netconvert runs in the work directory on the files' bare names: its file options are lists
+  // split at commas, so a comma anywhere in the output directory's path ("--out box_9.5,47.1")
+  // would cut the path apart.
+  std::vector<std::string> argv = {sumo_tool("netconvert").string(), "--node-files", nod.filename().string(),
+                                   "--edge-files", edg.filename().string(), "--connection-files",
+                                   con.filename().string(), "--output-file", out.filename().string(),
+                                   // Heights are relief's: no grade "fix", no offset normalisation.
+                                   "--geometry.max-grade.fix", "false", "--offset.disable-normalization",
+                                   "true",
+                                   // Movements are relief's connections; no U-turns added.
+                                   "--no-turnarounds", "true", "--precision", "3", "--output.street-names",
+                                   "true", "--tls.default-type", "static"};
   // relief writes each lane's permissions itself; the edge types are names only.
   argv.insert(argv.end(), {"--ignore-errors.edge-type", "true"});
   // The files are relief's own, valid against SUMO's schemas (tests/pipeline/sumo_test.cpp checks
   // them with xmllint): validating them again took half of netconvert's time (1.1 of 2.4 s on NE).
   argv.insert(argv.end(), {"--xml-validation", "never"});
-  const ProcessResult r = run_process(argv, sumo_tool_environment());
+  const ProcessResult r = run_process(argv, sumo_tool_environment(), std::filesystem::absolute(work_dir));
   if (r.exit_code != 0) {
     throw IoError("netconvert failed on '" + nod.string() + "' (exit " + std::to_string(r.exit_code) +
                   "): " + tail(r.output));
@@ -116,12 +120,12 @@ NetconvertRun run_netconvert(const SumoPlainNetwork& net, const std::filesystem:
 DemandRun make_demand(const std::filesystem::path& work_dir, const std::string& name,
                       const DemandOptions& options) {
   if (options.trips <= 0) throw InvalidInput("demand: the number of trips must be > 0");
-  // randomTrips.py and duarouter run in the work directory: a relative path would be read from
-  // there (and randomTrips, not finding it, takes it for a URL).
+  // randomTrips.py and duarouter run in the work directory, on the files' bare names: SUMO's
+  // file options are lists split at commas, so a comma in the directory's path would cut it.
   const std::filesystem::path dir = std::filesystem::absolute(work_dir);
-  const std::filesystem::path net = dir / (name + ".net.xml");
-  const std::filesystem::path trips = dir / (name + ".trips.xml");
-  const std::filesystem::path routes = dir / (name + ".rou.xml");
+  const std::filesystem::path net = name + ".net.xml";
+  const std::filesystem::path trips = name + ".trips.xml";
+  const std::filesystem::path routes = name + ".rou.xml";
   const double end = options.end_s > options.begin_s ? options.end_s : options.begin_s + options.trips;
   const double period = (end - options.begin_s) / options.trips;
   std::string period_text, begin_text, end_text;
@@ -154,7 +158,7 @@ DemandRun make_demand(const std::filesystem::path& work_dir, const std::string& 
                                               sumo_tool_environment(), dir);
   run.log += trips_run.output;
   if (trips_run.exit_code != 0) {
-    throw IoError("randomTrips.py failed on '" + net.string() + "': " + tail(trips_run.output));
+    throw IoError("randomTrips.py failed on '" + (dir / net).string() + "': " + tail(trips_run.output));
   }
   const ProcessResult route_run =
       run_process({sumo_tool("duarouter").string(), "--net-file", net.string(), "--route-files",
@@ -163,8 +167,8 @@ DemandRun make_demand(const std::filesystem::path& work_dir, const std::string& 
                   sumo_tool_environment(), dir);
   run.log += route_run.output;
   if (route_run.exit_code != 0)
-    throw IoError("duarouter failed on '" + trips.string() + "': " + tail(route_run.output));
-  run.routes_xml = read_text(routes);
+    throw IoError("duarouter failed on '" + (dir / trips).string() + "': " + tail(route_run.output));
+  run.routes_xml = read_text(dir / routes);
   std::size_t pos = 0;
   while ((pos = run.routes_xml.find("<vehicle ", pos)) != std::string::npos) {
     ++run.routes;

@@ -183,6 +183,14 @@ check "sumo routes written" grep -q "<vehicle " "$out/hill.rou.xml"
 check "sumo routes, relative --out" bash -c "cd '$RELIEF_TMP' && '$RELIEF' build --osm '$fix/hill.osm' \
   --dem '$fix/hill_dem.asc' --out routes_relative --quiet --outputs xodr,sumo --routes 20 >/dev/null 2>&1 \
   && grep -q '<vehicle ' routes_relative/hill.rou.xml"
+# SUMO splits file options at commas: a comma in --out ("box_9.5,47.1") once cut netconvert's
+# paths apart (exit 3). The build now passes bare names; cosim says why it cannot start there.
+comma="$RELIEF_TMP/box_9.5,47.1"
+check "comma in --out builds" run 0 "$comma" build --osm "$fix/hill.osm" --dem "$fix/hill_dem.asc" --out "$comma" \
+  --quiet --outputs xodr,sumo --routes 20
+check "comma in --out, routes" grep -q "<vehicle " "$comma/hill.rou.xml"
+check "comma in --out, cosim refuses" run 3 "$comma/cosim" cosim --sumocfg "$comma/hill.sumocfg" --out "$comma/cosim" --end 1
+check "comma in --out, cosim says why" stderr_has "splits file paths at commas"
 check "sumocfg step length" python3 - "$out/hill.sumocfg" <<'PY'
 import sys, xml.etree.ElementTree as ET
 c = ET.parse(sys.argv[1]).getroot()
