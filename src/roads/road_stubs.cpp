@@ -13,6 +13,7 @@
 #include "relief/core/diagnostic_codes.h"
 #include "relief/geometry/polyline.h"
 #include "roads/lane_layout.h"
+#include "roads/road_separation.h"
 
 namespace relief::detail {
 namespace {
@@ -44,6 +45,20 @@ Polyline2 reversed_line(Polyline2 line) {
   return line;
 }
 
+// How far along `stub` (from the node) its pavement runs before it is clear of `other`'s: both
+// strips start at the node, the stub's edge on the other's side leaves the other's strip where
+// its distance across the other's centre line reaches the other's half width, or, when the two
+// leave more than 90 degrees apart, where it passes behind the other's start. Infinite for two
+// roads leaving the node the same way (the stub lies on the other road).
+double clear_reach(const NodeEnd& stub, const NodeEnd& other) {
+  const double cos_phi = std::clamp(stub.out.dot(other.out), -1.0, 1.0);
+  const double sin_phi = std::sqrt(1.0 - cos_phi * cos_phi);
+  const double across = (other.half + stub.half * cos_phi) / sin_phi;  // +inf at sin_phi == 0
+  if (cos_phi >= 0.0) return std::max(0.0, across);
+  const double behind = stub.half * sin_phi / -cos_phi;
+  return std::max(0.0, std::min(across, behind));
+}
+
 }  // namespace
 
 std::size_t drop_stubs(std::vector<Road>& roads, Diagnostics& diagnostics) {
@@ -70,11 +85,51 @@ std::size_t drop_stubs(std::vector<Road>& roads, Diagnostics& diagnostics) {
     length[r] = length_m(road.points);
     stub[r] = length[r] < reach[r] ? 1 : 0;
   }
+  const auto end_at = [&](std::size_t r, std::int64_t node) {
+    for (const NodeEnd& e : nodes[node])
+      if (e.road == r) return e;
+    return NodeEnd{};
+  };
+  // Dead ends lying along another road at a junction (three ends or more: at two, a hairpin's
+  // apex): a way that forks off at a few degrees and ends closer to the other than their half
+  // widths, by more than road_separation moves a road (a merge's two branches cut by a clip box
+  // 15 m upstream, Portland's Stadium Freeway: no trim or move could part them, the junction's
+  // outline crossed itself and it was left open). Judged narrowest first against the roads
+  // still there, so of two branches along each other only the narrower goes.
+  const SeparationOptions separation;
+  std::vector<std::size_t> dead_ends;
+  for (std::size_t r = 0; r < roads.size(); ++r)
+    if (joined[r] != 0 && !stub[r] && nodes[joined[r]].size() >= 3) dead_ends.push_back(r);
+  std::sort(dead_ends.begin(), dead_ends.end(), [&](std::size_t a, std::size_t b) {
+    const double ha = end_at(a, joined[a]).half, hb = end_at(b, joined[b]).half;
+    return ha < hb || (ha == hb && (length[a] < length[b] || (length[a] == length[b] && a < b)));
+  });
+  std::vector<std::int64_t> along(roads.size(), 0);  // the OSM way a dead end lies along
+  std::vector<double> too_close(roads.size(), 0.0);  // by this much at its far end
+  for (const std::size_t r : dead_ends) {
+    const NodeEnd me = end_at(r, joined[r]);
+    for (const NodeEnd& e : nodes[joined[r]]) {
+      if (e.road == r || stub[e.road]) continue;
+      const double cos_phi = std::clamp(me.out.dot(e.out), -1.0, 1.0);
+      if (cos_phi <= 0.0) continue;  // parting more than 90 degrees: apart beyond the junction
+      const double apart = length[r] * std::sqrt(1.0 - cos_phi * cos_phi);  // centre lines, at its end
+      const double shift = me.half + e.half + separation.margin_m - apart;
+      if (shift > separation.max_shift_m) {
+        stub[r] = 1;
+        along[r] = roads[e.road].osm_way_ids.front();
+        too_close[r] = shift;
+        break;
+      }
+    }
+  }
   // Once the stubs are gone, their joined node must be a plain road end, a junction of three
   // roads or more, or a road straight through (within 30 degrees). Where the roads that stay
   // make a corner instead (a bend of wide roads, which a junction builds better), the longest
-  // stub stays to keep the junction, unless it is under kUntrimmable; the others go. Stubs at
-  // one node (a junction on a clip box's edge leaves several) are judged together.
+  // stub stays to keep the junction, if its pavement reaches clear of theirs and by at least
+  // kUntrimmable; the others go. (A stub leaving at an acute angle to a road that stays lies on
+  // that road's pavement however the ends are trimmed: kept, its junction's outline crossed
+  // itself and SUMO's lanes stepped, Liechtenstein clipped by --bbox.) Stubs at one node (a
+  // junction on a clip box's edge leaves several) are judged together.
   const auto no_corner_left = [&](std::int64_t node) {
     std::vector<Vec2> staying;
     for (const NodeEnd& e : nodes[node])
@@ -90,7 +145,13 @@ std::size_t drop_stubs(std::vector<Road>& roads, Diagnostics& diagnostics) {
     const auto longest = std::max_element(at.begin(), at.end(), [&](std::size_t a, std::size_t b) {
       return length[a] < length[b] || (length[a] == length[b] && a > b);
     });
-    if (length[*longest] >= kUntrimmable) drop[*longest] = 0;
+    double needed = kUntrimmable;
+    NodeEnd stub_end;
+    for (const NodeEnd& e : nodes[node])
+      if (e.road == *longest) stub_end = e;
+    for (const NodeEnd& e : nodes[node])
+      if (!stub[e.road]) needed = std::max(needed, clear_reach(stub_end, e));
+    if (length[*longest] >= needed) drop[*longest] = 0;
   }
 
   std::vector<Road> kept;
@@ -108,8 +169,14 @@ std::size_t drop_stubs(std::vector<Road>& roads, Diagnostics& diagnostics) {
     text.precision(3);
     text << "road of OSM way " << road.osm_way_ids.front()
          << (road.attributes.name.empty() ? "" : " (" + road.attributes.name + ")") << " is a dead end "
-         << length[r] << " m long, lying on the roads it leaves (they reach " << reach[r]
-         << " m): it is dropped";
+         << length[r] << " m long, lying on the roads it leaves (";
+    if (along[r] != 0) {
+      text << "along OSM way " << along[r] << ", " << too_close[r]
+           << " m too close to it at its end, more than a road is moved";
+    } else {
+      text << "they reach " << reach[r] << " m";
+    }
+    text << "): it is dropped";
     diagnostics.report({Severity::warning, std::string(codes::kNetworkStubDropped), text.str(),
                         road.osm_way_ids.front(), std::nullopt, std::nullopt});
   }

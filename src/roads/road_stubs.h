@@ -18,7 +18,12 @@ namespace relief::detail {
 /// width of the others there (its pavement cannot reach past theirs). Where the roads that stay
 /// at that node would make a corner once all its stubs are gone (more than 30 degrees from
 /// straight through: a bend of wide roads, which a junction builds better), the longest stub
-/// stays, unless it is under 1 m (no end trim can clear it). Runs before the junctions are built
+/// stays if it is at least 1 m long (shorter, no end trim can clear it) and its pavement reaches
+/// clear of every road staying there (at an acute angle it lies on theirs). A dead end forking
+/// off another road at a junction of three ends or more is dropped too where, at its far end,
+/// their centre lines lie closer than their half widths plus the separation margin by more than
+/// road_separation moves a road (SeparationOptions::max_shift_m): no trim or move can part the
+/// two (of two such branches, the narrower is judged first). Runs before the junctions are built
 /// (ends are matched by their OSM node ids); renumbers the kept roads' ids in order. Each drop
 /// is reported (codes::kNetworkStubDropped, a warning). Returns the number dropped.
 std::size_t drop_stubs(std::vector<Road>& roads, Diagnostics& diagnostics);

@@ -147,5 +147,44 @@ TEST(Regions, PortlandClipBoxRegion) {
   }
 }
 
+// Two more boxes that failed (bench/clip_boxes.sh): over Liechtenstein a way cut 1.84 m past a
+// bend of two roads, leaving one of them at 43 degrees, kept to make the bend a junction, lay on
+// that road's pavement: trimmed to 1 m, its junction's SUMO outline crossed itself and the lane
+// netconvert drew for it stepped 0.47 m (sumo_height_steps). Over Portland the Stadium Freeway
+// and a link merging into it, the link cut by the box 32 m upstream, forked at about 6 degrees: no trim could
+// part them, the junction's outline crossed itself and it was left open (junctions_open). The
+// stub at an acute angle and the dead-end branch along the freeway are dropped now.
+TEST(Regions, ClipBoxesCuttingForksAndAcuteStubs) {
+  RELIEF_REQUIRE_SHARED_DATA();
+  struct Box {
+    std::string name, osm, dem;
+    LonLatBox bbox;
+    double length_km;
+    std::string dropped;  // in a stub_dropped message
+  };
+  const Box boxes[] = {
+      {"liechtenstein-box", "liechtenstein/liechtenstein-latest.osm.pbf",
+       "/vsizip/" + test::shared_data("liechtenstein/N47E009.hgt.zip").string() + "/N47E009.hgt",
+       LonLatBox{9.54734, 47.09975, 9.61734, 47.14875}, 35.22, "OSM way 170441328 is a dead end 1.84 m long"},
+      {"portland-stadium-box", "portland/portland-central-filtered.osm.pbf",
+       test::shared_data("portland/portland-ned.tif").string(),
+       LonLatBox{-122.7222, 45.48657, -122.6872, 45.51107}, 48.11,
+       "OSM way 150855451 is a dead end 31.7 m long"}};
+  for (const Box& box : boxes) {
+    BuildOptions o;
+    o.osm_path = test::shared_data(box.osm);
+    o.dem_paths = {box.dem};
+    o.osm.bbox = box.bbox;
+    o.sampling.allow_partial = true;
+    Diagnostics d;
+    const BuildResult result = build_region(o, box.name, box.length_km, d);
+    expect_gates(result.report, {});
+    bool found = false;
+    for (const Diagnostic& m : d.kept())
+      found |= m.code == codes::kNetworkStubDropped.code && m.message.find(box.dropped) != std::string::npos;
+    EXPECT_TRUE(found) << box.name << ": no stub dropped with '" << box.dropped << "'";
+  }
+}
+
 }  // namespace
 }  // namespace relief
