@@ -249,8 +249,18 @@ std::string report_json(const RunReport& r) {
                   {"worst_x", round_to(g.worst_xy.x(), 1e-2)},
                   {"worst_y", round_to(g.worst_xy.y(), 1e-2)}};
     };
+    const CrossSlopeCheck& c = r.model_grades->cross_slopes;
     j["model_grades"] = {{"roads", grades(r.model_grades->roads)},
-                         {"connecting_roads", grades(r.model_grades->connecting_roads)}};
+                         {"connecting_roads", grades(r.model_grades->connecting_roads)},
+                         {"cross_slopes",
+                          {{"max_percent", round_to(c.max_percent, 1e-2)},
+                           {"worst_road", c.worst_road},
+                           {"worst_s_m", round_to(c.worst_s, 1e-2)},
+                           {"worst_x", round_to(c.worst_xy.x(), 1e-2)},
+                           {"worst_y", round_to(c.worst_xy.y(), 1e-2)},
+                           {"length_km", round_to(c.length_m / 1000.0, 1e-3)},
+                           {"over_8_percent_km", round_to(c.length_over_m / 1000.0, 1e-3)},
+                           {"roads_over_8_percent", c.roads_over}}}};
   }
   Json gates = Json::object();
   for (const Gate& g : r.gates) {

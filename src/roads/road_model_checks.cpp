@@ -283,7 +283,7 @@ ModelDeviation compare_models(const RoadModel& a, const RoadModel& b, double ste
 }
 
 ModelGrades check_grades(const RoadModel& model, const std::vector<double>& cap, double tolerance,
-                         double step_m) {
+                         double step_m, double cross_slope_over) {
   if (cap.size() != model.roads.size()) throw InvalidInput("check_grades: one cap per road is required");
   if (!(step_m > 0.0)) throw InvalidInput("check_grades: the step must be > 0 m");
   // A connecting road's cap: the larger cap of the roads it joins.
@@ -306,8 +306,25 @@ ModelGrades check_grades(const RoadModel& model, const std::vector<double>& cap,
     const double length = road.length();
     const int steps = std::max(1, static_cast<int>(std::ceil(length / step_m)));
     double road_worst = 0.0;
+    bool rolled_over = false;
     for (int k = 0; k < steps; ++k) {
       const double s0 = length * k / steps, s1 = length * (k + 1) / steps;
+      if (road.junction < 0) {
+        CrossSlopeCheck& c = out.cross_slopes;
+        const double mid = 0.5 * (s0 + s1);
+        const double cross = std::abs(std::tan(road.superelevation.value(mid)));
+        c.length_m += s1 - s0;
+        if (cross > cross_slope_over) {
+          c.length_over_m += s1 - s0;
+          rolled_over = true;
+        }
+        if (100.0 * cross > c.max_percent) {
+          c.max_percent = 100.0 * cross;
+          c.worst_road = road.id;
+          c.worst_s = mid;
+          c.worst_xy = road.plan.at(mid).position;
+        }
+      }
       const double grade =
           std::abs(road.elevation.value(s1) - road.elevation.value(s0)) / std::max(s1 - s0, 1e-9);
       road_worst = std::max(road_worst, grade);
@@ -321,6 +338,7 @@ ModelGrades check_grades(const RoadModel& model, const std::vector<double>& cap,
       }
     }
     if (road_worst > limit + tolerance) ++g.roads_over;
+    if (rolled_over) ++out.cross_slopes.roads_over;
   }
   return out;
 }

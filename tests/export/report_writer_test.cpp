@@ -26,7 +26,18 @@ TEST(ReportWriter, CarriesTheDocumentedKeys) {
   dem.implausible_cells = 2;
   dem.spike_cells = 1;
   r.dems = {dem};
+  r.model_grades = ModelGrades{};
+  r.model_grades->cross_slopes.max_percent = 35.604;
+  r.model_grades->cross_slopes.worst_road = 934;
+  r.model_grades->cross_slopes.length_over_m = 43355.0;
+  r.model_grades->cross_slopes.roads_over = 1462;
   const auto j = nlohmann::json::parse(report_json(r));
+  const auto& cross = j["model_grades"]["cross_slopes"];
+  EXPECT_DOUBLE_EQ(cross["max_percent"].get<double>(), 35.6);
+  EXPECT_EQ(cross["worst_road"], 934);
+  EXPECT_DOUBLE_EQ(cross["over_8_percent_km"].get<double>(), 43.355);
+  EXPECT_EQ(cross["roads_over_8_percent"], 1462);
+  EXPECT_TRUE(j["model_grades"].contains("roads") && j["model_grades"].contains("connecting_roads"));
   EXPECT_EQ(j["inputs"]["dems"][0]["path"], "dem.tif");
   EXPECT_EQ(j["inputs"]["dems"][0]["implausible_cells"], 2);
   EXPECT_EQ(j["inputs"]["dems"][0]["spike_cells"], 1);

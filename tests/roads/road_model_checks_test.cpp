@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <numbers>
 
 #include "support/road_models.h"
@@ -62,6 +63,30 @@ TEST(ConnectingRoadsOverRoads, MeasuresAConnectingRoadAgainstTheRoadItCrosses) {
   model.roads[1] = test::straight_road(2, Vec2(35.0, -10.0), std::numbers::pi / 2, 20.0, 1.5, 0.0);
   model.roads[1].junction = 7;
   EXPECT_EQ(check_connecting_roads_over_roads(model).samples, 0u);
+}
+
+// Three 40 m roads east, level: road 1 rolled from 0.3 rad (tan: 30.9 %) to 0 by a cubic with
+// level ends, road 2 not at all, and a connecting road rolled 0.5 rad (left out: it lies on its
+// junction's surface). Road 1's roll falls through atan(0.08) where 0.3 (1 - x)^2 (1 + 2x) =
+// 0.0798, x = s / 40: at s = 26.46 m, so 26.46 m of it lie over 8 %.
+TEST(ModelGrades, MeasuresTheRoadsCrossSlopes) {
+  RoadModel model;
+  model.roads.push_back(test::straight_road(1, Vec2(0.0, 0.0), 0.0, 40.0, 0.0, 0.0));
+  model.roads.push_back(test::straight_road(2, Vec2(0.0, 10.0), 0.0, 40.0, 0.0, 0.0));
+  model.roads.push_back(test::straight_road(3, Vec2(0.0, 20.0), 0.0, 40.0, 0.0, 0.0));
+  model.roads[0].superelevation = hermite_profile(40.0, 0.3, 0.0, 0.0, 0.0);
+  model.roads[2].superelevation = CubicProfile::constant(0.5);
+  model.roads[2].junction = 4;
+  const ModelGrades g = check_grades(model, {0.1, 0.1, -1.0});
+  const CrossSlopeCheck& c = g.cross_slopes;
+  EXPECT_NEAR(c.max_percent, 100.0 * std::tan(0.3), 0.1);  // the first chord's middle, s = 0.25 m
+  EXPECT_EQ(c.worst_road, 1);
+  EXPECT_NEAR(c.worst_s, 0.25, 1e-9);
+  EXPECT_NEAR(c.length_m, 80.0, 1e-9);
+  EXPECT_NEAR(c.length_over_m, 26.46, 0.5);  // sampled every 0.5 m
+  EXPECT_EQ(c.roads_over, 1u);
+  // At 35 % nothing is over.
+  EXPECT_EQ(check_grades(model, {0.1, 0.1, -1.0}, 0.0, 0.5, 0.35).cross_slopes.roads_over, 0u);
 }
 
 }  // namespace

@@ -76,17 +76,34 @@ struct GradeCheck {
   double worst_s = 0.0;
   Vec2 worst_xy = Vec2::Zero();
 };
+/// Cross slopes (tan of the roll, the superelevation) of the roads, connecting roads left out
+/// (they lie on their junction's surface). Measured, not gated: a road's ends take the roll of
+/// their junction's plane (junction_planes.h), which on a hillside or where a steep street
+/// crosses can be the steep grade itself; vehicles on it lean by as much.
+struct CrossSlopeCheck {
+  double max_percent = 0.0;
+  int worst_road = -1;  ///< OpenDRIVE id of the largest
+  double worst_s = 0.0;
+  Vec2 worst_xy = Vec2::Zero();
+  double length_m = 0.0;       ///< road length sampled
+  double length_over_m = 0.0;  ///< of it, with a cross slope over `over` (check_grades)
+  std::size_t roads_over = 0;  ///< roads with some of their length over it
+};
 struct ModelGrades {
   GradeCheck roads;
   GradeCheck connecting_roads;
+  CrossSlopeCheck cross_slopes;  ///< over 8 % (`over` of check_grades)
 };
 
 /// Samples every road's elevation record every `step_m` metres (the grade of each chord) and
 /// compares it with `cap[i]` for the road at index i (a connecting road: the largest cap of the
 /// two roads it joins, when given as a negative number the cap is taken from its links). Roads
-/// over cap + `tolerance` (fraction) are counted.
+/// over cap + `tolerance` (fraction) are counted. The roads' cross slopes are sampled at the
+/// middle of the same chords; length over `cross_slope_over` (fraction, 0.08: 8 %, the usual
+/// upper end of a road's superelevation) is summed.
 [[nodiscard]] ModelGrades check_grades(const RoadModel& model, const std::vector<double>& cap,
-                                       double tolerance = 0.0, double step_m = 0.5);
+                                       double tolerance = 0.0, double step_m = 0.5,
+                                       double cross_slope_over = 0.08);
 
 struct ModelDeviation {
   double max_xy_m = 0.0;
