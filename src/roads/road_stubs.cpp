@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <numbers>
 #include <sstream>
 #include <string>
@@ -53,7 +54,8 @@ Polyline2 reversed_line(Polyline2 line) {
 double clear_reach(const NodeEnd& stub, const NodeEnd& other) {
   const double cos_phi = std::clamp(stub.out.dot(other.out), -1.0, 1.0);
   const double sin_phi = std::sqrt(1.0 - cos_phi * cos_phi);
-  const double across = (other.half + stub.half * cos_phi) / sin_phi;  // +inf at sin_phi == 0
+  if (!(sin_phi > 0.0)) return cos_phi > 0.0 ? std::numeric_limits<double>::infinity() : 0.0;
+  const double across = (other.half + stub.half * cos_phi) / sin_phi;
   if (cos_phi >= 0.0) return std::max(0.0, across);
   const double behind = stub.half * sin_phi / -cos_phi;
   return std::max(0.0, std::min(across, behind));
@@ -92,8 +94,8 @@ std::size_t drop_stubs(std::vector<Road>& roads, Diagnostics& diagnostics) {
   };
   // Dead ends lying along another road at a junction (three ends or more: at two, a hairpin's
   // apex): a way that forks off at a few degrees and ends closer to the other than their half
-  // widths, by more than road_separation moves a road (a merge's two branches cut by a clip box
-  // 15 m upstream, Portland's Stadium Freeway: no trim or move could part them, the junction's
+  // widths, by more than road_separation moves a road (a link merging into Portland's Stadium
+  // Freeway, cut by a clip box 32 m upstream: no trim or move could part them, the junction's
   // outline crossed itself and it was left open). Judged narrowest first against the roads
   // still there, so of two branches along each other only the narrower goes.
   const SeparationOptions separation;
