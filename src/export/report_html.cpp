@@ -133,6 +133,10 @@ std::string dem_description(const DemInfo& d) {
     s += "<br/>treated as voids: " + std::to_string(d.implausible_cells) + " cells of implausible height, " +
          std::to_string(d.spike_cells) + " one-cell spikes or pits";
   }
+  if (d.off_ground_cells > 0) {
+    s += "<br/>surface model: " + std::to_string(d.off_ground_cells) +
+         " cells of buildings, trees or pits taken to the ground";
+  }
   return s;
 }
 

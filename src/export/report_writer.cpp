@@ -34,7 +34,8 @@ Json dem_json(const DemInfo& d) {
             {"transform", d.transform_name},
             {"transform_accuracy_m", d.transform_accuracy_m ? Json(*d.transform_accuracy_m) : Json(nullptr)},
             {"implausible_cells", d.implausible_cells},
-            {"spike_cells", d.spike_cells}};
+            {"spike_cells", d.spike_cells},
+            {"off_ground_cells", d.off_ground_cells}};
   if (!d.missing_grids.empty()) j["missing_grids"] = d.missing_grids;
   if (d.extent_wgs84) {
     j["extent_wgs84"] = {d.extent_wgs84->min_lon, d.extent_wgs84->min_lat, d.extent_wgs84->max_lon,

@@ -6,10 +6,12 @@
 #include <iomanip>
 #include <limits>
 #include <sstream>
+#include <utility>
 
 #include "relief/core/diagnostic_codes.h"
 #include "relief/core/errors.h"
 #include "relief/geometry/crs_transform.h"
+#include "terrain/dem_ground_filter.h"
 #include "terrain/dem_sanity.h"
 #include "terrain/gdal_dataset.h"
 
@@ -488,6 +490,61 @@ void void_implausible_cells(std::vector<double>& z, const gdal::PixelWindow& win
   }
 }
 
+// Cell size (m) along a row and down a column at the centre of `window`, in the frame's metric
+// CRS; nothing where PROJ cannot measure it.
+std::optional<std::pair<double, double>> cell_axes_m(const PixelGrid& grid, const gdal::PixelWindow& window,
+                                                     const CrsTransform& to_raster) {
+  const auto col = static_cast<double>(window.col0 + window.cols / 2);  // whole cells
+  const auto row = static_cast<double>(window.row0 + window.rows / 2);
+  const auto centre = [&](double c, double r) {
+    return Vec2(grid.x0 + (c + 0.5) * grid.dx, grid.y0 + (r + 0.5) * grid.dy);
+  };
+  try {
+    const Vec2 p = to_raster.apply_inverse(centre(col, row));
+    const double along = (to_raster.apply_inverse(centre(col + 1.0, row)) - p).norm();
+    const double down = (to_raster.apply_inverse(centre(col, row + 1.0)) - p).norm();
+    if (std::isfinite(along) && along > 0.0 && std::isfinite(down) && down > 0.0)
+      return std::pair{along, down};
+  } catch (const ProjectionError&) {
+    // Outside the operation's domain.
+  }
+  return std::nullopt;
+}
+
+// With DemOptions::ground_filter_m: takes a surface model's buildings, trees and pits down to
+// the ground (`z` in metres), counts them in `info` and reports them.
+void filter_ground(std::vector<double>& z, const gdal::PixelWindow& window, const PixelGrid& grid,
+                   const CrsTransform& to_raster, const DemOptions& options, DemInfo& info,
+                   Diagnostics* diagnostics) {
+  const auto axes = cell_axes_m(grid, window, to_raster);
+  if (!axes) return;
+  const auto radius = [&](double cell_m) {
+    return std::max(1, static_cast<int>(std::floor(0.5 * options.ground_filter_m / cell_m)));
+  };
+  const int rc = radius(axes->first), rr = radius(axes->second);
+  const auto filtered =
+      terrain_detail::filter_off_ground(z, window.cols, rc, rr, options.ground_filter_min_height_m);
+  info.off_ground_cells = filtered.lowered + filtered.raised;
+  if (diagnostics == nullptr) return;
+  std::ostringstream message;
+  message << "DEM '" << info.path << "' taken as a surface model (--ground-filter " << options.ground_filter_m
+          << " m: an opening and a closing over " << 2 * rc + 1 << " x " << 2 * rr + 1 << " cells, "
+          << std::setprecision(3) << (2 * rc + 1) * axes->first << " x " << (2 * rr + 1) * axes->second
+          << " m): " << filtered.lowered
+          << " cells standing out of the ground (buildings, trees) set down to it, " << filtered.raised
+          << " cells in pits raised to it, by more than " << format_number(options.ground_filter_min_height_m)
+          << " m";
+  if (filtered.largest_col >= 0) {
+    terrain_detail::VoidedCells largest;
+    largest.count = 1;
+    largest.first.push_back({filtered.largest_col, filtered.largest_row, filtered.largest_from_m,
+                             std::numeric_limits<double>::quiet_NaN()});
+    message << "; the largest change " << std::setprecision(3) << filtered.largest_m << " m, the cell of "
+            << describe_cells(largest, window, grid, info);
+  }
+  diagnostics->report(Severity::info, codes::kDemGroundFiltered, message.str());
+}
+
 // Why a raster contributes nothing, for the error message when none contributes.
 enum class Unused { none, outside, all_nodata };
 
@@ -515,6 +572,7 @@ Opened open_raster(const std::string& path, const GeoFrame& frame, const Aabb2& 
   if (window.empty()) return {info, std::nullopt, Unused::outside};
   std::vector<double> z = to_metres(dataset.read_window(window), info);
   void_implausible_cells(z, window, grid, to_raster, options, info, diagnostics);
+  if (options.ground_filter_m > 0.0) filter_ground(z, window, grid, to_raster, options, info, diagnostics);
   if (std::all_of(z.begin(), z.end(), [](double v) { return std::isnan(v); })) {
     return {info, std::nullopt, Unused::all_nodata};
   }
@@ -581,6 +639,11 @@ void check_sanity_options(const DemOptions& o) {
   require(o.spike_max_neighbour_spread > 0.0 && o.spike_max_neighbour_spread <= 1.0,
           "spike_max_neighbour_spread must be in (0, 1] (got " + format_number(o.spike_max_neighbour_spread) +
               ")");
+  require(std::isfinite(o.ground_filter_m) && o.ground_filter_m >= 0.0,
+          "ground_filter_m must be finite and >= 0 (got " + format_number(o.ground_filter_m) + ")");
+  require(std::isfinite(o.ground_filter_min_height_m) && o.ground_filter_min_height_m >= 0.0,
+          "ground_filter_min_height_m must be finite and >= 0 (got " +
+              format_number(o.ground_filter_min_height_m) + ")");
 }
 
 }  // namespace
@@ -606,7 +669,8 @@ DemSampler::DemSampler(const std::vector<std::string>& paths, const GeoFrame& fr
   impl_->interpolation = options.interpolation;
 
   // The area in the frame CRS and in WGS84 (area of interest for PROJ and for messages).
-  Aabb2 area_crs = area.inflated(options.margin_m);
+  // A ground filter's result at a cell depends on the cells within twice its window.
+  Aabb2 area_crs = area.inflated(options.margin_m + 2.0 * options.ground_filter_m);
   area_crs.min += frame.origin();
   area_crs.max += frame.origin();
   const LonLatBox area_wgs84 = lonlat_box(CrsTransform(frame.crs(), "EPSG:4326").transform_bounds(area_crs));

@@ -455,7 +455,7 @@ done
 # PositiveNumber let nan and inf through).
 for opt in --spacing --max-grade --highway-max-grade --clearance --smoothing-wavelength --max-curvature \
     --routes --route-end --seed --step-length --mesh-tolerance --terrain-tolerance --mesh-tile-size \
-    --max-ground-departure; do
+    --max-ground-departure --ground-filter; do
   for bad in nan inf -inf -1; do
     check "$opt $bad" run 2 "" build --osm "$fix/hill.osm" --dem "$fix/hill_dem.asc" --out "$RELIEF_TMP/x" "$opt=$bad"
     check "$opt $bad message" stderr_has "$opt: '$bad' is not a finite number"

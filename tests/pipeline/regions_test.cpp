@@ -186,5 +186,39 @@ TEST(Regions, ClipBoxesCuttingForksAndAcuteStubs) {
   }
 }
 
+// A surface model (SRTM-like 1", buildings in it, 11 % voids) under Chinatown and the Financial
+// District: towers stand up to 100 m over the streets and radar shadows fall 20 m below the bay.
+// Fitted to it as if it were the ground, roads climb the towers (a limit the ground departure
+// bound leaves no room for: 31 left violated, grades up to 297 %), and the build says so (exit
+// 4). Taken as a surface model (--ground-filter 150) every gate passes.
+TEST(Regions, SurfaceModelWithBuildingsAndVoids) {
+  RELIEF_REQUIRE_SHARED_DATA();
+  BuildOptions o;
+  o.osm_path = test::shared_data("sf-ne/sf_ne_drive_2017.osm.gz");
+  o.dem_paths = {test::shared_data("dsm-voids/osmnx_elevation1_srtm1.tif").string(),
+                 test::shared_data("dsm-voids/osmnx_elevation2_srtm1.tif").string()};
+  o.osm.bbox = LonLatBox{-122.4090, 37.7903, -122.3967, 37.8004};
+  {
+    BuildOptions as_ground = o;
+    as_ground.outputs = {Output::report};
+    as_ground.out_dir = test::scratch_dir("dsm_as_ground") / "out";
+    Diagnostics d;
+    const RunReport r = build(as_ground, d).report;
+    EXPECT_FALSE(gate(r, "fit_limits_violated").passed);
+    EXPECT_FALSE(gate(r, "ground_vs_dem_rmse_m").passed);  // measured 3.8 m
+  }
+  o.dem.ground_filter_m = 150.0;
+  Diagnostics d;
+  const BuildResult result = build_region(o, "dsm_ground_filtered", 22.44, d);
+  const RunReport& r = result.report;
+  expect_gates(r, {});
+  EXPECT_EQ(d.count(codes::kDemGroundFiltered.code), 2u);
+  ASSERT_EQ(r.dems.size(), 2u);
+  EXPECT_GT(r.dems[0].off_ground_cells, 200u);  // measured 346 and 532
+  EXPECT_GT(r.dems[1].off_ground_cells, 300u);
+  // The fitted ground against the filtered DEM: measured 0.78 m (3.8 m against the towers).
+  EXPECT_LT(gate(r, "ground_vs_dem_rmse_m").value, 1.0);
+}
+
 }  // namespace
 }  // namespace relief

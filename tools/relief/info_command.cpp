@@ -45,6 +45,9 @@ void print_info(const InfoResult& info) {
     if (d.extent_wgs84) std::cout << "  extent   " << box_text(*d.extent_wgs84) << "\n";
     std::cout << "  checks   " << d.implausible_cells << " cells of implausible height, " << d.spike_cells
               << " one-cell spikes or pits (treated as voids)\n";
+    if (d.off_ground_cells > 0)
+      std::cout << "  ground   " << d.off_ground_cells
+                << " cells of buildings, trees or pits taken to the ground\n";
   }
   std::cout << "coverage   " << info.samples << " road samples: " << fixed(info.covered_percent, 2)
             << " % with height, " << fixed(info.void_percent, 2) << " % in voids, "

@@ -72,6 +72,11 @@ void add_input_options(CLI::App& app, BuildOptions& options) {
           throw CLI::ValidationError("--dem-unit", "'" + text + "' is not one of m, ft, us-ft");
       },
       "vertical unit of the DEM(s) when their metadata is wrong or silent: m, ft, us-ft");
+  app.add_option("--ground-filter", options.dem.ground_filter_m,
+                 "the DEM is a surface model (DSM: buildings, trees): take everything narrower than M metres "
+                 "standing out of the ground by over 2 m (or sunk into it) back to the ground; 0 = off")
+      ->capture_default_str()
+      ->check(finite_non_negative());
   add_enum_option(app, "--interp", options.dem.interpolation, &parse_interpolation,
                   "one of bilinear, idw, nearest",
                   "DEM interpolation: bilinear, idw (the seed paper's), nearest");

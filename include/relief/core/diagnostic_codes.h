@@ -27,6 +27,9 @@ inline constexpr DiagnosticCode kDemImplausibleHeight{
     "dem.implausible_height", "DEM cells outside the plausible heights (unflagged fill values) are voids"};
 inline constexpr DiagnosticCode kDemSpike{
     "dem.spike", "one-cell DEM spikes or pits, far from agreeing neighbours, are voids"};
+inline constexpr DiagnosticCode kDemGroundFiltered{
+    "dem.ground_filtered",
+    "a surface model's buildings, trees and pits are taken down to the ground (--ground-filter)"};
 
 // OSM import (roads/osm_reader.h) and the network (roads/network_builder.h).
 inline constexpr DiagnosticCode kOsmMissingNode{
@@ -154,6 +157,7 @@ inline constexpr DiagnosticCode kGateFailed{"gate.failed", "a quality gate faile
 inline constexpr std::array kAll{kDemDatumGridMissing,
                                  kDemImplausibleHeight,
                                  kDemSpike,
+                                 kDemGroundFiltered,
                                  kOsmMissingNode,
                                  kOsmDegenerateWay,
                                  kOsmTagValue,

@@ -242,7 +242,7 @@ struct RunReport {
 /// The report as pretty-printed JSON. Keys (stable): relief_version, name, created_utc,
 /// attribution, frame{crs, origin, proj}, inputs{osm, dems[{path, crs, size_px, pixel_size,
 /// vertical_unit, unit_source, nodata, transform, transform_accuracy_m, implausible_cells,
-/// spike_cells, missing_grids?, extent_wgs84?}], reference_dems[]},
+/// spike_cells, off_ground_cells (--ground-filter), missing_grids?, extent_wgs84?}], reference_dems[]},
 /// settings{interpolation, spacing_m, nodata_fill}, network{roads, junctions, intersections,
 /// attribute_changes, dead_ends, roundabouts, traffic_signals, bridges, tunnels, length_km,
 /// bridge_km, tunnel_km, km_by_class}, elevation{samples, void_samples, uncovered_samples,

@@ -47,6 +47,21 @@ struct DemOptions {
   double spike_min_step_m = 30.0;
   double spike_step_per_cell = 1.5;
   double spike_max_neighbour_spread = 1.0 / 3.0;
+
+  /// The rasters are surface models (DSM: buildings, trees, radar artefacts in them): > 0
+  /// takes the ground back with a grey opening and then a closing over a flat window of about
+  /// ground_filter_m x ground_filter_m (2 r + 1 cells a side, r = max(1, floor(ground_filter_m /
+  /// 2 / cell size)) along each axis, the cell size in metres at the window's centre); a cell
+  /// differing from the result by more than ground_filter_min_height_m takes it (reported as
+  /// "dem.ground_filtered"). Anything narrower than the window standing out of the ground
+  /// (a building, a pit) is taken out; a plane of any slope, and any feature wider than the
+  /// window, are kept; a crest or a valley narrower than the window is cut too, which is why
+  /// it is off (0) for a bare-earth DEM. The window read around the area grows by 2 x
+  /// ground_filter_m, so that the filter over the area does not depend on where the read
+  /// stops (tiles of a region filter their shared ground alike). ground_filter_m finite >= 0,
+  /// ground_filter_min_height_m finite >= 0.
+  double ground_filter_m = 0.0;
+  double ground_filter_min_height_m = 2.0;
 };
 
 /// Heights in metres at points of the local frame.
@@ -82,8 +97,8 @@ class DemSampler {
   /// - IoError: a missing or unreadable file ("cannot open DEM '<path>': <GDAL's reason>");
   /// - InvalidInput: a readable file that is not a raster GDAL knows (a text file named .tif),
   ///   no geotransform, no CRS, a rotated/sheared geotransform, a band unit type relief does not
-  ///   know (state options.unit), no path, an empty area, margin_m < 0, plausible or spike
-  ///   options out of their ranges (see DemOptions); and when no raster has a valid height over
+  ///   know (state options.unit), no path, an empty area, margin_m < 0, plausible, spike or
+  ///   ground filter options out of their ranges (see DemOptions); and when no raster has a valid height over
   ///   the area because they are all nodata there ("... is all nodata over the roads' area",
   ///   naming the implausible cells when there are some: a wrong unit?);
   /// - CoverageError (uncovered_percent() == 100) when no raster intersects the area at all
@@ -95,7 +110,8 @@ class DemSampler {
   /// part read become voids: "dem.implausible_height" (outside the plausible range) and
   /// "dem.spike" (one-cell spikes and pits), each with the count and the first cells' lon/lat,
   /// pixel/line and height; their counts are in sources() (DemInfo::implausible_cells,
-  /// spike_cells).
+  /// spike_cells). With a ground filter, one info "dem.ground_filtered" per raster (the cells
+  /// set down and raised, the largest change and where; DemInfo::off_ground_cells).
   DemSampler(const std::vector<std::string>& paths, const GeoFrame& frame, const Aabb2& area,
              const DemOptions& options = {}, Diagnostics* diagnostics = nullptr);
   ~DemSampler();

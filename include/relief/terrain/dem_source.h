@@ -49,6 +49,9 @@ struct DemInfo {
   /// outside the plausible range, and one-cell spikes and pits. 0 when no pixel was read.
   std::size_t implausible_cells = 0;
   std::size_t spike_cells = 0;
+  /// With DemOptions::ground_filter_m: cells of the part read set down to the ground (standing
+  /// out of it: buildings, trees) and raised to it (narrow pits).
+  std::size_t off_ground_cells = 0;
 };
 
 }  // namespace relief
