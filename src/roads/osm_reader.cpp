@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <map>
 #include <new>
+#include <set>
 #include <sstream>
 #include <string>
 #include <system_error>
@@ -97,6 +98,8 @@ class RoadHandler : public osmium::handler::Handler {
       roads_.missing_node_refs += missing;
     }
 
+    parts = split_retraces(std::move(parts), way.id());
+
     // After collapsing repeats, two node ids mean two distinct nodes.
     bool kept = false;
     for (OsmWay& part : parts) {
@@ -117,6 +120,51 @@ class RoadHandler : public osmium::handler::Handler {
   }
 
  private:
+  // A way drawn out to a node and straight back (... X, Y, X ...) has no reference line through
+  // Y (its two legs lie on each other): the stretch X-Y becomes a part of its own, drawn once,
+  // and the way goes on from X. A stretch retraced over several nodes comes apart into one part
+  // per segment, joined at its nodes like the way was.
+  std::vector<OsmWay> split_retraces(std::vector<OsmWay> parts, std::int64_t way_id) {
+    std::vector<OsmWay> out;
+    std::set<std::pair<std::int64_t, std::int64_t>> spurs;
+    for (OsmWay& part : parts) {
+      OsmWay main;
+      for (std::size_t i = 0; i < part.node_ids.size(); ++i) {
+        const std::int64_t id = part.node_ids[i];
+        const std::size_t n = main.node_ids.size();
+        if (n >= 2 && main.node_ids[n - 2] == id) {
+          const std::int64_t tip = main.node_ids[n - 1];
+          if (spurs.insert({std::min(id, tip), std::max(id, tip)}).second) {
+            OsmWay spur;
+            spur.node_ids = {id, tip};
+            spur.nodes = {main.nodes[n - 2], main.nodes[n - 1]};
+            out.push_back(std::move(spur));
+            report_turn_back(way_id, tip, id);
+          }
+          main.node_ids.pop_back();
+          main.nodes.pop_back();
+          continue;
+        }
+        main.node_ids.push_back(id);
+        main.nodes.push_back(part.nodes[i]);
+      }
+      out.push_back(std::move(main));
+    }
+    return out;
+  }
+
+  void report_turn_back(std::int64_t way_id, std::int64_t tip, std::int64_t from) {
+    Diagnostic d;
+    d.severity = Severity::warning;
+    d.code = codes::kOsmWayTurnsBack;
+    d.message = "way " + std::to_string(way_id) + " turns straight back at node " + std::to_string(tip) +
+                " (drawn from node " + std::to_string(from) +
+                " out to it and back): the stretch is built once, " + "a way of its own";
+    d.osm_way_id = way_id;
+    d.osm_node_id = tip;
+    diagnostics_.report(std::move(d));
+  }
+
   void report_missing(std::int64_t way_id, std::int64_t node_id) {
     Diagnostic d;
     d.severity = Severity::warning;
@@ -160,6 +208,67 @@ std::optional<std::pair<double, double>> clip_segment(const LonLat& a, const Lon
     }
   }
   return std::make_pair(t0, t1);
+}
+
+// Ways drawn over the nodes of another (JOSM's "duplicated ways" and "overlapping ways": a
+// street drawn twice, a route or an area outline along a street): two roads on one ground,
+// between the same nodes, whose junctions swallowed the street between them. Each segment
+// (a pair of consecutive nodes, either direction) is built once, by the way of the higher
+// class (then the lower id); the later way is cut where it runs over it and keeps the rest.
+std::vector<OsmWay> drop_overlaps(std::vector<OsmWay> ways, Diagnostics& diagnostics) {
+  std::vector<std::size_t> order(ways.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    return std::tie(ways[a].attributes.highway, ways[a].id) <
+           std::tie(ways[b].attributes.highway, ways[b].id);
+  });
+  std::map<std::pair<std::int64_t, std::int64_t>, std::int64_t> owner;  // segment -> way id
+  std::vector<std::vector<OsmWay>> kept(ways.size());
+  for (const std::size_t w : order) {
+    const OsmWay& way = ways[w];
+    std::map<std::int64_t, std::size_t> over;  // way id -> segments of it this way runs over
+    OsmWay run;
+    const auto close_run = [&] {
+      if (run.node_ids.size() >= 2) kept[w].push_back(run);
+      run = OsmWay{};
+      run.id = way.id;
+      run.attributes = way.attributes;
+    };
+    close_run();
+    for (std::size_t k = 0; k + 1 < way.node_ids.size(); ++k) {
+      const std::int64_t a = way.node_ids[k], b = way.node_ids[k + 1];
+      const auto [it, fresh] = owner.try_emplace({std::min(a, b), std::max(a, b)}, way.id);
+      if (!fresh && it->second != way.id) {
+        ++over[it->second];
+        close_run();
+        continue;
+      }
+      if (run.node_ids.empty()) {
+        run.node_ids.push_back(a);
+        run.nodes.push_back(way.nodes[k]);
+      }
+      run.node_ids.push_back(b);
+      run.nodes.push_back(way.nodes[k + 1]);
+    }
+    close_run();
+    for (const auto& [other, segments] : over) {
+      Diagnostic d;
+      d.severity = Severity::warning;
+      d.code = codes::kOsmOverlappingWays;
+      d.message = "way " + std::to_string(way.id) + " runs over " + std::to_string(segments) +
+                  " segment(s) of way " + std::to_string(other) + " (the same nodes): built once, as way " +
+                  std::to_string(other) +
+                  (kept[w].empty() ? "; nothing of it is left" : "; the rest of it is kept");
+      d.osm_way_id = way.id;
+      diagnostics.report(std::move(d));
+    }
+  }
+  std::vector<OsmWay> out;
+  out.reserve(ways.size());
+  for (auto& parts : kept) {
+    for (OsmWay& part : parts) out.push_back(std::move(part));
+  }
+  return out;
 }
 
 // Cuts ways at the edge of `box`, keeping each inside run as its own OsmWay. A crossing node is
@@ -280,6 +389,7 @@ OsmRoads read_osm(const std::filesystem::path& path, const OsmReadOptions& optio
     throw InvalidInput("OSM file " + quoted(path) + " is malformed or truncated: " + e.what());
   }
 
+  roads.ways = drop_overlaps(std::move(roads.ways), diagnostics);
   if (options.bbox) {
     const std::int64_t first_synthetic_id = std::min<std::int64_t>(-1, handler.min_node_id() - 1);
     roads.ways = clip_ways(roads.ways, *options.bbox, first_synthetic_id);

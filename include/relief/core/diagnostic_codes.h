@@ -36,6 +36,10 @@ inline constexpr DiagnosticCode kOsmMissingNode{
     "osm.missing_node", "a way references a node that is not in the file; the way is split there"};
 inline constexpr DiagnosticCode kOsmDegenerateWay{"osm.degenerate_way",
                                                   "a way with fewer than two distinct nodes is skipped"};
+inline constexpr DiagnosticCode kOsmWayTurnsBack{
+    "osm.way_turns_back", "a way drawn out to a node and straight back: the stretch is one way of its own"};
+inline constexpr DiagnosticCode kOsmOverlappingWays{
+    "osm.overlapping_ways", "a way drawn over the nodes of another: the shared stretch is built once"};
 inline constexpr DiagnosticCode kOsmTagValue{
     "osm.tag_value", "tag values of a way that relief cannot read fall back to defaults"};
 inline constexpr DiagnosticCode kOsmCrossingWithoutNode{
@@ -160,6 +164,8 @@ inline constexpr std::array kAll{kDemDatumGridMissing,
                                  kDemGroundFiltered,
                                  kOsmMissingNode,
                                  kOsmDegenerateWay,
+                                 kOsmWayTurnsBack,
+                                 kOsmOverlappingWays,
                                  kOsmTagValue,
                                  kOsmCrossingWithoutNode,
                                  kNetworkDegenerateWay,
