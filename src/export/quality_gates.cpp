@@ -18,6 +18,7 @@ const std::vector<Entry>& entries() {
       {"fit_limits_violated", &GateThresholds::fit_limits_violated},
       {"ground_vs_dem_rmse_m", &GateThresholds::ground_vs_dem_rmse_m},
       {"ground_vs_dem_max_m", &GateThresholds::ground_vs_dem_max_m},
+      {"junction_height_gap_m", &GateThresholds::junction_height_gap_m},
       {"road_grade_over_cap_percent", &GateThresholds::road_grade_over_cap_percent},
       {"connecting_road_grade_over_cap_percent", &GateThresholds::connecting_road_grade_over_cap_percent},
       {"link_height_step_m", &GateThresholds::link_height_step_m},
@@ -102,6 +103,9 @@ std::vector<Gate> evaluate_gates(const RunReport& r, const GateThresholds& t) {
     }
     at_most("ground_vs_dem_rmse_m", m.ground.vs_dem.rmse_m, t.ground_vs_dem_rmse_m, where);
     at_most("ground_vs_dem_max_m", m.ground.vs_dem.max_m, t.ground_vs_dem_max_m, where);
+    at_most("junction_height_gap_m", m.junctions.max_gap_m, t.junction_height_gap_m,
+            m.junctions.worst_junction ? "junction " + std::to_string(*m.junctions.worst_junction)
+                                       : std::string());
   }
   if (r.model_grades) {
     const auto where = [](const GradeCheck& g) {

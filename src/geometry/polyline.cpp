@@ -84,7 +84,13 @@ std::vector<double> sample_stations(double length, double spacing_m, const std::
     if (out.empty() || extras[e] - out.back() > merge_tolerance_m) {
       out.push_back(extras[e]);
     } else if (e + 1 == extras.size()) {
-      out.back() = extras[e];  // the road end is always exactly `length`
+      // The road end is always exactly `length`; a road shorter than the tolerance keeps both
+      // ends (one station would give its two junctions one height).
+      if (out.size() == 1 && extras[e] > out.back()) {
+        out.push_back(extras[e]);
+      } else {
+        out.back() = extras[e];
+      }
     }
   }
   return out;

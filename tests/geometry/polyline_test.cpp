@@ -40,6 +40,17 @@ TEST(Polyline, StationsIncludeVerticesAndEnd) {
   EXPECT_THROW((void)sample_stations(10.0, 0.0, {}), InvalidInput);
 }
 
+// Both ends stay, whatever the tolerance: a road 0.16 m long between two junctions (two ways
+// crossing another without shared nodes, 0.16 m apart) had one station, and so gave both its
+// junctions one height (a 3 m gap at one of them, in the fuzzer with OSM's data errors).
+TEST(Polyline, ARoadShorterThanTheMergeToleranceKeepsBothEnds) {
+  EXPECT_EQ(sample_stations(0.16, 1.0, {0.0, 0.16}, 0.25), (std::vector<double>{0.0, 0.16}));
+  EXPECT_EQ(sample_stations(0.16, 1.0, {}, 0.25), (std::vector<double>{0.0, 0.16}));
+  // A vertex within the tolerance of the end gives way to the end.
+  EXPECT_EQ(sample_stations(3.0, 1.0, {2.9}, 0.25), (std::vector<double>{0.0, 1.0, 2.0, 3.0}));
+  EXPECT_EQ(sample_stations(0.0, 1.0, {}, 0.25), (std::vector<double>{0.0}));
+}
+
 TEST(Polyline, DedupeDropsRepeatedVertices) {
   const Polyline2 line{{0, 0}, {0, 0}, {1, 0}, {1, 1e-9}, {2, 0}};
   const auto kept = dedupe_vertices(line, 1e-6);
@@ -79,7 +90,8 @@ TEST(NearestOnPolyline, FindsTheFootOnEachLegAndPastTheEndWhenAsked) {
   EXPECT_TRUE(f.point.isApprox(Vec2(10, 7)));
   EXPECT_TRUE(nearest_on_polyline(l, Vec2(11, 15)).point.isApprox(Vec2(10, 10)));
   EXPECT_TRUE(nearest_on_polyline(l, Vec2(11, 15), true).point.isApprox(Vec2(10, 15)));
-  EXPECT_TRUE(nearest_on_polyline(l, Vec2(-3, 1), true).point.isApprox(Vec2(0, 0)));  // the start is not extended
+  EXPECT_TRUE(
+      nearest_on_polyline(l, Vec2(-3, 1), true).point.isApprox(Vec2(0, 0)));  // the start is not extended
   EXPECT_FALSE(nearest_on_polyline({Vec2(1, 1), Vec2(1, 1)}, Vec2(0, 0)).found);
   EXPECT_FALSE(nearest_on_polyline({}, Vec2(0, 0)).found);
 }

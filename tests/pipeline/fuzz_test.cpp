@@ -15,6 +15,7 @@
 // self-intersection (2)).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -42,9 +43,16 @@ struct FuzzCase {
 };
 
 // A jittered grid of nodes, 3..5 on a side, 35..80 m apart, with random edges left out and a
-// random diagonal now and then; each edge is a way of 2 or 3 nodes with random tags.
-FuzzCase make_case(unsigned seed, const std::filesystem::path& dir) {
+// random diagonal now and then; each edge is a way of 2 or 3 nodes with random tags. With
+// `defects`, the errors of real OSM data besides (JOSM's validator finds them all), drawn from
+// a random stream of their own so that the network is the same: ways drawn twice (reversed
+// too), ways drawn out to a node and straight back, ways running past their end node and
+// turning back to it at 170-178 degrees (a hairpin drawn to one node), and ways ending at a
+// node of their own on top of a grid node (two nodes at one place).
+FuzzCase make_case(unsigned seed, const std::filesystem::path& dir, bool defects = false) {
   std::mt19937 rng(seed);
+  std::mt19937 defect_rng(seed * 7919u + 1u);
+  std::uniform_real_distribution<double> du(0.0, 1.0);
   std::uniform_real_distribution<double> u(0.0, 1.0);
   const GeoFrame frame = test::synthetic_frame();
   const CrsTransform to_wgs84(frame.crs(), "EPSG:4326");
@@ -82,6 +90,24 @@ FuzzCase make_case(unsigned seed, const std::filesystem::path& dir) {
       refs.push_back(node(m.x() - d.y() * 0.2 * (u(rng) - 0.5), m.y() + d.x() * 0.2 * (u(rng) - 0.5)));
     }
     refs.push_back(grid[b]);
+    const double defect = defects ? du(defect_rng) : 1.0;
+    if (defect < 0.08) {  // out to a node beside the way and straight back
+      const Vec2 d = at[b] - at[a];
+      const Vec2 tip = at[a] + 0.3 * d + Vec2(-d.y(), d.x()) * (0.3 * (du(defect_rng) - 0.5));
+      refs.insert(refs.begin() + 1, {node(tip.x(), tip.y()), grid[a]});
+    } else if (defect < 0.14) {  // past the end node and back to it, a hairpin drawn to one node
+      const Vec2 d = (at[b] - at[a]).normalized();
+      const double turn = (170.0 + 8.0 * du(defect_rng)) * std::numbers::pi / 180.0;
+      const double len = 15.0 + 25.0 * du(defect_rng);
+      const Vec2 apex = at[b] + len * d;
+      const Vec2 back(std::cos(turn) * d.x() - std::sin(turn) * d.y(),
+                      std::sin(turn) * d.x() + std::cos(turn) * d.y());
+      refs.back() = node(apex.x(), apex.y());
+      refs.push_back(node(apex.x() + 0.9 * len * back.x(), apex.y() + 0.9 * len * back.y()));
+    } else if (defect < 0.19) {  // ending on a node of its own where grid node b is
+      refs.back() = node(at[b].x(), at[b].y());
+    }
+    const bool twice = defect >= 0.19 && defect < 0.27;
     ways << "  <way id=\"" << ++c.ways << "\" version=\"1\">\n";
     for (const std::int64_t r : refs) ways << "    <nd ref=\"" << r << "\"/>\n";
     const auto tag = [&](const std::string& k, const std::string& v) {
@@ -100,6 +126,12 @@ FuzzCase make_case(unsigned seed, const std::filesystem::path& dir) {
       tag("layer", "-1");
     }
     ways << "  </way>\n";
+    if (twice) {  // the same way again, half the time reversed, as a residential street
+      if (du(defect_rng) < 0.5) std::reverse(refs.begin(), refs.end());
+      ways << "  <way id=\"" << ++c.ways << "\" version=\"1\">\n";
+      for (const std::int64_t r : refs) ways << "    <nd ref=\"" << r << "\"/>\n";
+      ways << "    <tag k=\"highway\" v=\"residential\"/>\n  </way>\n";
+    }
   };
   for (int i = 0; i < n; ++i) {
     for (int k = 0; k < n; ++k) {
@@ -134,9 +166,10 @@ FuzzCase make_case(unsigned seed, const std::filesystem::path& dir) {
 }
 
 // Writes seed's case into a scratch folder and builds it with every output into its out/.
-BuildResult build_seed(unsigned seed, FuzzCase& c, Diagnostics& d) {
-  const std::filesystem::path dir = test::scratch_dir("fuzz_" + std::to_string(seed));
-  c = make_case(seed, dir);
+BuildResult build_seed(unsigned seed, FuzzCase& c, Diagnostics& d, bool defects = false) {
+  const std::filesystem::path dir =
+      test::scratch_dir((defects ? "fuzz_defects_" : "fuzz_") + std::to_string(seed));
+  c = make_case(seed, dir, defects);
   BuildOptions o;
   o.osm_path = c.osm;
   o.dem_paths = {c.dem};
@@ -145,7 +178,7 @@ BuildResult build_seed(unsigned seed, FuzzCase& c, Diagnostics& d) {
   return build(o, d);
 }
 
-TEST(Fuzz, RandomNetworksOnRandomTerrainBuildAndCheckThemselves) {
+void build_and_check_seeds(bool defects) {
   const char* env = std::getenv("RELIEF_FUZZ_SEEDS");
   const unsigned seeds = env != nullptr ? static_cast<unsigned>(std::max(1, std::atoi(env))) : 30u;
   for (unsigned seed = 1; seed <= seeds; ++seed) {
@@ -153,7 +186,7 @@ TEST(Fuzz, RandomNetworksOnRandomTerrainBuildAndCheckThemselves) {
     FuzzCase c;
     Diagnostics d;
     BuildResult result;
-    ASSERT_NO_THROW(result = build_seed(seed, c, d));
+    ASSERT_NO_THROW(result = build_seed(seed, c, d, defects));
     const RunReport& r = result.report;
     // Every output written, every gate evaluated with a finite value.
     EXPECT_GE(result.written.size(), 10u);
@@ -171,10 +204,26 @@ TEST(Fuzz, RandomNetworksOnRandomTerrainBuildAndCheckThemselves) {
     EXPECT_EQ(r.junctions.max_gap_m, 0.0);
     ASSERT_TRUE(r.fit);
     EXPECT_TRUE(r.fit->converged) << r.fit->solver;
-    std::cout << "fuzz seed " << seed << ": " << c.ways << " ways, " << r.network.roads << " roads, "
-              << r.network.junctions << " junctions, fit " << r.fit->solver
+    std::cout << (defects ? "fuzz (OSM defects) seed " : "fuzz seed ") << seed << ": " << c.ways << " ways, "
+              << r.network.roads << " roads, " << r.network.junctions << " junctions, fit " << r.fit->solver
               << ", failed gates:" << (failed.empty() ? std::string(" none") : failed) << "\n";
   }
+}
+
+TEST(Fuzz, RandomNetworksOnRandomTerrainBuildAndCheckThemselves) {
+  build_and_check_seeds(false);
+}
+
+// The same networks with OSM's data errors in them (make_case): each is reported and handled,
+// and the build still ends with every output and gate. Measured on 2026-11-29 with
+// RELIEF_FUZZ_SEEDS=100: all 100 built, junctions exactly continuous (seed 9's 0.16 m road
+// between two crossings had one station and left a 3.0 m gap, before sample_stations kept both
+// ends), every fit converged (10 by the method of multipliers); 36 passed every gate against 86
+// of the same seeds without the errors. The others exit 4, mostly where a hairpin drawn to one
+// node folds its return leg along its way past a junction: junctions_open 38, sumo_height_steps
+// 46, connecting_road_grade_over_cap_percent 15, road_self_intersections 4 (known, README).
+TEST(Fuzz, RandomNetworksWithOsmDataErrorsBuildAndCheckThemselves) {
+  build_and_check_seeds(true);
 }
 
 // Seeds whose two-road bends were too sharp for their short roads to be trimmed back far enough:

@@ -9,6 +9,8 @@
 //                                 junction grades, clearances, vertical curves), count
 //   ground_vs_dem_rmse_m          fitted ground roads vs the DEM between samples, RMSE
 //   ground_vs_dem_max_m           and largest
+//   junction_height_gap_m         largest height gap between the road ends at a junction (the
+//                                 seed paper's continuity bound; the fit's is exactly 0)
 //   road_grade_over_cap_percent   elevation records: largest grade over the road's cap
 //   connecting_road_grade_over_cap_percent   the same for connecting roads (cap of the steeper
 //                                 road they join)
@@ -37,7 +39,8 @@ namespace relief {
 struct GateThresholds {
   double fit_limits_violated = 0;
   double ground_vs_dem_rmse_m = 2.0;
-  double ground_vs_dem_max_m = 16.0;  ///< the fit's departure bound (15 m) + 1 m between samples
+  double ground_vs_dem_max_m = 16.0;   ///< the fit's departure bound (15 m) + 1 m between samples
+  double junction_height_gap_m = 0.1;  ///< the seed paper's "gap < 0.1 m"
   /// The fitted stations keep the cap and the OpenDRIVE records climb no steeper than the
   /// stations (fit_grade_bounded_profile); what is left is the fit's own tolerance and the end
   /// slopes it shares with junctions (measured 0.13 % on NE, 0.33 % on Liechtenstein and 0.31 %

@@ -34,7 +34,9 @@ struct PolylineFoot {
 /// Arc lengths at which to sample a polyline of total length `length`: every `spacing_m` from 0,
 /// plus `length` itself, plus each value in `extra` (e.g. vertex positions), sorted, with values
 /// closer than `merge_tolerance_m` merged (the earlier kept, but `extra` values win over grid
-/// values). Precondition: spacing_m > 0. A straight 100 m road at 1 m gives 101 values.
+/// values); 0 and `length` are always the first and the last (a line shorter than the
+/// tolerance keeps both). Precondition: spacing_m > 0. A straight 100 m road at 1 m gives 101
+/// values.
 [[nodiscard]] std::vector<double> sample_stations(double length, double spacing_m,
                                                   const std::vector<double>& extra,
                                                   double merge_tolerance_m = 1e-6);
