@@ -159,7 +159,7 @@ class RoadHandler : public osmium::handler::Handler {
     d.code = codes::kOsmWayTurnsBack;
     d.message = "way " + std::to_string(way_id) + " turns straight back at node " + std::to_string(tip) +
                 " (drawn from node " + std::to_string(from) +
-                " out to it and back): the stretch is built once, " + "a way of its own";
+                " out to it and back): the stretch is built once, a way of its own";
     d.osm_way_id = way_id;
     d.osm_node_id = tip;
     diagnostics_.report(std::move(d));

@@ -54,12 +54,14 @@ struct DemOptions {
   /// 2 / cell size)) along each axis, the cell size in metres at the window's centre); a cell
   /// differing from the result by more than ground_filter_min_height_m takes it (reported as
   /// "dem.ground_filtered"). Anything narrower than the window standing out of the ground
-  /// (a building, a pit) is taken out; a plane of any slope, and any feature wider than the
-  /// window, are kept; a crest or a valley narrower than the window is cut too, which is why
-  /// it is off (0) for a bare-earth DEM. The window read around the area grows by 2 x
-  /// ground_filter_m, so that the filter over the area does not depend on where the read
-  /// stops (tiles of a region filter their shared ground alike). ground_filter_m finite >= 0,
-  /// ground_filter_min_height_m finite >= 0.
+  /// (a building, a pit) is taken out, on a slope to within the slope over its width; a plane
+  /// of any slope, and any feature wider than the window, are kept; a crest or a valley
+  /// narrower than the window is cut too, which is why it is off (0) for a bare-earth DEM. The
+  /// window read around the area grows by 2 x ground_filter_m, so that the filter over the area
+  /// does not depend on where the read stops (tiles of a region filter their shared ground
+  /// alike) unless a void reaches from the area to the edge of the read (each pass bridges a
+  /// void along its row or column). ground_filter_m finite >= 0, ground_filter_min_height_m
+  /// finite >= 0.
   double ground_filter_m = 0.0;
   double ground_filter_min_height_m = 2.0;
 };
