@@ -191,8 +191,19 @@ ElevationSamples sample_elevation(const RoadNetwork& network, const DemSampler& 
   std::vector<Vec2> points;
   points.reserve(result.samples);
   for (const auto& p : result.profiles) points.insert(points.end(), p.xy.begin(), p.xy.end());
+  // A sample whose interpolation weighs a void cell counts as in the void and is filled along
+  // the road: the renormalised weights jump at a void's centre, from one neighbour's height to
+  // the other's (149 m on a steep path through an SRTM void). Only a road with no sample clear
+  // of voids takes the renormalised heights, rather than none.
   std::vector<std::optional<double>> heights(points.size());
-  dem.heights_at(points, heights);
+  dem.heights_at(points, heights, NearVoid::no_height);
+  for (std::size_t r = 0; r < network.roads.size(); ++r) {
+    const auto first = heights.begin() + static_cast<std::ptrdiff_t>(offset[r]);
+    const auto last = heights.begin() + static_cast<std::ptrdiff_t>(offset[r + 1]);
+    if (std::any_of(first, last, [](const std::optional<double>& h) { return h.has_value(); })) continue;
+    const std::span<const Vec2> road_points(points.data() + offset[r], offset[r + 1] - offset[r]);
+    dem.heights_at(road_points, std::span<std::optional<double>>(&*first, road_points.size()));
+  }
 
   const Aabb2 coverage = dem.coverage_bounds();
   std::vector<std::vector<std::uint8_t>> valid(network.roads.size());

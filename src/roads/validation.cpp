@@ -292,8 +292,9 @@ HeightValidator::HeightValidator(const std::vector<RoadProfile>& stations, const
   for (const Vec2& offset : {Vec2(step, 0), Vec2(-step, 0), Vec2(0, step), Vec2(0, -step)}) {
     for (const Vec2& m : mids) probes.emplace_back(m + offset);
   }
+  // As the road samples: the DEM has no height where its interpolation weighs a void.
   std::vector<std::optional<double>> heights(probes.size());
-  dem.heights_at(probes, heights);
+  dem.heights_at(probes, heights, NearVoid::no_height);
   dem_mid_.assign(heights.begin(), heights.begin() + static_cast<std::ptrdiff_t>(n));
   gradient_mid_.resize(n);
   for (std::size_t i = 0; i < n; ++i) {

@@ -195,7 +195,7 @@ struct Raster {
   // Bilinear between the four surrounding cell centres; nodata corners dropped and the
   // remaining weights renormalised. A point exactly at the centre of a void has no height
   // (all valid corners have weight 0).
-  [[nodiscard]] std::optional<double> bilinear(const Vec2& uv) const {
+  [[nodiscard]] std::optional<double> bilinear(const Vec2& uv, NearVoid near_void) const {
     const AxisCells a = axis_cells(uv.x(), grid.width);
     const AxisCells b = axis_cells(uv.y(), grid.height);
     const std::array<double, 4> z{heights.at(a.i0, b.i0), heights.at(a.i1, b.i0), heights.at(a.i0, b.i1),
@@ -204,7 +204,10 @@ struct Raster {
     double sum = 0.0;
     double weight = 0.0;
     for (std::size_t k = 0; k < 4; ++k) {
-      if (std::isnan(z[k])) continue;
+      if (std::isnan(z[k])) {
+        if (near_void == NearVoid::no_height && w[k] > 0.0) return std::nullopt;
+        continue;
+      }
       sum += w[k] * z[k];
       weight += w[k];
     }
@@ -214,7 +217,7 @@ struct Raster {
 
   // Inverse-distance weighting of the same four cells, weight 1/d^2 with d in the raster's
   // CRS units (degrees for geographic rasters); an exact hit on a valid cell returns it.
-  [[nodiscard]] std::optional<double> idw(const Vec2& uv) const {
+  [[nodiscard]] std::optional<double> idw(const Vec2& uv, NearVoid near_void) const {
     const AxisCells a = axis_cells(uv.x(), grid.width);
     const AxisCells b = axis_cells(uv.y(), grid.height);
     const double cu = a.i0 + a.t;  // clamped position, in cell indices
@@ -222,17 +225,21 @@ struct Raster {
     const std::array<std::array<int, 2>, 4> cells{{{a.i0, b.i0}, {a.i1, b.i0}, {a.i0, b.i1}, {a.i1, b.i1}}};
     double sum = 0.0;
     double weight = 0.0;
+    bool void_near = false;
     for (const auto& [col, row] : cells) {
       const double z = heights.at(col, row);
-      if (std::isnan(z)) continue;
       const double ex = (cu - col) * grid.dx;
       const double ey = (cv - row) * grid.dy;
       const double d2 = ex * ex + ey * ey;
+      if (std::isnan(z)) {
+        void_near = true;
+        continue;
+      }
       if (d2 == 0.0) return z;
       sum += z / d2;
       weight += 1.0 / d2;
     }
-    if (!(weight > 0.0)) return std::nullopt;
+    if (!(weight > 0.0) || (void_near && near_void == NearVoid::no_height)) return std::nullopt;
     return sum / weight;
   }
 
@@ -246,15 +253,15 @@ struct Raster {
   }
 
   // Height at a point given in the raster's CRS; nullopt outside the raster or on a void.
-  [[nodiscard]] std::optional<double> sample(const Vec2& xy, Interpolation method) const {
+  [[nodiscard]] std::optional<double> sample(const Vec2& xy, Interpolation method, NearVoid near_void) const {
     if (std::isnan(xy.x()) || std::isnan(xy.y())) return std::nullopt;
     const Vec2 uv = grid.index_of(xy);
     if (!grid.inside(uv)) return std::nullopt;
     switch (method) {
       case Interpolation::bilinear:
-        return bilinear(uv);
+        return bilinear(uv, near_void);
       case Interpolation::idw:
-        return idw(uv);
+        return idw(uv, near_void);
       case Interpolation::nearest:
         return nearest(uv);
     }
@@ -703,7 +710,8 @@ std::optional<double> DemSampler::height_at(const Vec2& local) const {
   return out;
 }
 
-void DemSampler::heights_at(std::span<const Vec2> points, std::span<std::optional<double>> out) const {
+void DemSampler::heights_at(std::span<const Vec2> points, std::span<std::optional<double>> out,
+                            NearVoid near_void) const {
   if (out.size() != points.size()) {
     throw InvalidInput("heights_at: " + std::to_string(points.size()) + " points but room for " +
                        std::to_string(out.size()) + " heights");
@@ -724,7 +732,7 @@ void DemSampler::heights_at(std::span<const Vec2> points, std::span<std::optiona
     raster.transform(std::span<Vec2>(xy));
     std::size_t still = 0;
     for (std::size_t k = 0; k < pending.size(); ++k) {
-      if (auto z = raster.sample(xy[k], impl_->interpolation)) {
+      if (auto z = raster.sample(xy[k], impl_->interpolation, near_void)) {
         out[pending[k]] = z;
       } else {
         pending[still++] = pending[k];

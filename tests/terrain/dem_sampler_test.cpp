@@ -174,6 +174,40 @@ TEST(DemSampler, NodataCornersAreDroppedAndWeightsRenormalised) {
   EXPECT_FALSE(four.gradient_at(local_at(20.0, -20.0)));
 }
 
+// Renormalised weights jump at a void's centre from one neighbour's height to the other's (on
+// a slope rising 30 m per cell, 100 -> 160 m across the void); with NearVoid::no_height every
+// point whose interpolation weighs the void has no height, and the others are untouched.
+TEST(DemSampler, NearAVoidRenormalisedHeightsJumpAndNoHeightMakesItAVoid) {
+  const auto dir = test::scratch_dir("dem_sampler_near_void");
+  DemGrid grid = grid_of(3, 3, plane);
+  grid.values = {100.0, 130.0, 160.0, 100.0, -9999.0, 160.0, 100.0, 130.0, 160.0};
+  grid.nodata = -9999.0;
+  for (const Interpolation method : {Interpolation::bilinear, Interpolation::idw}) {
+    DemOptions options;
+    options.interpolation = method;
+    const DemSampler dem({write_dem(dir, "void.tif", grid)}, utm_frame(), local_extent(grid), options);
+    const std::vector<Vec2> points{local_at(14.999, -15.0), local_at(15.001, -15.0), local_at(5.0, -15.0),
+                                   local_at(25.0, -15.0),   local_at(15.0, -5.0),    local_at(10.0, -10.0)};
+    std::vector<std::optional<double>> renormalised(points.size()), strict(points.size());
+    dem.heights_at(points, renormalised);
+    dem.heights_at(points, strict, NearVoid::no_height);
+    ASSERT_TRUE(renormalised[0] && renormalised[1]);
+    // The jump within 2 mm of the void's centre: bilinear from the west cell to the east one;
+    // idw weighs the row below too (measured 36 m).
+    EXPECT_GT(*renormalised[1] - *renormalised[0], method == Interpolation::bilinear ? 59.0 : 30.0);
+    EXPECT_FALSE(strict[0]);
+    EXPECT_FALSE(strict[1]);
+    EXPECT_FALSE(strict[5]);  // between four centres, one of them the void
+    // Exactly on valid cell centres the void has no weight: the heights are the cells'.
+    for (const std::size_t k : {2U, 3U, 4U}) {
+      ASSERT_TRUE(strict[k]) << k;
+      EXPECT_DOUBLE_EQ(*strict[k], *renormalised[k]) << k;
+    }
+    EXPECT_DOUBLE_EQ(*strict[2], 100.0);
+    EXPECT_DOUBLE_EQ(*strict[4], 130.0);
+  }
+}
+
 TEST(DemSampler, NearestReturnsTheContainingCell) {
   const auto dir = test::scratch_dir("dem_sampler_nearest");
   DemGrid grid = grid_of(3, 2, plane);

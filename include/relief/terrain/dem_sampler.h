@@ -16,6 +16,16 @@
 
 namespace relief {
 
+/// What an interpolation does with a void among the cells it weighs (bilinear, idw).
+enum class NearVoid {
+  /// The void is dropped and the other weights renormalised: a height wherever one valid cell
+  /// is near, but one that jumps, at the void's centre, from one neighbour's height to the
+  /// other's (149 m at an SRTM void on a steep Liechtenstein path: a 37 717 % grade).
+  renormalise,
+  /// No height: the point counts as in the void (continuous wherever it has a height).
+  no_height,
+};
+
 struct DemOptions {
   /// Vertical unit of every raster, overriding its metadata (the SF south quadrangle is in feet
   /// and does not say so). Unset: taken from the raster's unit type, metres when it has none.
@@ -74,7 +84,9 @@ struct DemOptions {
 /// Interpolation between cell centres, in the raster's own index space (fractional pixel
 /// coordinates; for a geographic raster that is bilinear in lon/lat):
 /// - bilinear: weights of the four surrounding cell centres; nodata corners are dropped and the
-///   remaining weights renormalised; no valid corner -> no height. (A point exactly at the
+///   remaining weights renormalised (NearVoid::renormalise; with NearVoid::no_height a nodata
+///   corner of weight > 0 gives no height, as the road samples take it); no valid corner -> no
+///   height. (A point exactly at the
 ///   centre of a void cell has no height: its valid neighbours all have weight 0.)
 /// - idw: the seed paper's inverse-distance weighting of the same four cells, weight 1/d^2
 ///   (d to each cell centre in the raster's CRS units, degrees for a geographic raster; an
@@ -123,8 +135,10 @@ class DemSampler {
   /// Height at one point, or nullopt where no raster has a valid value.
   [[nodiscard]] std::optional<double> height_at(const Vec2& local) const;
   /// Heights at many points (much faster than one by one). out.size() == points.size(), else
-  /// InvalidInput. Non-finite points get no height.
-  void heights_at(std::span<const Vec2> points, std::span<std::optional<double>> out) const;
+  /// InvalidInput. Non-finite points get no height. `near_void` for a point whose interpolation
+  /// weighs a void cell (with no_height, the next raster of the mosaic is tried).
+  void heights_at(std::span<const Vec2> points, std::span<std::optional<double>> out,
+                  NearVoid near_void = NearVoid::renormalise) const;
   /// Gradient dz/dx, dz/dy (dimensionless) of the interpolated surface at a point, by central
   /// differences over `step_m` (> 0, else InvalidInput); nullopt where any of the four probes
   /// has no height.
