@@ -501,8 +501,10 @@ void void_implausible_cells(std::vector<double>& z, const gdal::PixelWindow& win
 // CRS; nothing where PROJ cannot measure it.
 std::optional<std::pair<double, double>> cell_axes_m(const PixelGrid& grid, const gdal::PixelWindow& window,
                                                      const CrsTransform& to_raster) {
-  const auto col = static_cast<double>(window.col0 + window.cols / 2);  // whole cells
-  const auto row = static_cast<double>(window.row0 + window.rows / 2);
+  const int centre_col = window.col0 + window.cols / 2;  // whole cells
+  const int centre_row = window.row0 + window.rows / 2;
+  const auto col = static_cast<double>(centre_col);
+  const auto row = static_cast<double>(centre_row);
   const auto centre = [&](double c, double r) {
     return Vec2(grid.x0 + (c + 0.5) * grid.dx, grid.y0 + (r + 0.5) * grid.dy);
   };

@@ -881,7 +881,7 @@ TEST(Tiles, TilesHoldWhatTheirNeighboursFittedSoTheyMeetWhereWindowsSeeTooLittle
 
 // Three generated mountains (`relief_write_corpus mountain-range 3 30`) in 2 km tiles with the
 // holds: each tile fits the pass roads over its own window, so the copies of a road in the two
-// files a tile line cuts it into differ by centimetres (cut by centroid, each from its own fit:
+// files a tile line cuts it into differ by millimetres (cut by centroid, each from its own fit:
 // steps in the region's road). The merge gives every paved vertex its owner's height: no Road_Road
 // vertex is left apart at a tile line, no two owners meet more than 1 cm apart, the joined
 // Road_Road does not intersect itself, and every vertex no owner made follows its neighbours;
@@ -897,8 +897,10 @@ TEST(Tiles, AMountainRangesRoadsTakeTheirOwnersHeightsAcrossTheTileLines) {
             << "\n";
   EXPECT_TRUE(r.merge.failed_gates.empty()) << r.merge.failed_gates.front();
   EXPECT_GT(owner.at("moved").get<std::size_t>(), 1000u);
-  EXPECT_GT(owner.at("max_dz_m").get<double>(),
-            0.01);  // the copies differed: steps without the owners' heights
+  // The copies differed (steps without the owners' heights): by 8.8 mm since the road samples
+  // whose DEM interpolation weighs a void are voids (over 1 cm before, when the renormalised
+  // heights jumped at the corpus DEM's voids and each tile's fit followed them its own way).
+  EXPECT_GT(owner.at("max_dz_m").get<double>(), 0.005);
   EXPECT_EQ(owner.at("unmatched"), owner.at("interpolated")) << owner;
   EXPECT_LE(owner.at("owners_apart_max_m").get<double>(), 0.01) << owner;
   EXPECT_GT(seams.at("shared_vertices").get<std::size_t>(), 100u);
