@@ -372,6 +372,26 @@ void report_missing_grid(const DemInfo& info, const std::string& frame_crs, Diag
   diagnostics->report(Severity::warning, codes::kDemDatumGridMissing, message.str());
 }
 
+// Sides (m) of the cell at (col, row), in the frame's metric CRS: the distance from its centre
+// to its neighbour's along the row and down the column. Nothing where PROJ cannot measure them
+// or they are not finite and > 0.
+std::optional<std::pair<double, double>> cell_sides_m(const PixelGrid& grid, const CrsTransform& to_raster,
+                                                      double col, double row) {
+  const auto centre = [&](double c, double r) {
+    return Vec2(grid.x0 + (c + 0.5) * grid.dx, grid.y0 + (r + 0.5) * grid.dy);
+  };
+  try {
+    const Vec2 p = to_raster.apply_inverse(centre(col, row));
+    const double along = (to_raster.apply_inverse(centre(col + 1.0, row)) - p).norm();
+    const double down = (to_raster.apply_inverse(centre(col, row + 1.0)) - p).norm();
+    if (std::isfinite(along) && along > 0.0 && std::isfinite(down) && down > 0.0)
+      return std::pair{along, down};
+  } catch (const ProjectionError&) {
+    // Outside the operation's domain.
+  }
+  return std::nullopt;
+}
+
 // Longer side (m) of the cells of each row of `window`: the larger distance in the frame's
 // metric CRS from a cell centre at the window's middle column to its neighbour along the row
 // and across it (a geographic raster's cells narrow away from the equator). Measured on one row
@@ -381,25 +401,15 @@ std::vector<double> cell_sizes_m(const PixelGrid& grid, const gdal::PixelWindow&
                                  const CrsTransform& to_raster) {
   const int stride = std::max(1, window.rows / 64);
   const int centre_col = window.col0 + window.cols / 2;  // whole column
-  const double col = centre_col;
-  const auto centre = [&](double c, double r) {
-    return Vec2(grid.x0 + (c + 0.5) * grid.dx, grid.y0 + (r + 0.5) * grid.dy);
-  };
   std::vector<double> sizes(static_cast<std::size_t>(window.rows), kNaN);
   bool any = false;
   for (int r = 0; r < window.rows; r += stride) {
-    const double row = window.row0 + r;
-    try {
-      const Vec2 p = to_raster.apply_inverse(centre(col, row));
-      const double along = (to_raster.apply_inverse(centre(col + 1.0, row)) - p).norm();
-      const double across = (to_raster.apply_inverse(centre(col, row + 1.0)) - p).norm();
-      const double size = std::max(along, across);
-      if (!std::isfinite(size) || !(size > 0.0)) continue;
-      std::fill(sizes.begin() + r, sizes.begin() + std::min(r + stride, window.rows), size);
-      any = true;
-    } catch (const ProjectionError&) {
-      // Outside the operation's domain: filled from the nearest measured row.
-    }
+    // Rows PROJ cannot measure are filled from the nearest measured row.
+    const auto sides = cell_sides_m(grid, to_raster, centre_col, window.row0 + r);
+    if (!sides) continue;
+    std::fill(sizes.begin() + r, sizes.begin() + std::min(r + stride, window.rows),
+              std::max(sides->first, sides->second));
+    any = true;
   }
   if (!any) return {};
   // Unmeasured rows: the size of the previous measured row, else of the next.
@@ -497,35 +507,15 @@ void void_implausible_cells(std::vector<double>& z, const gdal::PixelWindow& win
   }
 }
 
-// Cell size (m) along a row and down a column at the centre of `window`, in the frame's metric
-// CRS; nothing where PROJ cannot measure it.
-std::optional<std::pair<double, double>> cell_axes_m(const PixelGrid& grid, const gdal::PixelWindow& window,
-                                                     const CrsTransform& to_raster) {
-  const int centre_col = window.col0 + window.cols / 2;  // whole cells
-  const int centre_row = window.row0 + window.rows / 2;
-  const auto col = static_cast<double>(centre_col);
-  const auto row = static_cast<double>(centre_row);
-  const auto centre = [&](double c, double r) {
-    return Vec2(grid.x0 + (c + 0.5) * grid.dx, grid.y0 + (r + 0.5) * grid.dy);
-  };
-  try {
-    const Vec2 p = to_raster.apply_inverse(centre(col, row));
-    const double along = (to_raster.apply_inverse(centre(col + 1.0, row)) - p).norm();
-    const double down = (to_raster.apply_inverse(centre(col, row + 1.0)) - p).norm();
-    if (std::isfinite(along) && along > 0.0 && std::isfinite(down) && down > 0.0)
-      return std::pair{along, down};
-  } catch (const ProjectionError&) {
-    // Outside the operation's domain.
-  }
-  return std::nullopt;
-}
-
 // With DemOptions::ground_filter_m: takes a surface model's buildings, trees and pits down to
 // the ground (`z` in metres), counts them in `info` and reports them.
 void filter_ground(std::vector<double>& z, const gdal::PixelWindow& window, const PixelGrid& grid,
                    const CrsTransform& to_raster, const DemOptions& options, DemInfo& info,
                    Diagnostics* diagnostics) {
-  const auto axes = cell_axes_m(grid, window, to_raster);
+  // The cell sizes at the window's centre (whole cells).
+  const int centre_col = window.col0 + window.cols / 2;
+  const int centre_row = window.row0 + window.rows / 2;
+  const auto axes = cell_sides_m(grid, to_raster, centre_col, centre_row);
   if (!axes) return;
   const auto radius = [&](double cell_m) {
     return std::max(1, static_cast<int>(std::floor(0.5 * options.ground_filter_m / cell_m)));
