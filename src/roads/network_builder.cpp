@@ -17,6 +17,7 @@
 #include "roads/road_separation.h"
 #include "roads/road_stubs.h"
 #include "roads/way_crossings.h"
+#include "roads/way_folds.h"
 
 namespace relief {
 
@@ -304,6 +305,7 @@ void build_junctions(RoadNetwork& network, const OsmRoads& osm, const NodeTable&
 
 RoadNetwork build_network(const OsmRoads& input, const GeoFrame& frame, Diagnostics& diagnostics) {
   OsmRoads osm = input;
+  (void)detail::split_folds(osm, diagnostics);
   (void)detail::join_crossing_ways(osm, diagnostics);
   NodeTable table = collect_nodes(osm);
   project_nodes(table, osm, frame);

@@ -178,9 +178,12 @@ BuildResult build_seed(unsigned seed, FuzzCase& c, Diagnostics& d, bool defects 
   return build(o, d);
 }
 
-void build_and_check_seeds(bool defects) {
+// Builds seeds 1..30 (RELIEF_FUZZ_SEEDS to change it) and checks each; of the 30 of CI, at least
+// `min_passed` must pass every gate (what was measured: a regression shows).
+void build_and_check_seeds(bool defects, unsigned min_passed) {
   const char* env = std::getenv("RELIEF_FUZZ_SEEDS");
   const unsigned seeds = env != nullptr ? static_cast<unsigned>(std::max(1, std::atoi(env))) : 30u;
+  unsigned passed = 0;
   for (unsigned seed = 1; seed <= seeds; ++seed) {
     SCOPED_TRACE("seed " + std::to_string(seed));
     FuzzCase c;
@@ -204,27 +207,36 @@ void build_and_check_seeds(bool defects) {
     EXPECT_EQ(r.junctions.max_gap_m, 0.0);
     ASSERT_TRUE(r.fit);
     EXPECT_TRUE(r.fit->converged) << r.fit->solver;
+    passed += failed.empty() ? 1u : 0u;
     std::cout << (defects ? "fuzz (OSM defects) seed " : "fuzz seed ") << seed << ": " << c.ways << " ways, "
               << r.network.roads << " roads, " << r.network.junctions << " junctions, fit " << r.fit->solver
               << ", failed gates:" << (failed.empty() ? std::string(" none") : failed) << "\n";
   }
+  std::cout << passed << " of " << seeds << " seeds passed every gate\n";
+  if (env == nullptr) {
+    EXPECT_GE(passed, min_passed);
+  }
 }
 
 TEST(Fuzz, RandomNetworksOnRandomTerrainBuildAndCheckThemselves) {
-  build_and_check_seeds(false);
+  build_and_check_seeds(false, 28);  // measured 28 of 30 (2026-11-29)
 }
 
 // The same networks with OSM's data errors in them (make_case): each is reported and handled,
 // and the build still ends with every output and gate. Measured on 2026-11-29 with
 // RELIEF_FUZZ_SEEDS=100: all 100 built, junctions exactly continuous (seed 9's 0.16 m road
 // between two crossings had one station and left a 3.0 m gap, before sample_stations kept both
-// ends), every fit converged (9 by the method of multipliers); 36 passed every gate against 87
-// of the same seeds without the errors. The others exit 4, mostly where a hairpin drawn to one
-// node folds its return leg along its way past a junction: junctions_open 38, sumo_height_steps
-// 46, connecting_road_grade_over_cap_percent 15, ground_holes 8, road_self_intersections 4
-// (known, not fixed).
+// ends), every fit converged; 36 passed every gate against 87 of the same seeds without the
+// errors, most of the others where a hairpin drawn to one node folded its return leg along its
+// way past a junction (junctions_open 38, sumo_height_steps 46, ground_holes 8). Such a way is
+// now built once where its legs' pavements overlap (osm.way_turns_back), and a hairpin too
+// sharp for an arc on its legs loops round its vertex instead of collapsing (a keyhole): 55
+// passed (8 fits by the method of multipliers); the others fail sumo_height_steps 23,
+// ground_vs_dem_rmse_m 15 (the steepest terrains, as without the errors),
+// connecting_road_grade_over_cap_percent 13, road_self_intersections 9, fit_limits_violated 9,
+// junctions_open 2, ground_holes 2 (known, not fixed).
 TEST(Fuzz, RandomNetworksWithOsmDataErrorsBuildAndCheckThemselves) {
-  build_and_check_seeds(true);
+  build_and_check_seeds(true, 15);  // measured 15 of 30 (11 before ways folding onto themselves)
 }
 
 // Seeds whose two-road bends were too sharp for their short roads to be trimmed back far enough:

@@ -452,17 +452,22 @@ TEST(NetworkBuilder, PotreroRealData) {
   EXPECT_EQ(net.frame.crs(), "EPSG:32610");
   // Measured (Dec 2022 extract, motor roads only); the build is deterministic. 25th Street's
   // last 3.3 m past a service road (OSM way 24444477) lie on that road's pavement and are
-  // dropped as a stub, which leaves 25th Street and the service road a corner.
-  EXPECT_EQ(f.roads, 95u);
-  EXPECT_EQ(f.junctions, 89u);
-  EXPECT_EQ(f.intersections, 42u);
+  // dropped as a stub, which leaves 25th Street and the service road a corner. The service road
+  // OSM way 565104379 ends in a turning loop drawn as a narrow triangle, whose last corner turns
+  // 154.8 degrees with legs 5.31 m apart where the shorter (12.5 m) ends: their pavements, 5.5 m
+  // wide, overlap along all of it, so the corner's tip is built once, a dead end of its own
+  // (osm.way_turns_back; 95 roads, 89 junctions, 42 intersections, 38 dead ends, 7.727 km before).
+  EXPECT_EQ(f.roads, 97u);
+  EXPECT_EQ(f.junctions, 91u);
+  EXPECT_EQ(f.intersections, 43u);
   EXPECT_EQ(f.attribute_changes, 9u);
-  EXPECT_EQ(f.dead_ends, 38u);
+  EXPECT_EQ(f.dead_ends, 39u);
   EXPECT_EQ(f.signals, 0u);
   EXPECT_EQ(f.bridges, 1u);  // 23rd Street over US-101
   EXPECT_EQ(f.tunnels, 0u);
   EXPECT_EQ(net.roundabouts, 0u);
-  EXPECT_NEAR(f.km, 7.727, 0.01);
+  EXPECT_NEAR(f.km, 7.714, 0.01);
+  EXPECT_EQ(diagnostics.count("osm.way_turns_back"), 1u);
   EXPECT_EQ(diagnostics.count("osm.degenerate_way"), 6u);
   EXPECT_EQ(diagnostics.count("network.degenerate_way"), 0u);
 }

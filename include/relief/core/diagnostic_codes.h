@@ -37,7 +37,9 @@ inline constexpr DiagnosticCode kOsmMissingNode{
 inline constexpr DiagnosticCode kOsmDegenerateWay{"osm.degenerate_way",
                                                   "a way with fewer than two distinct nodes is skipped"};
 inline constexpr DiagnosticCode kOsmWayTurnsBack{
-    "osm.way_turns_back", "a way drawn out to a node and straight back: the stretch is one way of its own"};
+    "osm.way_turns_back",
+    "a way drawn out to a node and back along itself (to the same node, or folding onto its own pavement): the "
+    "stretch is one way of its own"};
 inline constexpr DiagnosticCode kOsmOverlappingWays{
     "osm.overlapping_ways", "a way drawn over the nodes of another: the shared stretch is built once"};
 inline constexpr DiagnosticCode kOsmTagValue{
