@@ -17,16 +17,6 @@ constexpr double kDuplicate_m = 1e-3;                               // vertices 
 constexpr double kStraight_rad = 1e-9;                              // turning angles below this add no arc
 constexpr double kVanish_m = 1e-9;                                  // lines this short vanish without notice
 constexpr double kMaxHalfTurn_rad = 0.5 * std::numbers::pi - 1e-9;  // U-turn clamp
-// Sharper corners whose arc does not fit loop round their vertex (a keyhole) rather than lose it.
-constexpr double kKeyholeMinTurn_rad = 2.0 * std::numbers::pi / 3.0;
-
-// A keyhole of radius R through a sharp corner: a counter-arc away from the turn, a loop round
-// the circle of radius R about the vertex, and a counter-arc back onto the other segment, all of
-// radius R. The counter-arcs' centres lie R beyond each segment's line, 2R from the vertex: they
-// touch the segments sqrt(3) R before and after it and turn by 60 degrees each; the loop turns
-// by the corner's turn plus 120 degrees.
-constexpr double kKeyholeFactor = 1.7320508075688772;  // sqrt(3)
-constexpr double kKeyholeCounter_rad = std::numbers::pi / 3.0;
 
 // Plan records laid end to end: each starts at the previous one's end pose (exact G1).
 struct RecordChain {
@@ -90,14 +80,11 @@ PlanView fit_reference_line(const Polyline2& polyline, const ReferenceLineOption
   }
 
   std::size_t m = 0;
-  std::vector<double> len, seg_heading, theta, radius, tangent, factor;  // factor: tangent / radius
-  std::vector<bool> keyhole;
+  std::vector<double> len, seg_heading, theta, radius, tangent;
   std::vector<Vec2> dir;
   std::vector<std::size_t> corners;  // start, arc vertices, end
   const double min_r = options.min_radius_m;
-  // 2. Corner arcs: radius max(R_min, min(R_tol, R_fit)); d = tangent distance from the vertex. A
-  //    corner sharper than kKeyholeMinTurn_rad whose arc does not fit on its segments (all of an
-  //    end segment, half of an inner one) turns through a keyhole of R_min instead.
+  // 2. Corner arcs: radius max(R_min, min(R_tol, R_fit)); d = tangent distance from the vertex.
   const auto layout = [&] {
     m = p.size();
     len.assign(m - 1, 0.0);
@@ -112,8 +99,6 @@ PlanView fit_reference_line(const Polyline2& polyline, const ReferenceLineOption
     theta.assign(m, 0.0);
     radius.assign(m, 0.0);
     tangent.assign(m, 0.0);
-    factor.assign(m, 0.0);
-    keyhole.assign(m, false);
     corners = {0};
     for (std::size_t i = 1; i + 1 < m; ++i) {
       theta[i] = std::atan2(cross(dir[i - 1], dir[i]), dir[i - 1].dot(dir[i]));
@@ -125,14 +110,7 @@ PlanView fit_reference_line(const Polyline2& polyline, const ReferenceLineOption
       const double t = std::tan(half);
       const double r_fit = 0.5 * std::min(len[i - 1], len[i]) / t;
       radius[i] = std::max(min_r, std::min(r_tol, r_fit));
-      factor[i] = t;
-      const double room = std::min(i == 1 ? len[0] : 0.5 * len[i - 1], i + 2 == m ? len[i] : 0.5 * len[i]);
-      if (min_r > 0.0 && std::abs(theta[i]) >= kKeyholeMinTurn_rad && radius[i] * t > room) {
-        keyhole[i] = true;
-        radius[i] = min_r;
-        factor[i] = kKeyholeFactor;
-      }
-      tangent[i] = radius[i] * factor[i];
+      tangent[i] = radius[i] * t;
       corners.push_back(i);
     }
     corners.push_back(m - 1);
@@ -190,11 +168,10 @@ PlanView fit_reference_line(const Polyline2& polyline, const ReferenceLineOption
     if (i == 0 || i + 1 == m) continue;
     const double half = std::min(0.5 * std::abs(theta[i]), kMaxHalfTurn_rad);
     const double sq = std::sin(0.5 * half);
-    if (radius[i] > options.tolerance_m * std::cos(half) / (2.0 * sq * sq) + 1e-12 || keyhole[i]) {
+    if (radius[i] > options.tolerance_m * std::cos(half) / (2.0 * sq * sq) + 1e-12) {
       ++rep.corners_widened;
       widened = true;
     }
-    if (keyhole[i]) ++rep.keyholes;
   }
 
   // Cumulative polyline length, for runs of straight lines through collinear vertices.
@@ -212,6 +189,9 @@ PlanView fit_reference_line(const Polyline2& polyline, const ReferenceLineOption
   //    vanishes. A line on a polyline segment that is itself shorter than min_length stays:
   //    dropping it would shift the rest of the reference line off the polyline.
   const double min_len = options.min_length_m;
+  const auto half_tan = [&](std::size_t i) {
+    return std::tan(std::min(0.5 * std::abs(theta[i]), kMaxHalfTurn_rad));
+  };
   for (std::size_t pass = 0; pass <= corners.size(); ++pass) {
     bool changed = false;
     for (std::size_t r = 0; r + 1 < corners.size(); ++r) {
@@ -225,13 +205,13 @@ PlanView fit_reference_line(const Polyline2& polyline, const ReferenceLineOption
       const double share_a = tangent[a] / avail;
       bool shrink = true;
       for (const auto& [i, share] : {std::pair{a, share_a}, std::pair{b, 1.0 - share_a}}) {
-        if (tangent[i] > 0.0 && (tangent[i] - need * share) / factor[i] < min_r) shrink = false;
+        if (tangent[i] > 0.0 && (tangent[i] - need * share) / half_tan(i) < min_r) shrink = false;
       }
       const double delta = shrink ? -need : ell;
       for (const auto& [i, share] : {std::pair{a, share_a}, std::pair{b, 1.0 - share_a}}) {
         if (tangent[i] == 0.0) continue;
         tangent[i] += delta * share;
-        radius[i] = tangent[i] / factor[i];
+        radius[i] = tangent[i] / half_tan(i);
       }
       changed = true;
     }
@@ -241,7 +221,6 @@ PlanView fit_reference_line(const Polyline2& polyline, const ReferenceLineOption
   // 4. Records: lines along the runs, arcs at the corners. Each record starts at the previous
   //    record's end (exact G1); each arc's sweep absorbs the heading drift of merged lines.
   RecordChain chain(Pose2{p[0], seg_heading[0], 0.0});
-  std::vector<std::size_t> keyhole_records;  // the first of each keyhole's three arcs
   std::vector<double> station(m, 0.0);
   for (std::size_t r = 0; r + 1 < corners.size(); ++r) {
     const std::size_t a = corners[r];
@@ -257,65 +236,40 @@ PlanView fit_reference_line(const Polyline2& polyline, const ReferenceLineOption
       chain.append(line);
     }
     if (b + 1 == m) break;
-    const double drift = wrap_angle(seg_heading[b] - (chain.end.heading + theta[b]));
-    const auto arc = [&](double sweep) {
-      PlanGeometry g;
-      g.kind = PlanGeometry::Kind::arc;
-      g.length = radius[b] * std::abs(sweep);
-      g.curvature = std::copysign(1.0 / radius[b], sweep);
-      return g;
-    };
-    if (!keyhole[b]) {
-      const PlanGeometry g = arc(theta[b] + drift);
-      station[b] = chain.length + 0.5 * g.length;
-      chain.append(g);
-      continue;
-    }
-    const double side = theta[b] < 0.0 ? -1.0 : 1.0;
-    const double counter = kKeyholeCounter_rad;
-    keyhole_records.push_back(chain.records.size());
-    chain.append(arc(-side * counter));
-    const PlanGeometry loop = arc(theta[b] + 2.0 * side * counter + drift);
-    station[b] = chain.length + 0.5 * loop.length;
-    chain.append(loop);
-    chain.append(arc(-side * counter));
+    const double sweep = theta[b] + wrap_angle(seg_heading[b] - (chain.end.heading + theta[b]));
+    PlanGeometry arc;
+    arc.kind = PlanGeometry::Kind::arc;
+    arc.length = radius[b] * std::abs(sweep);
+    arc.curvature = std::copysign(1.0 / radius[b], sweep);
+    station[b] = chain.length + 0.5 * arc.length;
+    chain.append(arc);
   }
   PlanView plan(std::move(chain.records));
 
   if (widened) {
     // Departure: each polyline vertex's distance to the reference line, sampled densely
-    // (chord error of an arc of radius R over angle a: R (1 - cos(a / 2)) < 1 mm), and each
-    // keyhole's distance to the polyline (its loop lies beside the vertex).
-    Polyline2 curve, loops;
-    std::size_t next_keyhole = 0;
-    for (std::size_t ri = 0; ri < plan.records().size(); ++ri) {
-      const PlanGeometry& g = plan.records()[ri];
-      if (next_keyhole < keyhole_records.size() && ri == keyhole_records[next_keyhole] + 3) ++next_keyhole;
-      const bool in_loop = next_keyhole < keyhole_records.size() && ri >= keyhole_records[next_keyhole];
+    // (chord error of an arc of radius R over angle a: R (1 - cos(a / 2)) < 1 mm).
+    Polyline2 curve;
+    for (const PlanGeometry& g : plan.records()) {
       int steps = 1;
       if (g.kind == PlanGeometry::Kind::arc) {
         const double r = 1.0 / std::abs(g.curvature);
         const double step_rad = 2.0 * std::acos(std::max(0.0, 1.0 - 1e-3 / r));
         steps = std::max(1, static_cast<int>(std::ceil(g.length / r / step_rad)));
       }
-      for (int k = 0; k < steps; ++k) {
-        curve.push_back(evaluate(g, g.length * k / steps).position);
-        if (in_loop) loops.push_back(curve.back());
-      }
+      for (int k = 0; k < steps; ++k) curve.push_back(evaluate(g, g.length * k / steps).position);
     }
     curve.push_back(plan.at(plan.length()).position);
-    const auto distance = [](const Vec2& q, const Polyline2& line) {
+    for (const Vec2& q : polyline) {
       double best = std::numeric_limits<double>::infinity();
-      for (std::size_t i = 0; i + 1 < line.size(); ++i) {
-        const Vec2 d = line[i + 1] - line[i];
+      for (std::size_t i = 0; i + 1 < curve.size(); ++i) {
+        const Vec2 d = curve[i + 1] - curve[i];
         const double len2 = d.squaredNorm();
-        const double t = len2 > 0.0 ? std::clamp((q - line[i]).dot(d) / len2, 0.0, 1.0) : 0.0;
-        best = std::min(best, (line[i] + t * d - q).norm());
+        const double t = len2 > 0.0 ? std::clamp((q - curve[i]).dot(d) / len2, 0.0, 1.0) : 0.0;
+        best = std::min(best, (curve[i] + t * d - q).norm());
       }
-      return best;
-    };
-    for (const Vec2& q : polyline) rep.max_departure_m = std::max(rep.max_departure_m, distance(q, curve));
-    for (const Vec2& q : loops) rep.max_departure_m = std::max(rep.max_departure_m, distance(q, polyline));
+      rep.max_departure_m = std::max(rep.max_departure_m, best);
+    }
   }
 
   if (station_map != nullptr) {

@@ -54,10 +54,9 @@ void note_rounded_corners(const ReferenceLineReport& fit_report, const Road& roa
       msg.precision(2);
       msg << std::fixed << "road " << model_id << ": "
           << fit_report.corners_widened + fit_report.vertices_merged
-          << " sharp corner(s) rounded to the minimum radius " << minimum_radius(road, options) << " m";
-      if (fit_report.keyholes > 0)
-        msg << " (" << fit_report.keyholes << " through a keyhole loop round the vertex)";
-      msg << "; the reference line departs from the OSM way by up to " << fit_report.max_departure_m << " m";
+          << " sharp corner(s) rounded to the minimum radius " << minimum_radius(road, options)
+          << " m; the reference line departs from the OSM way by up to " << fit_report.max_departure_m
+          << " m";
       Diagnostic d;
       d.severity = Severity::info;
       d.code = codes::kModelCornerRounded;

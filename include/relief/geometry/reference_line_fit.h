@@ -26,10 +26,8 @@ struct ReferenceLineOptions {
 struct ReferenceLineReport {
   std::size_t corners_widened = 0;  ///< corners whose radius was raised to min_radius_m
   std::size_t vertices_merged = 0;  ///< polyline vertices dropped or merged to make room for such arcs
-  std::size_t keyholes = 0;         ///< corners (among corners_widened) turned through a keyhole
-  /// Largest distance of a polyline vertex from the reference line, or of a keyhole's loop from
-  /// the polyline, when corners were widened or merged (0 otherwise: the fit then stays within
-  /// tolerance_m).
+  /// Largest distance of a polyline vertex from the reference line when corners were widened
+  /// or merged (0 otherwise: the fit then stays within tolerance_m).
   double max_departure_m = 0.0;
 };
 
@@ -41,12 +39,6 @@ struct ReferenceLineReport {
 /// away are interpolated by polyline length between their neighbours).
 /// Vertices closer than 1 mm are merged first. Each corner of turning angle θ gets the radius
 /// max(min_radius, min(tolerance / (1/cos(θ/2) - 1), min(half adjacent segment) / tan(|θ|/2)));
-/// with min_radius > 0, a corner turning 120 degrees or more whose arc would not fit on its
-/// segments (all of an end segment, half of an inner one; a hairpin drawn to one node, whose arc
-/// takes min_radius x tan(θ/2) of each, 11.4 x at 170 degrees) turns through a keyhole instead:
-/// a counter-arc away from the turn, a loop round the vertex at min_radius and a counter-arc
-/// back, all of min_radius, which take sqrt(3) x min_radius of each segment and depart from the
-/// vertex and the polyline by min_radius;
 /// where two such arcs would overlap on a segment, their corners are merged into one (the
 /// intersection of the outer segments' lines for two turns the same way, else the midpoint),
 /// and a corner whose arc would overrun the polyline's first or last segment is dropped, so

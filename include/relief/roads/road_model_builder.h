@@ -39,8 +39,7 @@
 // - Reference lines: OSM centrelines rounded at their vertices within plan_tolerance_m, but with
 //   arcs no tighter than the road's outermost lane border plus min_radius_margin_m (lane
 //   borders fold back inside a tighter arc): a sharp corner then departs from the polyline by
-//   more than the tolerance, and a hairpin too sharp for such an arc on its legs loops round its
-//   vertex (a keyhole, fit_reference_line) ("model.corner_rounded"); lanes:
+//   more than the tolerance ("model.corner_rounded"); lanes:
 //   right lanes drive along the reference line; laneOffset centres the carriageway on the OSM
 //   centreline (one-ways have right lanes only).
 // - Elevation: C1 cubic pieces through the fitted profile within elevation_tolerance_m.
