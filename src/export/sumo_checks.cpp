@@ -11,6 +11,7 @@
 #include <tuple>
 #include <unordered_map>
 #include <unordered_set>
+#include <utility>
 
 #include "export/sumo_lane_locator.h"
 #include "relief/core/errors.h"
@@ -94,12 +95,15 @@ SumoNetCheck check_sumo_net(std::string_view net_xml, const RoadModel& model, co
           worst = std::max(worst, 100.0 * std::abs(shape[i].z() - shape[i - 1].z()) / run);
         }
       }
+      std::optional<std::pair<int, double>> last_at;  // along the road from the point before
       for (const Vec3& p : shape) {
-        const auto at = locator.locate(id, Vec2(p.x(), p.y()));
+        const auto at = locator.locate(id, Vec2(p.x(), p.y()), last_at);
         if (!at) {
           ++check.points_unmapped;
+          last_at.reset();
           continue;
         }
+        last_at = std::make_pair(at->road->id, at->s);
         const double error = std::abs(p.z() - surface_z(*at->road, at->s, at->t));
         if (!at->lane.odr_shape) {
           // netconvert's own curve where the OpenDRIVE lane folds: measured apart.

@@ -5,6 +5,7 @@
 #include <optional>
 #include <sstream>
 #include <string_view>
+#include <utility>
 
 #include "export/sumo_lane_locator.h"
 #include "export/sumo_seams.h"
@@ -49,14 +50,20 @@ SumoDrape drape_sumo_net(std::string& net_xml, const RoadModel& model, const std
       std::istringstream in(shape.as_string());
       std::string rewritten;
       bool changed = false;
-      // The last point written with its surface height, for the chord to the next one.
+      // The last point written with its surface height, for the chord to the next one, and
+      // where it lies (OpenDRIVE road and station): each point is looked for along the road
+      // from the one before, so that a road lying over itself in plan (a keyhole loop beside
+      // its legs, a spiral ramp) gives each point its own part's height.
       std::optional<Vec3> last;
+      std::optional<std::pair<int, double>> last_at;
       // Points between a and b (both on the surface) where their chord leaves it, by bisection.
-      const auto fill_chord = [&](const auto& self, const Vec3& a, const Vec3& b, int depth) -> void {
+      using Near = std::optional<std::pair<int, double>>;
+      const auto fill_chord = [&](const auto& self, const Vec3& a, const Near& a_at, const Vec3& b,
+                                  int depth) -> void {
         if (depth > kMaxBisections || (b - a).head<2>().norm() < 2.0 * kMinPointSpacing) return;
         const auto round = [](const Vec2& p) -> Vec2 { return (100.0 * p).array().round() / 100.0; };
         Vec2 mid = 0.5 * (a + b).head<2>();
-        auto at = locator.locate(id, mid);
+        auto at = locator.locate(id, mid, a_at);
         if (!at) return;
         if (at->lane.odr_shape && at->lane.lane) {
           // On an OpenDRIVE lane centre the new point goes onto it (a chord across a bend lies
@@ -68,15 +75,16 @@ SumoDrape drape_sumo_net(std::string& net_xml, const RoadModel& model, const std
         } else {
           mid = round(mid);  // netconvert's own curve: on its chord
         }
-        at = locator.locate(id, mid);
+        at = locator.locate(id, mid, a_at);
         if (!at) return;
         const Vec3 m(mid.x(), mid.y(), surface_z(*at->road, at->s, at->t));
         if (std::abs(m.z() - 0.5 * (a.z() + b.z())) <= kChordTolerance) return;
-        self(self, a, m, depth + 1);
+        const Near m_at = std::make_pair(at->road->id, at->s);
+        self(self, a, a_at, m, depth + 1);
         std::snprintf(point_text, sizeof point_text, "%.2f,%.2f,%.3f", m.x(), m.y(), m.z());
         rewritten += std::string(" ") + point_text;
         ++out.points_added;
-        self(self, m, b, depth + 1);
+        self(self, m, m_at, b, depth + 1);
       };
       for (std::string token; in >> token;) {
         const std::size_t first = token.find(',');
@@ -88,16 +96,18 @@ SumoDrape drape_sumo_net(std::string& net_xml, const RoadModel& model, const std
         const std::string xy = token.substr(0, second);
         const Vec2 p(std::stod(token.substr(0, first)),
                      std::stod(token.substr(first + 1, second - first - 1)));
-        const auto at = locator.locate(id, p);
+        const auto at = locator.locate(id, p, last_at);
         if (!at) {
           ++out.points_unmapped;
           rewritten += (rewritten.empty() ? "" : " ") + token;
           last.reset();
+          last_at.reset();
           continue;
         }
         const double z = surface_z(*at->road, at->s, at->t);
-        if (last) fill_chord(fill_chord, *last, Vec3(p.x(), p.y(), z), 0);
+        if (last) fill_chord(fill_chord, *last, last_at, Vec3(p.x(), p.y(), z), 0);
         last = Vec3(p.x(), p.y(), z);
+        last_at = std::make_pair(at->road->id, at->s);
         const double old_z = second == std::string::npos ? 0.0 : std::stod(token.substr(second + 1));
         std::snprintf(z_text, sizeof z_text, "%.3f", z);
         ++out.points;

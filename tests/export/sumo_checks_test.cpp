@@ -109,6 +109,64 @@ TEST(SumoDrape, LanePointsNetconvertLeftOffTheSurfaceTakeItsHeight) {
   EXPECT_THROW((void)drape_sumo_net(not_a_net, model, "x.net.xml"), InvalidInput);
 }
 
+TEST(SumoDrape, ARoadOverItselfInPlanGivesEachTurnItsOwnHeight) {
+  // A spiral ramp: two full turns of radius 20 m about the origin climbing 10 %, one 3 m lane
+  // (centre at t = -1.5, radius 21.5 m). Every point of the second turn lies on one of the
+  // first, 12.57 m lower; projected on the whole road it took the first turn's height (a
+  // 12.6 m jump where the lane passes from one turn to the other's plan). Each point is now
+  // looked for along the road from the one before.
+  constexpr double kRadius = 20.0, kLength = 4.0 * std::numbers::pi * kRadius;
+  ModelRoad road;
+  road.id = 1;
+  PlanGeometry arc;
+  arc.kind = PlanGeometry::Kind::arc;
+  arc.start = Vec2(0.0, -kRadius);
+  arc.heading = 0.0;
+  arc.curvature = 1.0 / kRadius;
+  arc.length = kLength;
+  road.plan = PlanView({arc});
+  road.elevation = CubicProfile({CubicPiece{0.0, {0.0, 0.1, 0.0, 0.0}}});
+  road.lane_offset = CubicProfile::constant(0.0);
+  LaneModel lane;
+  lane.id = -1;
+  lane.width = CubicProfile({CubicPiece{0.0, {3.0, 0.0, 0.0, 0.0}}});
+  LaneSection section;
+  section.right = {lane};
+  road.sections = {section};
+  RoadModel model;
+  model.roads = {road};
+
+  // The lane every 2 degrees, all heights 0 (as if netconvert had dropped them).
+  std::ostringstream shape;
+  const int points = 360;
+  for (int i = 0; i <= points; ++i) {
+    const double a = 2.0 * (2.0 * std::numbers::pi) * i / points - 0.5 * std::numbers::pi;
+    shape << (i == 0 ? "" : " ") << 21.5 * std::cos(a) << "," << 21.5 * std::sin(a) << ",0";
+  }
+  std::string net = R"(<net version="1.9">
+  <edge id="1" from="A" to="B">
+    <lane id="1_0" index="0" speed="10" length="270" shape=")" +
+                    shape.str() + R"(">
+      <param key="odr.lane" value="-1"/>
+    </lane>
+    <param key="odr.road" value="1"/>
+  </edge>
+  <junction id="A" type="dead_end" x="0" y="-20"/>
+  <junction id="B" type="dead_end" x="0" y="-20"/>
+</net>
+)";
+  const SumoDrape drape = drape_sumo_net(net, model, "spiral.net.xml");
+  EXPECT_EQ(drape.points_unmapped, 0u);
+  const SumoNetCheck check = check_sumo_net(net, model, "spiral.net.xml");
+  EXPECT_EQ(check.points_unmapped, 0u);
+  EXPECT_LT(check.z_max_m, 5e-4);
+  EXPECT_EQ(check.height_steps, 0u);
+  // The lane's last point, over its first, at the top: 0.1 x 251.3 m.
+  const std::size_t last = net.rfind(' ', net.find("\">", net.find("shape=\"")));
+  const std::string end = net.substr(last + 1, net.find("\">", last) - last - 1);
+  EXPECT_NEAR(std::stod(end.substr(end.rfind(',') + 1)), 0.1 * kLength, 1e-3) << end;
+}
+
 TEST(SumoDrape, AChordOverACrestGetsPointsUntilItLiesOnTheSurface) {
   // Road 1 climbs over a crest, z = 0.3 s - 0.002 s^2 (0 and 10 m at its ends as on the ramp, 5 m
   // above the ramp at s = 50). Its lanes have a point at each end only: SUMO would carry a
