@@ -52,8 +52,8 @@ SumoDrape drape_sumo_net(std::string& net_xml, const RoadModel& model, const std
       bool changed = false;
       // The last point written with its surface height, for the chord to the next one, and
       // where it lies (OpenDRIVE road and station): each point is looked for along the road
-      // from the one before, so that a road lying over itself in plan (a keyhole loop beside
-      // its legs, a spiral ramp) gives each point its own part's height.
+      // from the one before, so that a road lying over itself in plan (a tight corner beside
+      // its own legs, a spiral ramp) gives each point its own part's height.
       std::optional<Vec3> last;
       std::optional<std::pair<int, double>> last_at;
       // Points between a and b (both on the surface) where their chord leaves it, by bisection.

@@ -52,31 +52,31 @@ std::size_t split_folds(OsmRoads& osm, Diagnostics& diagnostics) {
   std::size_t folds = 0;
   std::vector<OsmWay> out;
   out.reserve(osm.ways.size());
-  for (OsmWay& way : osm.ways) {
+  for (const OsmWay& way : osm.ways) {
     const WayAttributes& a = way.attributes;
     const double half_width = 0.5 * a.lane_width_m * (a.lanes_forward + a.lanes_backward);
-    OsmWay main;
-    main.id = way.id;
-    main.attributes = a;
+    OsmWay kept;
+    kept.id = way.id;
+    kept.attributes = a;
     std::vector<OsmWay> spurs;
     for (std::size_t k = 0; k < way.node_ids.size(); ++k) {
-      main.node_ids.push_back(way.node_ids[k]);
-      main.nodes.push_back(way.nodes[k]);
-      while (main.node_ids.size() >= 3) {
-        const std::size_t n = main.node_ids.size();
-        const auto fold = fold_at(main.nodes[n - 3], main.nodes[n - 2], main.nodes[n - 1], half_width);
+      kept.node_ids.push_back(way.node_ids[k]);
+      kept.nodes.push_back(way.nodes[k]);
+      while (kept.node_ids.size() >= 3) {
+        const std::size_t n = kept.node_ids.size();
+        const auto fold = fold_at(kept.nodes[n - 3], kept.nodes[n - 2], kept.nodes[n - 1], half_width);
         if (!fold) break;
         const std::size_t near = fold->near_is_z ? n - 1 : n - 3;
         OsmWay spur;
         spur.id = way.id;
         spur.attributes = a;
-        spur.node_ids = {main.node_ids[near], main.node_ids[n - 2]};
-        spur.nodes = {main.nodes[near], main.nodes[n - 2]};
+        spur.node_ids = {kept.node_ids[near], kept.node_ids[n - 2]};
+        spur.nodes = {kept.nodes[near], kept.nodes[n - 2]};
         std::ostringstream msg;
         msg.precision(2);
-        msg << std::fixed << "way " << way.id << " folds back at node " << main.node_ids[n - 2] << " (turns "
+        msg << std::fixed << "way " << way.id << " folds back at node " << kept.node_ids[n - 2] << " (turns "
             << fold->turn_deg << " degrees; its shorter leg, " << fold->shorter_m << " m to node "
-            << main.node_ids[near] << ", lies " << fold->offset_m << " m from the other: their pavements, "
+            << kept.node_ids[near] << ", lies " << fold->offset_m << " m from the other: their pavements, "
             << 2.0 * half_width
             << " m wide, overlap along all of it): the stretch is built once, a way of its own";
         Diagnostic d;
@@ -84,15 +84,15 @@ std::size_t split_folds(OsmRoads& osm, Diagnostics& diagnostics) {
         d.code = codes::kOsmWayTurnsBack;
         d.message = msg.str();
         d.osm_way_id = way.id;
-        d.osm_node_id = main.node_ids[n - 2];
+        d.osm_node_id = kept.node_ids[n - 2];
         diagnostics.report(std::move(d));
         spurs.push_back(std::move(spur));
-        main.node_ids.erase(main.node_ids.begin() + static_cast<long>(n - 2));
-        main.nodes.erase(main.nodes.begin() + static_cast<long>(n - 2));
+        kept.node_ids.erase(kept.node_ids.begin() + static_cast<long>(n - 2));
+        kept.nodes.erase(kept.nodes.begin() + static_cast<long>(n - 2));
         ++folds;
       }
     }
-    out.push_back(std::move(main));
+    out.push_back(std::move(kept));
     for (OsmWay& spur : spurs) out.push_back(std::move(spur));
   }
   osm.ways = std::move(out);

@@ -7,16 +7,15 @@
 
 #include "relief/roads/network_builder.h"
 
+#include "support/osm_sketch.h"
+
 namespace relief::detail {
 namespace {
 
-// Ways drawn in metres east and north of lon 9.5, lat 47.1 (an equirectangular approximation,
-// good to millimetres over these few hundred metres).
+// Ways drawn in metres east and north of lon 9.5, lat 47.1.
 constexpr double kLat0 = 47.1, kLon0 = 9.5;
 LonLat at(double east_m, double north_m) {
-  const double ky = 6371008.8 * std::numbers::pi / 180.0,
-               kx = ky * std::cos(kLat0 * std::numbers::pi / 180.0);
-  return {kLon0 + east_m / kx, kLat0 + north_m / ky};
+  return test::offset_lonlat({kLon0, kLat0}, east_m, north_m);
 }
 
 struct Sketch {

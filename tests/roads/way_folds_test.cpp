@@ -2,22 +2,19 @@
 
 #include <gtest/gtest.h>
 
-#include <cmath>
 #include <cstdint>
-#include <numbers>
 #include <utility>
 #include <vector>
+
+#include "support/osm_sketch.h"
 
 namespace relief::detail {
 namespace {
 
-// Ways drawn in metres east and north of lon 9.5, lat 47.1 (equirectangular, good to
-// millimetres over these few tens of metres). Residential: 2 lanes of 3 m, 6 m wide.
+// Ways drawn in metres east and north of lon 9.5, lat 47.1. Residential: 2 lanes of 3 m, 6 m wide.
 constexpr double kLat0 = 47.1, kLon0 = 9.5;
 LonLat at(double east_m, double north_m) {
-  const double ky = 6371008.8 * std::numbers::pi / 180.0,
-               kx = ky * std::cos(kLat0 * std::numbers::pi / 180.0);
-  return {kLon0 + east_m / kx, kLat0 + north_m / ky};
+  return test::offset_lonlat({kLon0, kLat0}, east_m, north_m);
 }
 
 // One way with nodes 1, 2, ... at the points.

@@ -11,6 +11,12 @@
 
 namespace relief::test {
 
+LonLat offset_lonlat(const LonLat& origin, double east_m, double north_m) {
+  const double ky = 6371008.8 * std::numbers::pi / 180.0;
+  const double kx = ky * std::cos(origin.lat_deg * std::numbers::pi / 180.0);
+  return {origin.lon_deg + east_m / kx, origin.lat_deg + north_m / ky};
+}
+
 namespace {
 
 bool is_letter(char c) {

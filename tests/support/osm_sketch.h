@@ -35,6 +35,11 @@
 
 namespace relief::test {
 
+/// The WGS84 position `east_m` east and `north_m` north of `origin` on a sphere of radius
+/// 6371008.8 m (equirectangular: good to millimetres over a few hundred metres), for tests that
+/// draw OsmWay records in metres.
+[[nodiscard]] LonLat offset_lonlat(const LonLat& origin, double east_m, double north_m);
+
 class OsmSketch {
  public:
   using Tags = std::vector<std::pair<std::string, std::string>>;

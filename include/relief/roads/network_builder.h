@@ -9,8 +9,8 @@
 namespace relief {
 
 /// Builds the network in `frame`.
-/// - A way folding back onto its own pavement at a node (a hairpin drawn to one node, the
-///   shorter leg inside the other's half width) is built once there (detail::split_folds,
+/// - A way folding back onto its own pavement at a node (a hairpin drawn to one node, its legs'
+///   pavements overlapping all along the shorter one) is built once there (detail::split_folds,
 ///   codes::kOsmWayTurnsBack).
 /// - Ways crossing on one level without a shared node get a node at the crossing
 ///   (detail::join_crossing_ways, codes::kOsmCrossingWithoutNode).
