@@ -1,5 +1,7 @@
 #include "roads/junction_planes.h"
 
+#include <optional>
+
 #include <algorithm>
 #include <cmath>
 #include <utility>
@@ -65,14 +67,26 @@ double plane_roll(const Vec2& g, double heading) {
   return std::atan(g.dot(Vec2(-std::sin(heading), std::cos(heading))));
 }
 
-CubicProfile end_rolls(double length, double r0, double r1) {
-  if (r0 == 0.0 && r1 == 0.0) return CubicProfile::constant(0.0);
-  if (length < 2.0 * kRollEase_m) return hermite_profile(length, r0, 0.0, r1, 0.0);
+CubicProfile end_rolls(double length, std::optional<double> r0, std::optional<double> r1) {
+  if (!r0 || !r1) {
+    // A dead end has no plane to meet: it keeps what the other end's ease has left there (a
+    // stub shorter than the ease no longer twists to level within its own length).
+    const double r = r0 ? *r0 : r1.value_or(0.0);
+    if (r == 0.0 || length >= kRollEase_m || (!r0 && !r1))
+      return end_rolls(length, r0.value_or(0.0), r1.value_or(0.0));
+    const double v = length / kRollEase_m;
+    const double value = r * (1.0 - 3.0 * v * v + 2.0 * v * v * v);
+    const double slope = r * 6.0 * v * (v - 1.0) / kRollEase_m;  // d roll / d distance from the pinned end
+    return r0 ? hermite_profile(length, r, 0.0, value, slope)
+              : hermite_profile(length, value, -slope, r, 0.0);
+  }
+  if (*r0 == 0.0 && *r1 == 0.0) return CubicProfile::constant(0.0);
+  if (length < 2.0 * kRollEase_m) return hermite_profile(length, *r0, 0.0, *r1, 0.0);
   const double e = kRollEase_m;
   const double e2 = e * e, e3 = e2 * e;
-  std::vector<CubicPiece> pieces{{0.0, Poly3{r0, 0.0, -3.0 * r0 / e2, 2.0 * r0 / e3}}};
+  std::vector<CubicPiece> pieces{{0.0, Poly3{*r0, 0.0, -3.0 * *r0 / e2, 2.0 * *r0 / e3}}};
   if (length > 2.0 * e) pieces.push_back({e, Poly3{0.0, 0.0, 0.0, 0.0}});
-  pieces.push_back({length - e, Poly3{0.0, 0.0, 3.0 * r1 / e2, -2.0 * r1 / e3}});
+  pieces.push_back({length - e, Poly3{0.0, 0.0, 3.0 * *r1 / e2, -2.0 * *r1 / e3}});
   return CubicProfile(std::move(pieces));
 }
 

@@ -4,6 +4,7 @@
 // tilts the roads' cross-sections (superelevation): a road's ends take the roll of their
 // junction's plane, eased to level within 50 m, and a road inside a junction lies across it.
 
+#include <optional>
 #include <vector>
 
 #include <Eigen/Core>
@@ -36,8 +37,10 @@ namespace relief::detail {
 
 /// A road's roll: at each end the roll r0, r1 of its junction's plane, eased to level with zero
 /// slope at both ends of the ease within 50 m; a road shorter than two eases turns from r0 to r1
-/// in one.
-[[nodiscard]] CubicProfile end_rolls(double length, double r0, double r1);
+/// in one. A dead end (nullopt: no plane to meet) takes what the other end's ease has left at
+/// that distance, with its slope: a 1 m stub off a junction plane rolled 0.33 rad keeps 0.33
+/// rad instead of twisting to level within 1 m.
+[[nodiscard]] CubicProfile end_rolls(double length, std::optional<double> r0, std::optional<double> r1);
 
 /// Roll along a road inside a junction: at every station the roll that lays its cross-section
 /// on the junction's plane, the gradient blended from g0 at its start to g1 at its end (they

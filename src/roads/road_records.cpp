@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <utility>
@@ -175,9 +176,14 @@ void add_model_roads(const JunctionEnds& ends, const std::vector<std::array<doub
                                                : default_speed_mps(road.attributes.highway);
     m.elevation =
         elevation_records(p, m.plan, s0, s1, length, kept_s, ref_s, leaving[road.id], options, out.stats);
-    m.superelevation =
-        end_rolls(m.plan.length(), plane_roll(planes[road.start_junction], m.plan.at(0.0).heading),
-                  plane_roll(planes[road.end_junction], m.plan.at(m.plan.length()).heading));
+    // A dead end meets no plane: its roll is free (end_rolls).
+    const auto roll_at = [&](int junction, double heading) -> std::optional<double> {
+      if (network.junctions[static_cast<std::size_t>(junction)].kind == JunctionKind::dead_end)
+        return std::nullopt;
+      return plane_roll(planes[static_cast<std::size_t>(junction)], heading);
+    };
+    m.superelevation = end_rolls(m.plan.length(), roll_at(road.start_junction, m.plan.at(0.0).heading),
+                                 roll_at(road.end_junction, m.plan.at(m.plan.length()).heading));
     add_lanes(m, road.attributes);
     out.model_road_of[road.id] = static_cast<int>(model.roads.size());
     model.roads.push_back(std::move(m));

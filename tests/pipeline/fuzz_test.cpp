@@ -229,13 +229,14 @@ TEST(Fuzz, RandomNetworksOnRandomTerrainBuildAndCheckThemselves) {
 // ends), every fit converged; 36 passed every gate against 87 of the same seeds without the
 // errors, most of the others where a hairpin drawn to one node folded its return leg along its
 // way past a junction (junctions_open 38, sumo_height_steps 46, ground_holes 8). Such a way is
-// now built once where its legs' pavements overlap (osm.way_turns_back): 55 passed (8 fits by
-// the method of multipliers); the others fail sumo_height_steps 24, ground_vs_dem_rmse_m 16
-// (the steepest terrains, as without the errors), connecting_road_grade_over_cap_percent 13,
-// fit_limits_violated 9, road_self_intersections 7, junctions_open 2, ground_holes 2 (known,
-// not fixed).
+// now built once where its legs' pavements overlap (osm.way_turns_back): 55 passed; and a dead
+// end keeps the roll its junction gives it instead of twisting to level within a stub (seed 19's
+// 1 m spur): 60 passed (8 fits by the method of multipliers). The others fail
+// sumo_height_steps 17, ground_vs_dem_rmse_m 16 (the steepest terrains, as without the
+// errors), connecting_road_grade_over_cap_percent 13, fit_limits_violated 9,
+// road_self_intersections 7, junctions_open 2, ground_holes 1 (known, not fixed).
 TEST(Fuzz, RandomNetworksWithOsmDataErrorsBuildAndCheckThemselves) {
-  build_and_check_seeds(true, 15);  // measured 15 of 30 (11 before ways folding onto themselves)
+  build_and_check_seeds(true, 17);  // measured 17 of 30 (11 before ways folding onto themselves)
 }
 
 // Seeds whose two-road bends were too sharp for their short roads to be trimmed back far enough:

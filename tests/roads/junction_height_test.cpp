@@ -5,9 +5,11 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <iostream>
 #include <numbers>
+#include <optional>
 #include <random>
 #include <tuple>
 
@@ -246,6 +248,39 @@ TEST(JunctionHeight, ARoadCrossingOneThatLeftTheSurfaceMeetsItThere) {
   EXPECT_NEAR(again.elevation.value(16.0), left.elevation.value(16.0), 1e-9);
   EXPECT_NEAR(again.elevation.derivative(0.0), 0.12, 1e-9);
   EXPECT_NEAR(again.elevation.derivative(16.0), 0.12, 1e-9);
+}
+
+// A road's ends take their junction planes' rolls, eased to level within 50 m. A dead end meets
+// no plane: it keeps what the other end's ease has left there (1 m stubs off junctions rolled
+// 0.18 and 0.33 rad twisted to level within their metre in the fuzzer's seeds 19 and 17 with
+// OSM errors, and SUMO's lanes stepped onto them).
+TEST(JunctionPlanes, ADeadEndKeepsTheRollItsStubCannotEaseOff) {
+  const auto ease = [](double r, double d) {
+    const double v = std::min(d / 50.0, 1.0);
+    return r * (1.0 - 3.0 * v * v + 2.0 * v * v * v);
+  };
+  const CubicProfile stub = end_rolls(1.0, 0.325, std::nullopt);
+  EXPECT_NEAR(stub.value(0.0), 0.325, 1e-12);
+  EXPECT_NEAR(stub.value(1.0), ease(0.325, 1.0), 1e-12);           // 0.32461
+  EXPECT_NEAR(end_rolls(1.0, 0.325, 0.0).value(1.0), 0.0, 1e-12);  // between two planes it must turn
+  const CubicProfile back = end_rolls(1.0, std::nullopt, 0.325);
+  EXPECT_NEAR(back.value(0.0), ease(0.325, 1.0), 1e-12);
+  EXPECT_NEAR(back.value(1.0), 0.325, 1e-12);
+  // Up to the ease's length the dead end's roll is the ease itself, cut; beyond it, level.
+  for (const double length : {1.0, 12.0, 30.0, 49.0}) {
+    const CubicProfile road = end_rolls(length, 0.2, std::nullopt);
+    const CubicProfile reversed = end_rolls(length, std::nullopt, 0.2);
+    for (int k = 0; k <= 20; ++k) {
+      const double s = length * k / 20.0;
+      EXPECT_NEAR(road.value(s), ease(0.2, s), 1e-12) << length << " " << s;
+      EXPECT_NEAR(reversed.value(s), ease(0.2, length - s), 1e-12) << length << " " << s;
+    }
+  }
+  const CubicProfile long_road = end_rolls(120.0, 0.2, std::nullopt);
+  for (int k = 0; k <= 24; ++k) {
+    EXPECT_NEAR(long_road.value(5.0 * k), end_rolls(120.0, 0.2, 0.0).value(5.0 * k), 1e-12) << k;
+  }
+  EXPECT_EQ(end_rolls(10.0, std::nullopt, std::nullopt).value(5.0), 0.0);
 }
 
 }  // namespace
