@@ -1,9 +1,8 @@
 #include "roads/junction_planes.h"
 
-#include <optional>
-
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <utility>
 
 #include <Eigen/Eigenvalues>
