@@ -113,7 +113,7 @@ void EgoDrivers::after_sumo_step(std::vector<SumoVehicleState>& vehicles, double
     lane_[v.id] = v.lane;
     if (!world_ || !world_->has(v.id)) {
       spawn(v, v.heading());
-      ++result.egos;
+      if (spawned_.insert(v.id).second) ++result.egos;  // distinct egos, not spawns
     } else {
       const EgoState s = world_->state(v.id);
       const Vec2 front = s.centre + 0.5 * v.length_m * direction(s.heading_rad);

@@ -55,7 +55,8 @@ class EgoDrivers {
   const CosimOptions& options_;
   std::unique_ptr<EgoWorld> world_;  // built when the first ego departs
   std::unordered_set<std::string> named_, seen_, driven_;
-  std::unordered_set<std::string> released_;                    // handed back to SUMO for their last metres
+  std::unordered_set<std::string> released_;  // handed back to SUMO for their last metres
+  std::unordered_set<std::string> spawned_;  // driven at least once (one may leave and come back: a teleport)
   std::unordered_map<std::string, std::string> lane_, vclass_;  // an ego's SUMO lane; a type's vClass
   // Each ego's route, edge by edge with its lanes' centre lines.
   std::unordered_map<std::string, std::vector<std::pair<std::string, std::vector<std::vector<Vec2>>>>> route_;
