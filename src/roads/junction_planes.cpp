@@ -70,9 +70,8 @@ CubicProfile end_rolls(double length, std::optional<double> r0, std::optional<do
   if (!r0 || !r1) {
     // A dead end has no plane to meet: it keeps what the other end's ease has left there (a
     // stub shorter than the ease no longer twists to level within its own length).
-    const double r = r0 ? *r0 : r1.value_or(0.0);
-    if (r == 0.0 || length >= kRollEase_m || (!r0 && !r1))
-      return end_rolls(length, r0.value_or(0.0), r1.value_or(0.0));
+    const double r = r0 ? *r0 : r1.value_or(0.0);  // 0 with both ends free
+    if (r == 0.0 || length >= kRollEase_m) return end_rolls(length, r0.value_or(0.0), r1.value_or(0.0));
     const double v = length / kRollEase_m;
     const double value = r * (1.0 - 3.0 * v * v + 2.0 * v * v * v);
     const double slope = r * 6.0 * v * (v - 1.0) / kRollEase_m;  // d roll / d distance from the pinned end
