@@ -23,9 +23,10 @@ using Vec = Eigen::VectorXd;
 using Permutation = Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int>;
 
 constexpr double kStepFraction = 0.99;   // of the step to the boundary of the positive orthant
-constexpr double kNeighbourhood = 1e-3;  // gamma of the neighbourhood s_i y_i >= gamma tau_i mu
+constexpr double kNeighbourhood = 1e-3;  // gamma of the neighbourhood s_i y_i >= gamma c_i mu
 constexpr double kStartMu = 1.0;
 constexpr double kStartForceCap = 1e3;     // complementarity at the start (force x row unit)
+constexpr double kStartProductCap = 1e5;   // largest complementarity at the start
 constexpr double kStartPriceShare = 0.25;  // w's least share of the price at the start
 constexpr double kStartSlackShare = 0.05;  // smallest starting slack, share of the row's scale
 constexpr double kMaxCentring = 1.0;       // largest sigma
@@ -34,8 +35,9 @@ constexpr int kStallIterations = 4;             // without progress once the gap
 constexpr double kRoundingStationarity = 1e-4;  // accepted then (relative force imbalance)
 constexpr double kRoundingGap = 1e-7;           // and the relative gap accepted with it
 constexpr double kFarBound = 1e6;               // a missing bound, this many row scales away
-constexpr int kPenaltyRounds = 20;              // of the start's quadratic penalties
-constexpr double kPenaltyShare = 1e-3;          // their weight, a share of the row's price
+constexpr int kPenaltyRounds = 12;              // of the start's quadratic penalties
+constexpr double kPenaltyShare = 1e-3;          // their first weight, a share of the row's price
+constexpr double kPenaltyGrowth = 3.0;          // a spring's growth while its row stays beyond
 constexpr double kSplitResidual = 1e-7;         // row units: the method of multipliers stops there
 constexpr int kMultiplierRounds = 100;
 constexpr double kMaxStiffening = 1e6;  // the stiffest envelope, relative to P's diagonal
@@ -208,13 +210,14 @@ inline void row_scatter(const RowMat& A, int r, double f, double* out) {
 
 // The rows in the interior point, each with two finite bounds (a missing one is moved far away)
 // and three complementarity pairs: sl yl (lower bound), su yu (upper bound), v w (the violation,
-// and what is left of its price), each pair with its weight tau on the central path.
+// and what is left of its price), each pair with its centrality c at the start (its product over
+// the mean product, at most 1), which the neighbourhood keeps it from falling far below.
 // Struct of arrays, indexed by position in the working set.
 struct WorkingRows {
   std::vector<int> row;  // index in A
   std::vector<double> scale, l, u, c;
   std::vector<double> sl, yl, su, yu, v, w;
-  std::vector<double> tl, tu, tv;  // weights
+  std::vector<double> tl, tu, tv;  // centralities at the start
   // Per iteration: residuals, scalings, the right-hand side parts and the direction.
   std::vector<double> r1, r2, r3, th_l, th_u, big_w, d, f;
   std::vector<double> dsl, dyl, dsu, dyu, dv, dw;
@@ -225,6 +228,11 @@ struct WorkingRows {
     for (auto* a : {&sl,   &yl,   &su,    &yu, &v, &w,   &tl,  &tu,  &tv,  &r1, &r2, &r3,
                     &th_l, &th_u, &big_w, &d,  &f, &dsl, &dyl, &dsu, &dyu, &dv, &dw})
       a->resize(m);
+  }
+  /// Copies the slacks and multipliers of `from`: kept with a point the run may end at, and given
+  /// back with it, so that a run ending at an earlier point answers with that point's multipliers.
+  void copy_point(const WorkingRows& from) {
+    sl = from.sl, yl = from.yl, su = from.su, yu = from.yu, v = from.v, w = from.w;
   }
   [[nodiscard]] double product(std::size_t k, double alpha) const {
     return (sl[k] + alpha * dsl[k]) * (yl[k] + alpha * dyl[k]) +
@@ -276,11 +284,10 @@ class InteriorPoint {
     Vec Px(n), Atz(n), rd(n), rhs(n), dx(n);
     const double tol = options_.tolerance;
     const double gap_tol = options_.gap_tolerance.value_or(tol);
-    double weight_sum = 0.0;
-    for (std::size_t k = 0; k < m; ++k) weight_sum += rows_.tl[k] + rows_.tu[k] + rows_.tv[k];
-    weight_sum = std::max(weight_sum, 1e-300);
+    const double pairs = std::max(3.0 * static_cast<double>(m), 1.0);
     double best_stationarity = std::numeric_limits<double>::infinity();
     Vec best_x;
+    WorkingRows best_rows;  // the rows' slacks and multipliers at best_x
     // The best point whose bounds and prices hold and whose gap is closed to kRoundingGap (by its
     // stationarity): where the iteration ends without meeting the tolerance (a step that turns
     // non-finite as mu reaches 1e-10, a stall of rounding), that point is the answer when its
@@ -288,6 +295,7 @@ class InteriorPoint {
     // 2e-8 at iteration 49, and its next steps lost s and y to rounding.
     double acceptable_stationarity = std::numeric_limits<double>::infinity();
     Vec acceptable_x;
+    WorkingRows acceptable_rows;
     SoftQpResult acceptable;
     const auto end_without_tolerance = [&](const char* status) {
       if (acceptable_stationarity <= kRoundingStationarity) {
@@ -295,6 +303,7 @@ class InteriorPoint {
           options_.trace(std::string(status) +
                          ": the best point within the rounding tolerances is the answer");
         x = acceptable_x;
+        rows_.copy_point(acceptable_rows);
         out.stationarity = acceptable.stationarity;
         out.gap = acceptable.gap;
         out.objective = acceptable.objective;
@@ -338,7 +347,7 @@ class InteriorPoint {
       out.stationarity = rd.lpNorm<Eigen::Infinity>() / scale;
       out.gap = gap / (1.0 + std::abs(objective));
       out.objective = objective;
-      const double mu = gap / weight_sum;
+      const double mu = gap / pairs;
       if (out.stationarity <= 10.0 * tol && primal <= tol && price_residual <= tol && out.gap <= gap_tol) {
         out.converged = true;
         return;
@@ -351,6 +360,7 @@ class InteriorPoint {
           out.stationarity < acceptable_stationarity) {
         acceptable_stationarity = out.stationarity;
         acceptable_x = x;
+        acceptable_rows.copy_point(rows_);
         acceptable = out;
       }
       // Complementarity gone and stationarity down to what rounding leaves in the normal
@@ -360,9 +370,11 @@ class InteriorPoint {
         if (out.stationarity < best_stationarity) {
           best_stationarity = out.stationarity;
           best_x = x;
+          best_rows.copy_point(rows_);
           stalled = 0;
         } else if (++stalled >= kStallIterations) {
           x = best_x;
+          rows_.copy_point(best_rows);
           out.stationarity = best_stationarity;
           out.converged = best_stationarity <= kRoundingStationarity;
           if (!out.converged) out.status = "stalled";
@@ -399,7 +411,7 @@ class InteriorPoint {
         direction(rd, rhs, dx, sigma * mu, nullptr);
         alpha = std::min(1.0, kStepFraction * max_step());
       }
-      alpha = neighbourhood_step(alpha, weight_sum);
+      alpha = neighbourhood_step(alpha, pairs);
       if (options_.trace) {
         char line[256];
         std::snprintf(line, sizeof line,
@@ -425,11 +437,17 @@ class InteriorPoint {
   // Starts every working row at `x`: the slacks what x leaves (at least a share of the row's
   // scale), the multipliers kStartMu over them, or the force the start's penalty put on the row
   // where that is larger (so that the start is as stationary as the point it came from), the rest
-  // of the price in w (dual feasible), v = kStartMu / w. The weights tau of the central path are
-  // these products. A violated row starts primal infeasible (a positive slack although x lies
-  // beyond the bound), a residual the iterations close by moving x or growing v. (Starting it
-  // primal feasible instead, v past its violation, puts a complementarity of price x violation
-  // on it, and the centring then pushes every other row towards that average.)
+  // of the price in w (dual feasible), v = kStartMu / w. Each pair's centrality is its product
+  // over the mean (at most 1): the central path itself is the uniform one (every product the same
+  // mu), and the neighbourhood lets a pair that starts far below the mean stay as far below in
+  // proportion, no further. (With these products as the path's weights instead, a weighted path,
+  // the products spanned ten orders of magnitude and the iterations crawled at steps of 0.2-0.3
+  // where rows a millimetre wide bind along whole roads: the generated mountain range's fit took
+  // 161 iterations, 115 of them in its first round.) A violated row starts primal infeasible (a
+  // positive slack although x lies beyond the bound), a residual the iterations close by moving x
+  // or growing v. (Starting it primal feasible instead, v past its violation, puts a
+  // complementarity of price x violation on it, and the centring then pushes every other row
+  // towards that average.)
   void start(const Vec& x, const std::vector<double>& force) {
     const std::size_t m = rows_.size();
     rows_.resize();
@@ -476,6 +494,16 @@ class InteriorPoint {
         }
         rows_.yl[k] = yl;
         rows_.yu[k] = yu;
+        // A bound that bears a large force starts near it: its slack at most kStartProductCap
+        // over the force. (A row at its bound with a force of 1e8 and its slack at the floor had
+        // a product of 1e7, which set mu, and the centring then pulled every other pair up
+        // towards it at steps of 1e-5: three of ProfileFit.RandomNetworksConverge's twelve
+        // networks stalled, as they do with a cap of 1e6. With 1-10 some of the generated
+        // mountain chains stalled, with 1e3 Liechtenstein; 1e4-3e5 solve all of them, and 1e5
+        // lies in the middle.) Where the slack was larger, the row starts primal infeasible by
+        // the difference, like a violated row.
+        rows_.sl[k] = std::min(rows_.sl[k], kStartProductCap / yl);
+        rows_.su[k] = std::min(rows_.su[k], kStartProductCap / yu);
         rows_.w[k] = c - yl - yu;
         rows_.v[k] = kStartMu / rows_.w[k];
       }
@@ -483,9 +511,17 @@ class InteriorPoint {
       rows_.tu[k] = rows_.su[k] * rows_.yu[k];
       rows_.tv[k] = rows_.v[k] * rows_.w[k];
     }
+    double sum = 0.0;
+    for (std::size_t k = 0; k < m; ++k) sum += rows_.tl[k] + rows_.tu[k] + rows_.tv[k];
+    const double mean = std::max(sum / std::max(3.0 * static_cast<double>(m), 1.0), 1e-300);
+    for (std::size_t k = 0; k < m; ++k) {
+      rows_.tl[k] = std::min(1.0, rows_.tl[k] / mean);
+      rows_.tu[k] = std::min(1.0, rows_.tu[k] / mean);
+      rows_.tv[k] = std::min(1.0, rows_.tv[k] / mean);
+    }
   }
 
-  // One Newton direction. The complementarity targets are rho = target tau - s y (minus the
+  // One Newton direction. The complementarity targets are rho = target - s y (minus the
   // predictor's ds dy when `affine` is given); per row, dz = dyl - dyu = -D g + e with g = a dx,
   // so (P + A'DA) dx = -rd + A'e, then each row's parts follow from g. Eliminating dsl, dsu,
   // dyl, dyu and dw and solving v's complementarity for dv:
@@ -496,9 +532,9 @@ class InteriorPoint {
     const std::size_t m = rows_.size();
     rhs = -rd;
     for (std::size_t k = 0; k < m; ++k) {
-      double rho4 = target * rows_.tl[k] - rows_.sl[k] * rows_.yl[k];
-      double rho5 = target * rows_.tu[k] - rows_.su[k] * rows_.yu[k];
-      double rho6 = target * rows_.tv[k] - rows_.v[k] * rows_.w[k];
+      double rho4 = target - rows_.sl[k] * rows_.yl[k];
+      double rho5 = target - rows_.su[k] * rows_.yu[k];
+      double rho6 = target - rows_.v[k] * rows_.w[k];
       if (affine) {
         rho4 -= affine->dsl[k] * affine->dyl[k];
         rho5 -= affine->dsu[k] * affine->dyu[k];
@@ -531,13 +567,13 @@ class InteriorPoint {
   }
 
   // The largest step up to `alpha` (shrunk by 0.8 at a time) that keeps every complementarity
-  // pair at least kNeighbourhood times its weight times their weighted mean.
-  [[nodiscard]] double neighbourhood_step(double alpha, double weight_sum) const {
+  // pair at least kNeighbourhood times its centrality at the start times the mean product.
+  [[nodiscard]] double neighbourhood_step(double alpha, double pairs) const {
     const std::size_t m = rows_.size();
     for (int tries = 0; tries < 60; ++tries, alpha *= 0.8) {
       double sum = 0.0;
       for (std::size_t k = 0; k < m; ++k) sum += rows_.product(k, alpha);
-      const double floor = kNeighbourhood * sum / weight_sum;
+      const double floor = kNeighbourhood * sum / pairs;
       bool inside = true;
       for (std::size_t k = 0; k < m && inside; ++k) {
         inside =
@@ -596,16 +632,20 @@ SoftQpResult interior_point(const SoftQp& problem, NormalMatrix& normal, const S
   normal.solve(-problem.q, x);
   Vec t = A * x;
   // From there, rounds of one-sided quadratic penalties on the rows found violated, each pulled
-  // a little inside its bound (the penalty a thousandth of its price, so priorities hold): a start
-  // near feasibility wherever feasibility is possible. Parts of the problem the objective hardly
-  // determines (a deck whose only data are its anchors) would otherwise start anywhere, and an
-  // interior point needs many short steps to cross a large infeasibility among tight rows.
+  // a little inside its bound (the penalty first a thousandth of its price, so priorities hold,
+  // then three times stiffer each round its row stays beyond the bound, up to the price): a start
+  // near feasibility wherever feasibility is possible. (Without the growth, rows a millimetre
+  // wide stayed several widths beyond their bounds, for the interior point to cross.) Parts of the
+  // problem the objective hardly determines (a deck whose only data are its anchors) would
+  // otherwise start anywhere, and an interior point needs many short steps to cross a large
+  // infeasibility among tight rows.
   // One-sided: a spring whose row ends inside its aim is released in the next round, because it
   // would pull the row back towards the bound with a force no bound bears; the interior point
   // then starts with every remaining spring's force as that row's multiplier, stationary. (With
   // two-sided springs, kept on, Portland's interior point started with force imbalances of 1e6
   // on rows inside their bounds, crawled at steps of 1e-3 and stalled; 223 s for its fit, 17-19 s
-  // now.) The rounds end when no spring is added or released, after at most kPenaltyRounds.
+  // now.) The rounds end when no spring is added, released or stiffened, after at most
+  // kPenaltyRounds.
   std::vector<double> force(static_cast<std::size_t>(m), 0.0);  // the rows' forces at x
   std::vector<int> penalised;
   std::vector<double> rho, aim;
@@ -621,6 +661,12 @@ SoftQpResult interior_point(const SoftQp& problem, NormalMatrix& normal, const S
       const int r = penalised[k];
       const bool beyond = side[k] < 0 ? t[r] < aim[k] : t[r] > aim[k];
       if (beyond) {
+        // Still beyond the bound itself: a stiffer spring, up to the row's price.
+        const bool outside = side[k] < 0 ? t[r] < l[r] : t[r] > u[r];
+        if (outside && rho[k] < problem.price[r]) {
+          rho[k] = std::min(problem.price[r], kPenaltyGrowth * rho[k]);
+          ++changed;
+        }
         ++k;
         continue;
       }

@@ -15,9 +15,10 @@
 //
 // Method. A primal-dual interior point (Mehrotra's predictor-corrector, Nocedal & Wright 16.6)
 // on the normal equations (P + A'DA) dx = r, kept in the wide neighbourhood of its central path
-// (s_i y_i >= gamma tau_i mu; Wright, Primal-Dual Interior-Point Methods, ch. 5-6). It starts
-// from the unconstrained minimiser after a few rounds of quadratic penalties on the rows found
-// violated (a start near feasibility wherever feasibility is possible). Rows far inside their
+// (s_i y_i >= gamma c_i mu, c_i how central pair i started, at most 1; Wright, Primal-Dual
+// Interior-Point Methods, ch. 5-6). It starts from the unconstrained minimiser after a few rounds
+// of quadratic penalties on the rows found violated, stiffened while a row stays beyond its bound
+// (a start near feasibility wherever feasibility is possible). Rows far inside their
 // bounds are screened out: the interior point runs on the rows near or beyond a bound, every row
 // is checked at its solution, and the rows found violated join another round (a point that meets
 // every row left out solves the whole problem: those rows carry no multiplier).
