@@ -27,6 +27,43 @@ struct StringWriter : pugi::xml_writer {
   void write(const void* data, size_t size) override { text.append(static_cast<const char*>(data), size); }
 };
 
+// The lane's points take their heights once more, each located along the road from the point
+// before it in the final shape. The first pass located an original point from the original point
+// before it, not from the points inserted between them; where the two hints lead to different
+// parts of a road lying over itself (netconvert extended a Liechtenstein path's internal lane by
+// 336 m beside its own legs), the check, which reads the final shape in order, found the point
+// 0.26 m off the surface.
+std::string reheight_in_order(const std::string& text, const std::string& id, detail::LaneLocator& locator,
+                              SumoDrape& out) {
+  std::istringstream in(text);
+  std::string result;
+  std::optional<std::pair<int, double>> last_at;
+  char z_text[64];
+  for (std::string token; in >> token;) {
+    if (!result.empty()) result += ' ';
+    const std::size_t first = token.find(',');
+    const std::size_t second = first == std::string::npos ? first : token.find(',', first + 1);
+    if (second == std::string::npos) {
+      result += token;
+      last_at.reset();
+      continue;
+    }
+    const Vec2 p(std::stod(token.substr(0, first)), std::stod(token.substr(first + 1, second - first - 1)));
+    const auto at = locator.locate(id, p, last_at);
+    if (!at) {
+      result += token;
+      last_at.reset();
+      continue;
+    }
+    last_at = std::make_pair(at->road->id, at->s);
+    const double z = surface_z(*at->road, at->s, at->t);
+    std::snprintf(z_text, sizeof z_text, "%.3f", z);
+    if (token.compare(second + 1, std::string::npos, z_text) != 0) ++out.points_reheighted;
+    result += token.substr(0, second + 1) + z_text;
+  }
+  return result;
+}
+
 }  // namespace
 
 SumoDrape drape_sumo_net(std::string& net_xml, const RoadModel& model, const std::string& file) {
@@ -120,7 +157,7 @@ SumoDrape drape_sumo_net(std::string& net_xml, const RoadModel& model, const std
         rewritten += (rewritten.empty() ? "" : " ") + xy + "," + z_text;
         changed = true;
       }
-      if (changed) shape.set_value(rewritten.c_str());
+      if (changed) shape.set_value(reheight_in_order(rewritten, id, locator, out).c_str());
     }
   }
   StringWriter writer;

@@ -5,7 +5,9 @@
 
 #include <cmath>
 #include <cstdio>
+#include <iostream>
 #include <numbers>
+#include <random>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -165,6 +167,69 @@ TEST(SumoDrape, ARoadOverItselfInPlanGivesEachTurnItsOwnHeight) {
   const std::size_t last = net.rfind(' ', net.find("\">", net.find("shape=\"")));
   const std::string end = net.substr(last + 1, net.find("\">", last) - last - 1);
   EXPECT_NEAR(std::stod(end.substr(end.rfind(',') + 1)), 0.1 * kLength, 1e-3) << end;
+}
+
+// Generated spirals (radius, turns and climb at random) whose lane shapes have points at random
+// angles, from 2 to 170 degrees apart, all heights 0: wherever the drape's bisection puts points
+// and whatever the shape's gaps, the check, reading the final shape point by point, finds every
+// point on the surface and no step. (The drape located an original point from the original point
+// before it, the check from the point before it in the final shape, inserted points included;
+// where those led to different turns, the check found the point off the surface.)
+TEST(SumoDrape, SparseShapesOnGeneratedSpiralsLieOnTheSurfaceAsTheCheckReadsThem) {
+  std::mt19937 rng(11U);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  std::size_t reheighted = 0;
+  for (int seed = 0; seed < 200; ++seed) {
+    const double radius = 12.0 + 30.0 * unit(rng), turns = 1.3 + 2.0 * unit(rng),
+                 climb = 0.04 + 0.12 * unit(rng);
+    const double length = 2.0 * std::numbers::pi * radius * turns;
+    ModelRoad road;
+    road.id = 1;
+    PlanGeometry arc;
+    arc.kind = PlanGeometry::Kind::arc;
+    arc.start = Vec2(0.0, -radius);
+    arc.heading = 0.0;
+    arc.curvature = 1.0 / radius;
+    arc.length = length;
+    road.plan = PlanView({arc});
+    road.elevation = CubicProfile({CubicPiece{0.0, {0.0, climb, 0.0, 0.0}}});
+    road.lane_offset = CubicProfile::constant(0.0);
+    LaneModel lane;
+    lane.id = -1;
+    lane.width = CubicProfile({CubicPiece{0.0, {3.0, 0.0, 0.0, 0.0}}});
+    LaneSection section;
+    section.right = {lane};
+    road.sections = {section};
+    RoadModel model;
+    model.roads = {road};
+    const double r = radius + 1.5, total = 2.0 * std::numbers::pi * turns;
+    std::ostringstream shape;
+    shape.precision(10);
+    for (double a = 0.0;; a += (2.0 + 168.0 * unit(rng)) * std::numbers::pi / 180.0) {
+      const double at = std::min(a, total) - 0.5 * std::numbers::pi;
+      shape << (a == 0.0 ? "" : " ") << r * std::cos(at) << "," << r * std::sin(at) << ",0";
+      if (a >= total) break;
+    }
+    std::string net = R"(<net version="1.9">
+  <edge id="1" from="A" to="B">
+    <lane id="1_0" index="0" speed="10" length=")" +
+                      std::to_string(length) + R"(" shape=")" + shape.str() + R"(">
+      <param key="odr.lane" value="-1"/>
+    </lane>
+    <param key="odr.road" value="1"/>
+  </edge>
+</net>
+)";
+    const SumoDrape drape = drape_sumo_net(net, model, "spiral.net.xml");
+    reheighted += drape.points_reheighted;
+    const SumoNetCheck check = check_sumo_net(net, model, "spiral.net.xml");
+    SCOPED_TRACE("spiral " + std::to_string(seed) + ": radius " + std::to_string(radius) + " m, " +
+                 std::to_string(turns) + " turns");
+    EXPECT_EQ(check.points_unmapped, 0u);
+    EXPECT_LT(check.z_max_m, 5e-4);
+    EXPECT_EQ(check.height_steps, 0u);
+  }
+  std::cout << "spirals: " << reheighted << " points took another height in the final order\n";
 }
 
 TEST(SumoDrape, AChordOverACrestGetsPointsUntilItLiesOnTheSurface) {

@@ -27,6 +27,11 @@ struct SumoDrape {
   /// Points put in between two where their chord leaves the surface by more than 0.01 m (SUMO
   /// interpolates heights linearly between shape points), by bisection down to 1 m apart.
   std::size_t points_added = 0;
+  /// Points whose height changed when the final shape was located again point by point, each
+  /// from the one before it (inserted points included), as the checks read it: a road lying over
+  /// itself in plan, where the first pass, locating from the original point before, chose another
+  /// part of it.
+  std::size_t points_reheighted = 0;
   double max_move_m = 0.0;         ///< largest height change
   std::string max_move_lane;       ///< the lane of that change
   std::size_t ends_extended = 0;   ///< internal lane ends extended to a lane netconvert cut short
