@@ -16,6 +16,7 @@ packages=(
   pybind11-dev python3-dev python3-pytest
   libbullet-dev python3-numpy libembree-dev python3-open3d
   nodejs chromium python3-distributed
+  osmium-tool
 )
 # npm: Debian's own package when Node.js is Debian's (a Node.js with its own npm has it already).
 command -v npm >/dev/null || packages+=(npm)
