@@ -111,23 +111,19 @@ TEST(SumoDrape, LanePointsNetconvertLeftOffTheSurfaceTakeItsHeight) {
   EXPECT_THROW((void)drape_sumo_net(not_a_net, model, "x.net.xml"), InvalidInput);
 }
 
-TEST(SumoDrape, ARoadOverItselfInPlanGivesEachTurnItsOwnHeight) {
-  // A spiral ramp: two full turns of radius 20 m about the origin climbing 10 %, one 3 m lane
-  // (centre at t = -1.5, radius 21.5 m). Every point of the second turn lies on one of the
-  // first, 12.57 m lower; projected on the whole road it took the first turn's height (a
-  // 12.6 m jump where the lane passes from one turn to the other's plan). Each point is now
-  // looked for along the road from the one before.
-  constexpr double kRadius = 20.0, kLength = 4.0 * std::numbers::pi * kRadius;
+// A spiral ramp: an arc of radius `radius` about the origin from (0, -radius), `length` long,
+// climbing `climb`, with one 3 m lane on its right (centre at t = -1.5).
+RoadModel spiral_model(double radius, double length, double climb) {
   ModelRoad road;
   road.id = 1;
   PlanGeometry arc;
   arc.kind = PlanGeometry::Kind::arc;
-  arc.start = Vec2(0.0, -kRadius);
+  arc.start = Vec2(0.0, -radius);
   arc.heading = 0.0;
-  arc.curvature = 1.0 / kRadius;
-  arc.length = kLength;
+  arc.curvature = 1.0 / radius;
+  arc.length = length;
   road.plan = PlanView({arc});
-  road.elevation = CubicProfile({CubicPiece{0.0, {0.0, 0.1, 0.0, 0.0}}});
+  road.elevation = CubicProfile({CubicPiece{0.0, {0.0, climb, 0.0, 0.0}}});
   road.lane_offset = CubicProfile::constant(0.0);
   LaneModel lane;
   lane.id = -1;
@@ -137,6 +133,17 @@ TEST(SumoDrape, ARoadOverItselfInPlanGivesEachTurnItsOwnHeight) {
   road.sections = {section};
   RoadModel model;
   model.roads = {road};
+  return model;
+}
+
+TEST(SumoDrape, ARoadOverItselfInPlanGivesEachTurnItsOwnHeight) {
+  // A spiral ramp: two full turns of radius 20 m about the origin climbing 10 %, one 3 m lane
+  // (centre at t = -1.5, radius 21.5 m). Every point of the second turn lies on one of the
+  // first, 12.57 m lower; projected on the whole road it took the first turn's height (a
+  // 12.6 m jump where the lane passes from one turn to the other's plan). Each point is now
+  // looked for along the road from the one before.
+  constexpr double kRadius = 20.0, kLength = 4.0 * std::numbers::pi * kRadius;
+  const RoadModel model = spiral_model(kRadius, kLength, 0.1);
 
   // The lane every 2 degrees, all heights 0 (as if netconvert had dropped them).
   std::ostringstream shape;
@@ -183,25 +190,7 @@ TEST(SumoDrape, SparseShapesOnGeneratedSpiralsLieOnTheSurfaceAsTheCheckReadsThem
     const double radius = 12.0 + 30.0 * unit(rng), turns = 1.3 + 2.0 * unit(rng),
                  climb = 0.04 + 0.12 * unit(rng);
     const double length = 2.0 * std::numbers::pi * radius * turns;
-    ModelRoad road;
-    road.id = 1;
-    PlanGeometry arc;
-    arc.kind = PlanGeometry::Kind::arc;
-    arc.start = Vec2(0.0, -radius);
-    arc.heading = 0.0;
-    arc.curvature = 1.0 / radius;
-    arc.length = length;
-    road.plan = PlanView({arc});
-    road.elevation = CubicProfile({CubicPiece{0.0, {0.0, climb, 0.0, 0.0}}});
-    road.lane_offset = CubicProfile::constant(0.0);
-    LaneModel lane;
-    lane.id = -1;
-    lane.width = CubicProfile({CubicPiece{0.0, {3.0, 0.0, 0.0, 0.0}}});
-    LaneSection section;
-    section.right = {lane};
-    road.sections = {section};
-    RoadModel model;
-    model.roads = {road};
+    const RoadModel model = spiral_model(radius, length, climb);
     const double r = radius + 1.5, total = 2.0 * std::numbers::pi * turns;
     std::ostringstream shape;
     shape.precision(10);

@@ -120,6 +120,40 @@ void expect_kkt(const SoftQp& qp, const SoftQpResult& r, double tol, bool by_ter
   }
 }
 
+// Rows on a chain of heights: first differences (grades) and second differences (curvatures).
+struct ChainRows {
+  std::vector<Eigen::Triplet<double>> entries;
+  std::vector<double> lower, upper, price;
+  void grade(int i, double lo, double hi, double cost) {  // x[i + 1] - x[i]
+    const auto r = static_cast<int>(lower.size());
+    entries.emplace_back(r, i + 1, 1.0);
+    entries.emplace_back(r, i, -1.0);
+    add(lo, hi, cost);
+  }
+  void curvature(int i, double lo, double hi, double cost) {  // x[i - 1] - 2 x[i] + x[i + 1]
+    const auto r = static_cast<int>(lower.size());
+    entries.emplace_back(r, i - 1, 1.0);
+    entries.emplace_back(r, i, -2.0);
+    entries.emplace_back(r, i + 1, 1.0);
+    add(lo, hi, cost);
+  }
+  void into(SoftQp& qp, int n) const {
+    const auto m = static_cast<Eigen::Index>(lower.size());
+    qp.A.resize(m, n);
+    qp.A.setFromTriplets(entries.begin(), entries.end());
+    qp.lower = Eigen::Map<const Vec>(lower.data(), m);
+    qp.upper = Eigen::Map<const Vec>(upper.data(), m);
+    qp.price = Eigen::Map<const Vec>(price.data(), m);
+  }
+
+ private:
+  void add(double lo, double hi, double cost) {
+    lower.push_back(lo);
+    upper.push_back(hi);
+    price.push_back(cost);
+  }
+};
+
 // A chain like a road profile: data, second-difference smoothing, grade and curvature rows.
 SoftQp random_chain(std::mt19937& rng, int n) {
   std::uniform_real_distribution<double> unit(0.0, 1.0);
@@ -143,33 +177,15 @@ SoftQp random_chain(std::mt19937& rng, int n) {
   qp.P.resize(n, n);
   qp.P.setFromTriplets(p.begin(), p.end());
   qp.q = q;
-  std::vector<Eigen::Triplet<double>> rows;
-  std::vector<double> lo, hi, price;
+  ChainRows rows;
   const double cap = 0.2 + 0.6 * unit(rng);
-  for (int i = 0; i + 1 < n; ++i) {  // grades
-    const auto r = static_cast<int>(lo.size());
-    rows.emplace_back(r, i + 1, 1.0);
-    rows.emplace_back(r, i, -1.0);
-    lo.push_back(-cap);
-    hi.push_back(cap);
-    price.push_back(unit(rng) < 0.1 ? 0.5 + unit(rng) : 1e4);  // a few cheap ones give way
-  }
+  for (int i = 0; i + 1 < n; ++i)  // a few cheap ones give way
+    rows.grade(i, -cap, cap, unit(rng) < 0.1 ? 0.5 + unit(rng) : 1e4);
   for (int i = 1; i + 1 < n; ++i) {  // one-sided curvature rows on some stations
     if (unit(rng) < 0.7) continue;
-    const auto r = static_cast<int>(lo.size());
-    rows.emplace_back(r, i - 1, 1.0);
-    rows.emplace_back(r, i, -2.0);
-    rows.emplace_back(r, i + 1, 1.0);
-    lo.push_back(-0.05);
-    hi.push_back(kInf);
-    price.push_back(1e3);
+    rows.curvature(i, -0.05, kInf, 1e3);
   }
-  const auto m = static_cast<Eigen::Index>(lo.size());
-  qp.A.resize(m, n);
-  qp.A.setFromTriplets(rows.begin(), rows.end());
-  qp.lower = Eigen::Map<const Vec>(lo.data(), m);
-  qp.upper = Eigen::Map<const Vec>(hi.data(), m);
-  qp.price = Eigen::Map<const Vec>(price.data(), m);
+  rows.into(qp, n);
   return qp;
 }
 
@@ -223,32 +239,11 @@ SoftQp mountain_chain(std::mt19937& rng, int n) {
   qp.P.resize(n, n);
   qp.P.setFromTriplets(p.begin(), p.end());
   qp.q = q;
-  std::vector<Eigen::Triplet<double>> rows;
-  std::vector<double> lo, hi, price;
-  for (int i = 0; i + 1 < n; ++i) {
-    const auto r = static_cast<int>(lo.size());
-    rows.emplace_back(r, i + 1, 1.0);
-    rows.emplace_back(r, i, -1.0);
-    lo.push_back(-0.12);
-    hi.push_back(0.12);
-    price.push_back(1e9);
-  }
-  for (int i = 1; i + 1 < n; ++i) {
-    const auto r = static_cast<int>(lo.size());
-    rows.emplace_back(r, i - 1, 1.0);
-    rows.emplace_back(r, i, -2.0);
-    rows.emplace_back(r, i + 1, 1.0);
-    lo.push_back(-5e-4);
-    hi.push_back(4e-4);
-    price.push_back(1e7);
-  }
-  const auto m = static_cast<Eigen::Index>(lo.size());
-  qp.A.resize(m, n);
-  qp.A.setFromTriplets(rows.begin(), rows.end());
-  qp.lower = Eigen::Map<const Vec>(lo.data(), m);
-  qp.upper = Eigen::Map<const Vec>(hi.data(), m);
-  qp.price = Eigen::Map<const Vec>(price.data(), m);
-  qp.group.assign(static_cast<std::size_t>(m), 0);  // one road: its rows bind together, as in the fit
+  ChainRows rows;
+  for (int i = 0; i + 1 < n; ++i) rows.grade(i, -0.12, 0.12, 1e9);
+  for (int i = 1; i + 1 < n; ++i) rows.curvature(i, -5e-4, 4e-4, 1e7);
+  rows.into(qp, n);
+  qp.group.assign(rows.lower.size(), 0);  // one road: its rows bind together, as in the fit
   return qp;
 }
 
