@@ -75,6 +75,11 @@ bool is_motor_road(HighwayClass cls) {
   return static_cast<int>(cls) <= static_cast<int>(HighwayClass::living_street);
 }
 
+bool is_foot_way(HighwayClass cls) {
+  return cls == HighwayClass::pedestrian || cls == HighwayClass::footway || cls == HighwayClass::path ||
+         cls == HighwayClass::steps || cls == HighwayClass::bridleway;
+}
+
 double default_lane_width_m(HighwayClass cls) {
   return row(cls).lane_width_m;
 }

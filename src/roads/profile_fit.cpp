@@ -421,7 +421,9 @@ double grade_limit(const ProfileFitOptions& options, HighwayClass cls) {
   if (options.policy == GradePolicy::design) return options.limits.limit_for(cls) / 100.0;
   const bool highway = cls == HighwayClass::motorway || cls == HighwayClass::motorway_link ||
                        cls == HighwayClass::trunk || cls == HighwayClass::trunk_link;
-  return (highway ? options.fidelity_highway_max_grade_percent : options.fidelity_max_grade_percent) / 100.0;
+  if (highway) return options.fidelity_highway_max_grade_percent / 100.0;
+  return (is_foot_way(cls) ? options.fidelity_foot_max_grade_percent : options.fidelity_max_grade_percent) /
+         100.0;
 }
 
 double grade_limit(const ProfileFitOptions& options, const WayAttributes& attributes) {

@@ -82,6 +82,29 @@ TEST(ProfileFit, BumpSteeperThanTheLimitIsCappedUnderDesignAndKeptUnderFidelity)
   EXPECT_LE(max_grade_percent(kept.profiles), 35.0 + 1e-3);
 }
 
+TEST(ProfileFit, AMountainPathFollowsItsSlopeWhereAStreetIsCapped) {
+  // A 70 % slope 40 m high between flats (a flight of steps up a hillside, a mountain path):
+  // a footway keeps it (foot ways' cap, 100 %); a residential street on the same ground is held
+  // to 35 % and leaves the ground by up to the departure bound's 15 m. Liechtenstein with
+  // --include-paths took its paths to 35 % and 30 limits were left violated.
+  const auto slope = [](const Vec2& p) { return 0.7 * std::clamp(p.x() - 200.0, 0.0, 40.0 / 0.7); };
+  for (const HighwayClass cls : {HighwayClass::footway, HighwayClass::path, HighwayClass::steps}) {
+    const RoadNetwork net = test::make_network({{{0, 0}, {400, 0}}}, {with_class(cls)});
+    const auto raw = drape(net, slope);
+    Diagnostics d;
+    const ProfileFitResult fit = fit_profiles(net, raw, {}, d);
+    EXPECT_TRUE(fit.converged);
+    EXPECT_TRUE(fit.violations.empty());
+    EXPECT_GT(max_grade_percent(fit.profiles), 60.0) << to_string(cls);
+    EXPECT_LE(max_grade_percent(fit.profiles), 100.0 + 1e-3) << to_string(cls);
+  }
+  const RoadNetwork street =
+      test::make_network({{{0, 0}, {400, 0}}}, {with_class(HighwayClass::residential)});
+  Diagnostics d;
+  const ProfileFitResult capped = fit_profiles(street, drape(street, slope), {}, d);
+  EXPECT_LE(max_grade_percent(capped.profiles), 35.0 + 1e-3);
+}
+
 TEST(ProfileFit, GradesAreTakenAlongTheRoadAsDriven) {
   // A 10 % ramp as drawn; the road as driven is half as long (as around a rounded hairpin), so
   // its grade as driven is 20 %, over a motorway's 8 % design cap: the fit must flatten it to
@@ -482,6 +505,12 @@ TEST(ProfileFit, Policies) {
   ProfileFitOptions o;
   EXPECT_DOUBLE_EQ(grade_limit(o, HighwayClass::residential), 0.35);
   EXPECT_DOUBLE_EQ(grade_limit(o, HighwayClass::motorway), 0.10);
+  EXPECT_DOUBLE_EQ(grade_limit(o, HighwayClass::footway), 1.0);
+  EXPECT_DOUBLE_EQ(grade_limit(o, HighwayClass::steps), 1.0);
+  EXPECT_DOUBLE_EQ(grade_limit(o, HighwayClass::track), 0.35);  // tracks carry vehicles
+  EXPECT_DOUBLE_EQ(grade_limit(o, HighwayClass::cycleway), 0.35);
+  o.fidelity_foot_max_grade_percent = 60.0;
+  EXPECT_DOUBLE_EQ(grade_limit(o, HighwayClass::path), 0.60);
   o.policy = GradePolicy::design;
   EXPECT_DOUBLE_EQ(grade_limit(o, HighwayClass::motorway), 0.08);
   EXPECT_DOUBLE_EQ(grade_limit(o, HighwayClass::tertiary), 0.12);

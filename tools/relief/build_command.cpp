@@ -86,6 +86,10 @@ void add_build_options(CLI::App* cmd, BuildCommandArgs* args) {
                   "fidelity: grade cap for motorways, trunks and their links, percent")
       ->capture_default_str()
       ->check(finite_positive());
+  cmd->add_option("--foot-max-grade", o.fit.fidelity_foot_max_grade_percent,
+                  "fidelity: grade cap for footways, paths, steps and bridleways (--include-paths), percent")
+      ->capture_default_str()
+      ->check(finite_positive());
   cmd->add_option("--clearance", o.fit.clearance_m,
                   "minimum vertical clearance where roads on different layers cross, m")
       ->capture_default_str()

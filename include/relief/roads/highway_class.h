@@ -37,6 +37,9 @@ enum class HighwayClass {
 [[nodiscard]] std::string_view to_string(HighwayClass cls);
 /// True for the classes built by default (motorway ... living_street and the links).
 [[nodiscard]] bool is_motor_road(HighwayClass cls);
+/// True for the ways only people walk or ride a horse on (pedestrian, footway, path, steps,
+/// bridleway): no vehicle climbs them, and in mountains they climb as steeply as the slope.
+[[nodiscard]] bool is_foot_way(HighwayClass cls);
 /// Default lane width in metres (motorway 3.65 ... service 2.75, footway 1.5).
 [[nodiscard]] double default_lane_width_m(HighwayClass cls);
 /// Default lanes per direction when the way has no `lanes` tag.

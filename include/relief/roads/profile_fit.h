@@ -59,6 +59,10 @@ struct ProfileFitOptions {
   /// like a San Francisco street, so a DEM drape that says otherwise (embankments, viaducts,
   /// cuttings) is an artefact.
   double fidelity_highway_max_grade_percent = 10.0;
+  /// Cap for the ways only people walk (is_foot_way: footways, paths, steps) under the fidelity
+  /// policy: a mountain path or a flight of steps climbs at 45 degrees where a street could not,
+  /// and a vehicle's cap on it would pull it tens of metres off the slope it lies on.
+  double fidelity_foot_max_grade_percent = 100.0;
   /// Wavelength below which height variations are treated as DEM noise (m). The smoothing
   /// weight is lambda = (cutoff / 2 pi)^4, where a smoothing spline halves the amplitude.
   double cutoff_wavelength_m = 40.0;
