@@ -46,6 +46,17 @@ double half_width(const Road& road) {
   return 0.5 * a.lane_width_m * static_cast<double>(std::max(1, a.lanes_forward + a.lanes_backward));
 }
 
+// The height at parameter t of segment i of a road's straight span between its two ends (its
+// profile's first and last heights, by arc length): where a deck would lie without its data.
+double span_height(const RoadProfile& profile, const std::vector<double>& cumulative, std::size_t i,
+                   double t) {
+  const double s = cumulative[i] + t * (cumulative[i + 1] - cumulative[i]);
+  const double length = cumulative.back();
+  if (profile.z.empty()) return 0.0;
+  const double f = length > 0.0 ? std::clamp(s / length, 0.0, 1.0) : 0.0;
+  return profile.z.front() + f * (profile.z.back() - profile.z.front());
+}
+
 }  // namespace
 
 int effective_layer(const WayAttributes& a) {
@@ -83,9 +94,19 @@ std::vector<GradeSeparation> find_grade_separations(const RoadNetwork& network,
         const Road& ra = network.roads[segments[a].road];
         const Road& rb = network.roads[segments[b].road];
         const int la = effective_layer(ra.attributes), lb = effective_layer(rb.attributes);
-        if (la == lb) continue;
+        const bool stacked = la == lb && ra.id != rb.id &&
+                             ((ra.attributes.bridge && rb.attributes.bridge) ||
+                              (ra.attributes.tunnel && rb.attributes.tunnel));
+        if (la == lb && !stacked) continue;
         const std::size_t ia = segments[a].index, ib = segments[b].index;
-        const bool a_up = la > lb;
+        bool a_up = la > lb;
+        if (stacked) {
+          const auto hit = intersect(ra.points[ia], ra.points[ia + 1], rb.points[ib], rb.points[ib + 1]);
+          if (!hit) continue;  // only where they cross: alongside, neither is known to be above
+          const double za = span_height(profiles[ra.id], cumulative[ra.id], ia, hit->first);
+          const double zb = span_height(profiles[rb.id], cumulative[rb.id], ib, hit->second);
+          a_up = za > zb || (za == zb && ra.id < rb.id);
+        }
         const Road& up = a_up ? ra : rb;
         const Road& down = a_up ? rb : ra;
         const std::size_t iu = a_up ? ia : ib, id = a_up ? ib : ia;
@@ -124,6 +145,10 @@ std::vector<GradeSeparation> find_grade_separations(const RoadNetwork& network,
                    (xy - network.junctions[r.end_junction].position).norm() < 0.5;
           };
           if (!(near_junction(ra) && near_junction(rb))) add(hit->first, hit->second, xy, 1.0, false, false);
+        }
+        if (stacked) {
+          for (const std::size_t k : by_pair[pair]) found[k].guessed_order = true;
+          continue;
         }
         // Alongside: the upper road runs over the lower one, their paved widths overlapping (a
         // viaduct over the street below it, a street over a tunnel, a tunnel's bend under a street

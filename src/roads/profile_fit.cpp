@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <functional>
+#include <iomanip>
 #include <limits>
 #include <map>
 #include <numbers>
@@ -185,6 +186,32 @@ void add_junction_planes(const RoadNetwork& network, const std::vector<RoadProfi
         for (int c = 0; c < 4; ++c)
           p_entries.emplace_back(static_cast<int>(idx[r]), static_cast<int>(idx[c]), w * a[r] * a[c]);
     }
+  }
+}
+
+// Two bridges or tunnels of one layer crossing without a node: the data does not say which is
+// above; find_grade_separations guessed, and the user should know where.
+void report_guessed_orders(const RoadNetwork& network, const std::vector<GradeSeparation>& separations,
+                           Diagnostics& diagnostics) {
+  for (const GradeSeparation& sep : separations) {
+    if (!sep.guessed_order || sep.alongside) continue;
+    const Road& up = network.roads[static_cast<std::size_t>(sep.upper_road)];
+    const Road& down = network.roads[static_cast<std::size_t>(sep.lower_road)];
+    const auto way = [](const Road& r) {
+      return r.osm_way_ids.empty() ? std::int64_t{0} : r.osm_way_ids.front();
+    };
+    std::ostringstream msg;
+    msg << std::fixed << std::setprecision(1) << "road " << up.id << " (OSM way " << way(up) << ") and road "
+        << down.id << " (OSM way " << way(down) << "), two " << (up.attributes.tunnel ? "tunnels" : "bridges")
+        << " of layer " << effective_layer(up.attributes) << ", cross without a shared node at ("
+        << sep.xy.x() << ", " << sep.xy.y() << "): built as a grade separation, road " << up.id
+        << " above (its ends lie higher there); a layer tag would say which";
+    Diagnostic d;
+    d.severity = Severity::warning;
+    d.code = codes::kOsmStructuresOnOneLevel;
+    d.message = msg.str();
+    d.osm_way_id = way(up);
+    diagnostics.report(std::move(d));
   }
 }
 
@@ -589,6 +616,7 @@ ProfileFitResult fit_profiles(const RoadNetwork& network, const std::vector<Road
   const std::vector<std::uint8_t> with_data = roads_with_data(network, diagnostics);
   ProfileFitResult result;
   result.separations = find_grade_separations(network, raw);
+  report_guessed_orders(network, result.separations, diagnostics);
   std::vector<std::uint8_t> separated(raw.size(), 0);
   for (const GradeSeparation& sep : result.separations)
     separated[sep.upper_road] = separated[sep.lower_road] = 1;

@@ -80,6 +80,50 @@ TEST(GradeSeparation, ACrossingIsKeptWhereADeckPointOverThePavementLiesOnIt) {
   EXPECT_EQ(seps.size(), 4u);  // and the deck's points at x = 27.5, 32.5, 37.5 (within 3 + 3 m)
 }
 
+TEST(GradeSeparation, TwoBridgesOfOneLayerCrossingAreSeparatedTheHigherSpanAbove) {
+  // Two bridges of layer 1 cross at (50, 0) without a node (a layer tag missing: Portland's
+  // MLK viaduct and an I-84 ramp, both layer 2). Road 0's ends lie at 10 and 30 m (its straight
+  // span at the crossing: 20 m), road 1's at 12 m: road 0 goes above, with the full clearance.
+  // Two tunnels the same; a bridge over a street keeps its layer's order; a bridge drawn across
+  // itself is no separation.
+  WayAttributes bridge;
+  bridge.bridge = true;
+  WayAttributes tunnel;
+  tunnel.tunnel = true;
+  const RoadNetwork net = test::make_network({{{0, 0}, {100, 0}},
+                                              {{50, -50}, {50, 50}},
+                                              {{300, 0}, {400, 0}},
+                                              {{350, -50}, {350, 50}},
+                                              {{600, 0}, {700, 0}, {650, 40}, {650, -40}}},
+                                             {bridge, bridge, tunnel, tunnel, bridge});
+  std::vector<RoadProfile> profiles = flat(net, 12.0);
+  for (std::size_t i = 0; i < profiles[0].z.size(); ++i) profiles[0].z[i] = 10.0 + 0.2 * profiles[0].s[i];
+  for (double& z : profiles[3].z) z = -20.0;  // road 3's span lies lower: road 2 above
+  const std::vector<GradeSeparation> seps = find_grade_separations(net, profiles);
+  ASSERT_EQ(seps.size(), 2u);
+  EXPECT_EQ(seps[0].upper_road, 0);
+  EXPECT_EQ(seps[0].lower_road, 1);
+  EXPECT_TRUE(seps[0].guessed_order);
+  EXPECT_FALSE(seps[0].alongside);
+  EXPECT_FALSE(seps[0].ordering_only);
+  EXPECT_NEAR(seps[0].xy.x(), 50.0, 1e-9);
+  EXPECT_NEAR(seps[0].clearance_m, 20.0 - 12.0, 1e-9);
+  EXPECT_EQ(seps[1].upper_road, 2);
+  EXPECT_EQ(seps[1].lower_road, 3);
+  EXPECT_TRUE(seps[1].guessed_order);
+  // Swapped heights swap the order: the guess follows the spans, not the road ids.
+  for (std::size_t i = 0; i < profiles[0].z.size(); ++i) profiles[0].z[i] = 0.0;
+  const std::vector<GradeSeparation> swapped = find_grade_separations(net, profiles);
+  ASSERT_EQ(swapped.size(), 2u);
+  EXPECT_EQ(swapped[0].upper_road, 1);
+  EXPECT_EQ(swapped[0].lower_road, 0);
+  // A bridge over a street: its layer says it, no guess.
+  const RoadNetwork over = test::make_network({{{0, 0}, {100, 0}}, {{50, -50}, {50, 50}}}, {bridge});
+  const std::vector<GradeSeparation> known = find_grade_separations(over, flat(over, 12.0));
+  ASSERT_FALSE(known.empty());
+  for (const GradeSeparation& s : known) EXPECT_FALSE(s.guessed_order);
+}
+
 TEST(GradeSeparation, ConnectedRoadsAreNotSeparations) {
   WayAttributes bridge;
   bridge.bridge = true;

@@ -36,10 +36,10 @@ inline constexpr DiagnosticCode kOsmMissingNode{
     "osm.missing_node", "a way references a node that is not in the file; the way is split there"};
 inline constexpr DiagnosticCode kOsmDegenerateWay{"osm.degenerate_way",
                                                   "a way with fewer than two distinct nodes is skipped"};
-inline constexpr DiagnosticCode kOsmWayTurnsBack{
-    "osm.way_turns_back",
-    "a way drawn out to a node and back along itself (to the same node, or folding onto its own pavement): the "
-    "stretch is one way of its own"};
+inline constexpr DiagnosticCode kOsmWayTurnsBack{"osm.way_turns_back",
+                                                 "a way drawn out to a node and back along itself (to the "
+                                                 "same node, or folding onto its own pavement): the "
+                                                 "stretch is one way of its own"};
 inline constexpr DiagnosticCode kOsmOverlappingWays{
     "osm.overlapping_ways", "a way drawn over the nodes of another: the shared stretch is built once"};
 inline constexpr DiagnosticCode kOsmTagValue{
@@ -47,6 +47,10 @@ inline constexpr DiagnosticCode kOsmTagValue{
 inline constexpr DiagnosticCode kOsmCrossingWithoutNode{
     "osm.crossing_without_node",
     "ways crossing on one level without a shared node are joined by a node there"};
+inline constexpr DiagnosticCode kOsmStructuresOnOneLevel{
+    "osm.structures_on_one_level",
+    "two bridges or two tunnels of one layer crossing without a node are separated with the full clearance, "
+    "the one whose span between its ends lies higher above (joining would invent a connection)"};
 inline constexpr DiagnosticCode kNetworkDegenerateWay{
     "network.degenerate_way", "a piece of a way between two junctions shorter than 1 cm is dropped"};
 inline constexpr DiagnosticCode kNetworkRoadsNarrowed{"network.roads_narrowed",
@@ -170,6 +174,7 @@ inline constexpr std::array kAll{kDemDatumGridMissing,
                                  kOsmOverlappingWays,
                                  kOsmTagValue,
                                  kOsmCrossingWithoutNode,
+                                 kOsmStructuresOnOneLevel,
                                  kNetworkDegenerateWay,
                                  kNetworkRoadsNarrowed,
                                  kNetworkStubDropped,

@@ -26,6 +26,11 @@ struct GradeSeparation {
   /// at its portal) or beyond the fan of a junction the two share. The upper one only has to
   /// stay kOrderingGap_m above the other, so that the two surfaces never cross.
   bool ordering_only = false;
+  /// Two bridges (or two tunnels) of one layer crossing without a shared node: the data does not
+  /// say which is above (a layer tag missing; joining them would invent a connection, a freeway
+  /// ramp to the street it flies over). The upper one is the one whose straight span between its
+  /// ends lies higher at the crossing (at equal height the lower road id).
+  bool guessed_order = false;
 };
 
 /// What an ordering-only separation asks of the upper road (m): more than twice the scene's
@@ -36,13 +41,15 @@ inline constexpr double kOrderingGap_m = 0.1;
 /// tunnel (OSM's implied values), else 0.
 [[nodiscard]] int effective_layer(const WayAttributes& attributes);
 
-/// Crossings of roads whose effective layers differ; one per crossing point (crossings of the
-/// same two roads closer than 1 m are merged). Also, every 5 m, the places where such roads run
+/// Crossings of roads whose effective layers differ, and of two bridges or two tunnels of one
+/// layer (guessed_order); one per crossing point (crossings of the same two roads closer than
+/// 1 m are merged). Also, every 5 m, the places where such roads run
 /// within 25 degrees of parallel with their paved widths (lanes x lane width) overlapping
 /// (`alongside`): at least 20 m from the two roads' ends and away from a junction they share
 /// with the full clearance, otherwise `ordering_only`; none where the two fan out of a junction
-/// they share (within their half widths over sin 10 degrees of it). Roads on one layer are never
-/// separated: where their pavements overlap (ways closer than their widths) neither is above.
+/// they share (within their half widths over sin 10 degrees of it); not for guessed_order
+/// crossings. Other roads on one layer are never separated: where their pavements overlap (ways
+/// closer than their widths) neither is above.
 /// Heights (raw_clearance_m, clearance_m) from `profiles`.
 [[nodiscard]] std::vector<GradeSeparation> find_grade_separations(const RoadNetwork& network,
                                                                   const std::vector<RoadProfile>& profiles);
