@@ -373,11 +373,16 @@ class InteriorPoint {
           best_rows.copy_point(rows_);
           stalled = 0;
         } else if (++stalled >= kStallIterations) {
+          if (best_stationarity > kRoundingStationarity) {
+            // Rounding spoilt the steps after the gap closed: an earlier point within the
+            // rounding tolerances (kRoundingGap), if there is one, is the answer.
+            end_without_tolerance("stalled");
+            return;
+          }
           x = best_x;
           rows_.copy_point(best_rows);
           out.stationarity = best_stationarity;
-          out.converged = best_stationarity <= kRoundingStationarity;
-          if (!out.converged) out.status = "stalled";
+          out.converged = true;
           return;
         }
       }
