@@ -24,13 +24,15 @@ using detail::LaneLocator;
 using detail::load_net;
 using detail::parse_shape;
 
-constexpr double kStepRiseM = 0.1;     // a height step: more than this rise...
-constexpr double kStepWindowM = 0.5;   // ...within this plan distance...
-constexpr double kStepMinGrade = 0.5;  // ...and steeper than this there
+constexpr double kStepRiseM = 0.1;        // a height step: more than this rise...
+constexpr double kStepWindowM = 0.5;      // ...within this plan distance...
+constexpr double kStepMinGrade = 0.5;     // ...and steeper than this there,
+constexpr double kStepOverCap = 0.15;     // and than its road's cap by this
+constexpr double kStreetGradeCap = 0.35;  // the cap without SumoOptions::grade_caps
 
 // The first step along a 3D polyline (two points within kStepWindowM of plan distance along it
-// that differ by more than kStepRiseM in height, at more than kStepMinGrade), or nullopt.
-std::optional<Vec3> first_step(const Polyline3& line) {
+// that differ by more than kStepRiseM in height, at more than `min_grade`), or nullopt.
+std::optional<Vec3> first_step(const Polyline3& line, double min_grade) {
   std::size_t j = 0;
   double run = 0.0;  // plan distance along the line from point i to point j
   for (std::size_t i = 0; i + 1 < line.size(); ++i) {
@@ -46,7 +48,7 @@ std::optional<Vec3> first_step(const Polyline3& line) {
     for (std::size_t k = i + 1; k <= j; ++k) {
       along += (line[k] - line[k - 1]).head<2>().norm();
       const double dz = std::abs(line[k].z() - line[i].z());
-      if (dz > kStepRiseM && dz > kStepMinGrade * along) return line[i];
+      if (dz > kStepRiseM && dz > min_grade * along) return line[i];
     }
     if (j > i) run -= (line[i + 1] - line[i]).head<2>().norm();
   }
@@ -62,12 +64,31 @@ std::pair<double, double> max_and_p99(std::vector<double>& values) {
 
 }  // namespace
 
-SumoNetCheck check_sumo_net(std::string_view net_xml, const RoadModel& model, const std::string& file) {
+SumoNetCheck check_sumo_net(std::string_view net_xml, const RoadModel& model, const std::string& file,
+                            const std::vector<double>& grade_caps) {
   pugi::xml_document doc;
   const pugi::xml_node net = load_net(doc, net_xml, file);
 
   SumoNetCheck check;
   LaneLocator locator(net, model);
+  // The least grade of a step on each road: kStepOverCap over its cap, at least kStepMinGrade
+  // (a connecting road: the larger cap of the roads it joins).
+  const auto cap_of = [&](std::size_t i) {
+    return i < grade_caps.size() && grade_caps[i] >= 0.0 ? grade_caps[i] : -1.0;
+  };
+  std::vector<double> step_grade(model.roads.size(), kStepMinGrade);
+  for (std::size_t i = 0; i < model.roads.size(); ++i) {
+    double cap = grade_caps.empty() ? kStreetGradeCap : cap_of(i);
+    if (cap < 0.0) {
+      for (const auto& link : {model.roads[i].predecessor, model.roads[i].successor}) {
+        if (!link || link->element != RoadLink::Element::road) continue;
+        const int k = model.road_index(link->id);
+        if (k >= 0) cap = std::max(cap, cap_of(static_cast<std::size_t>(k)));
+      }
+    }
+    step_grade[i] = std::max(kStepMinGrade, std::max(cap, kStreetGradeCap) + kStepOverCap);
+  }
+  std::unordered_map<std::string, double> lane_step_grade;  // lane id -> its road's
   std::vector<double> errors;
   double worst_error = 0.0;
   std::unordered_map<std::string, Polyline3> lane_shapes;
@@ -80,7 +101,14 @@ SumoNetCheck check_sumo_net(std::string_view net_xml, const RoadModel& model, co
       const Polyline3 shape = parse_shape(lane.attribute("shape").as_string(), &missing_z);
       if (missing_z) ++check.lanes_without_z;
       lane_shapes[id] = shape;
-      if (const auto step = first_step(shape)) {
+      double min_grade = kStepMinGrade;
+      if (!shape.empty()) {
+        if (const auto at = locator.locate(id, Vec2(shape.front().x(), shape.front().y()), std::nullopt))
+          if (const int k = model.road_index(at->road->id); k >= 0)
+            min_grade = step_grade[static_cast<std::size_t>(k)];
+      }
+      lane_step_grade[id] = min_grade;
+      if (const auto step = first_step(shape, min_grade)) {
         if (check.height_steps++ == 0) {
           check.first_step_lane = id;
           check.first_step_point = *step;
@@ -148,7 +176,8 @@ SumoNetCheck check_sumo_net(std::string_view net_xml, const RoadModel& model, co
       check.handover_gap_lanes = a->first + " -> " + b->first;
       check.handover_gap_point = a->second.back();
     }
-    if (step > kStepRiseM && step > kStepMinGrade * gap && check.height_steps++ == 0) {
+    const double min_grade = std::max(lane_step_grade[a->first], lane_step_grade[b->first]);
+    if (step > kStepRiseM && step > min_grade * gap && check.height_steps++ == 0) {
       check.first_step_lane = a->first;
       check.first_step_point = a->second.back();
     }

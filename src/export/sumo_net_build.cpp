@@ -30,7 +30,7 @@ SumoNetBuild build_sumo_net(const RoadModel& model, SumoOptions options,
   out.netconvert_seconds = seconds_since(t_netconvert);
   const auto t_check = std::chrono::steady_clock::now();
   out.drape = drape_sumo_net(out.run.net_xml, model, name + ".net.xml");
-  out.check = check_sumo_net(out.run.net_xml, model, name + ".net.xml");
+  out.check = check_sumo_net(out.run.net_xml, model, name + ".net.xml", options.grade_caps);
   out.check_seconds = seconds_since(t_check);
   return out;
 }

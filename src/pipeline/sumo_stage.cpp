@@ -12,6 +12,7 @@
 #include "relief/export/sumo_mapping.h"
 #include "relief/export/sumo_plain_xml.h"
 #include "relief/geometry/polyline.h"
+#include "relief/roads/profile_fit.h"
 
 namespace relief {
 namespace {}  // namespace
@@ -56,10 +57,19 @@ SumoJob start_sumo(const SumoStageInput& in) {
   // The plain network, netconvert (another process) and the check of its net run on their own
   // thread, beside the meshes; diagnostics are kept there and reported in finish_sumo.
   job.scratch = std::make_unique<ScratchDir>(in.options.out_dir);
-  job.netconvert = std::async(std::launch::async, [&options = in.options, &model = in.model,
+  // Each road's grade cap, for the check's height steps (a footway's 100 % is no street's).
+  SumoOptions sumo = in.options.sumo;
+  sumo.grade_caps.assign(in.model.roads.size(), -1.0);
+  for (std::size_t i = 0; i < in.model.roads.size(); ++i) {
+    const int source = in.model.roads[i].source_road;
+    if (source >= 0)
+      sumo.grade_caps[i] =
+          grade_limit(in.options.fit, in.loaded.network.roads[static_cast<std::size_t>(source)].attributes);
+  }
+  job.netconvert = std::async(std::launch::async, [sumo = std::move(sumo), &model = in.model,
                                                    dir = job.scratch->path(), name = in.name] {
     NetconvertResult r;
-    r.net = build_sumo_net(model, options.sumo, dir, name, r.diagnostics);
+    r.net = build_sumo_net(model, sumo, dir, name, r.diagnostics);
     return r;
   });
   return job;

@@ -221,6 +221,43 @@ TEST(SumoDrape, SparseShapesOnGeneratedSpiralsLieOnTheSurfaceAsTheCheckReadsThem
   std::cout << "spirals: " << reheighted << " points took another height in the final order\n";
 }
 
+TEST(SumoChecks, AStepIsSteeperThanItsRoadMayBe) {
+  // A lane climbing 70 % on its surface, points 0.4 m apart: a step on a street (35 % cap: steps
+  // from 50 %), none on a footway fitted to its 100 % cap (steps from 115 %), one again on the
+  // footway where a point sits 0.8 m high.
+  const double radius = 400.0, length = 60.0;
+  const RoadModel model = spiral_model(radius, length, 0.7);
+  const double r = radius + 1.5;
+  std::ostringstream shape;
+  shape.precision(10);
+  for (double s = 0.0; s <= length + 1e-9; s += 0.4) {
+    const double at = s / radius - 0.5 * std::numbers::pi;
+    shape << (s == 0.0 ? "" : " ") << r * std::cos(at) << "," << r * std::sin(at) << ",0";
+  }
+  std::string net = R"(<net version="1.9">
+  <edge id="1" from="A" to="B">
+    <lane id="1_0" index="0" speed="10" length="60" shape=")" +
+                    shape.str() + R"(">
+      <param key="odr.lane" value="-1"/>
+    </lane>
+    <param key="odr.road" value="1"/>
+  </edge>
+</net>
+)";
+  (void)drape_sumo_net(net, model, "steep.net.xml");
+  EXPECT_EQ(check_sumo_net(net, model, "steep.net.xml").height_steps, 1u);
+  EXPECT_EQ(check_sumo_net(net, model, "steep.net.xml", {0.35}).height_steps, 1u);
+  const SumoNetCheck path = check_sumo_net(net, model, "steep.net.xml", {1.0});
+  EXPECT_EQ(path.height_steps, 0u);
+  EXPECT_LT(path.z_max_m, 5e-4);
+  // A 0.8 m jump within 0.4 m (200 %) is a step whatever the road.
+  const std::size_t third = net.find(' ', net.find(' ', net.find("shape=\"") + 1) + 1);
+  const std::size_t comma = net.rfind(',', net.find(' ', third + 1));
+  const double z = std::stod(net.substr(comma + 1));
+  net.replace(comma + 1, net.find(' ', third + 1) - comma - 1, std::to_string(z + 0.8));
+  EXPECT_EQ(check_sumo_net(net, model, "steep.net.xml", {1.0}).height_steps, 1u);
+}
+
 TEST(SumoDrape, AChordOverACrestGetsPointsUntilItLiesOnTheSurface) {
   // Road 1 climbs over a crest, z = 0.3 s - 0.002 s^2 (0 and 10 m at its ends as on the ramp, 5 m
   // above the ramp at s = 50). Its lanes have a point at each end only: SUMO would carry a

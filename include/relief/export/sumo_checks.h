@@ -59,8 +59,13 @@ struct SumoNetCheck {
 /// Parses `net_xml` (a .net.xml written from `model`; edge/connection params odr.road and
 /// odr.lane name the OpenDRIVE counterparts) and measures it. Throws InvalidInput when the
 /// text is not a SUMO network (the message names `file`).
+/// A height step: more than 0.1 m of rise within 0.5 m of plan, steeper there than the lane's
+/// road may be by 15 points, and at least 50 % (SumoOptions::grade_caps; empty: 35 % streets,
+/// whose 50 % is the step). A mountain path fitted to its 100 % cap climbs at 60 % and is
+/// no step; a street lane that does is.
 [[nodiscard]] SumoNetCheck check_sumo_net(std::string_view net_xml, const RoadModel& model,
-                                          const std::string& file);
+                                          const std::string& file,
+                                          const std::vector<double>& grade_caps = {});
 
 /// What a simulation's FCD output says about heights and slopes along the vehicles' paths.
 struct FcdCheck {

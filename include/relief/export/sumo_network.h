@@ -42,6 +42,11 @@ struct SumoOptions {
       {"truck", 15.0}, {"trailer", 10.0}, {"bus", 20.0}, {"coach", 15.0}};
   /// OpenDRIVE junction ids that get a traffic light.
   std::set<int> signalled_junctions;
+  /// Per OpenDRIVE road, the grade cap (fraction) its profile was fitted to; a connecting road's
+  /// entry below 0 (or missing) takes the larger cap of the roads it joins. The check of the net
+  /// takes a rise as a height step only where it is steeper than its road's cap (see
+  /// check_sumo_net). Empty: the street cap everywhere.
+  std::vector<double> grade_caps;
 };
 
 struct SumoNode {
@@ -66,8 +71,8 @@ struct SumoEdge {
   std::string from, to;  ///< node ids
   int odr_road = -1;
   std::vector<std::int64_t> osm_way_ids;  ///< the OSM ways the road was built from
-  bool along_s = true;  ///< drives along the OpenDRIVE road's s (right lanes)
-  Polyline3 shape;      ///< left border of the leftmost lane (spreadType "right"), in travel direction
+  bool along_s = true;                    ///< drives along the OpenDRIVE road's s (right lanes)
+  Polyline3 shape;  ///< left border of the leftmost lane (spreadType "right"), in travel direction
   std::string name;
   std::string type;  ///< "highway.residential", ...
   int priority = 1;
