@@ -182,6 +182,20 @@ TEST(SumoDrape, ARoadOverItselfInPlanGivesEachTurnItsOwnHeight) {
 // point on the surface and no step. (The drape located an original point from the original point
 // before it, the check from the point before it in the final shape, inserted points included;
 // where those led to different turns, the check found the point off the surface.)
+// A net of one edge with one lane of that shape on OpenDRIVE road 1, lane -1.
+std::string one_lane_net(const std::string& shape, double length) {
+  return R"(<net version="1.9">
+  <edge id="1" from="A" to="B">
+    <lane id="1_0" index="0" speed="10" length=")" +
+         std::to_string(length) + R"(" shape=")" + shape + R"(">
+      <param key="odr.lane" value="-1"/>
+    </lane>
+    <param key="odr.road" value="1"/>
+  </edge>
+</net>
+)";
+}
+
 TEST(SumoDrape, SparseShapesOnGeneratedSpiralsLieOnTheSurfaceAsTheCheckReadsThem) {
   std::mt19937 rng(11U);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
@@ -199,16 +213,7 @@ TEST(SumoDrape, SparseShapesOnGeneratedSpiralsLieOnTheSurfaceAsTheCheckReadsThem
       shape << (a == 0.0 ? "" : " ") << r * std::cos(at) << "," << r * std::sin(at) << ",0";
       if (a >= total) break;
     }
-    std::string net = R"(<net version="1.9">
-  <edge id="1" from="A" to="B">
-    <lane id="1_0" index="0" speed="10" length=")" +
-                      std::to_string(length) + R"(" shape=")" + shape.str() + R"(">
-      <param key="odr.lane" value="-1"/>
-    </lane>
-    <param key="odr.road" value="1"/>
-  </edge>
-</net>
-)";
+    std::string net = one_lane_net(shape.str(), length);
     const SumoDrape drape = drape_sumo_net(net, model, "spiral.net.xml");
     reheighted += drape.points_reheighted;
     const SumoNetCheck check = check_sumo_net(net, model, "spiral.net.xml");
@@ -234,16 +239,7 @@ TEST(SumoChecks, AStepIsSteeperThanItsRoadMayBe) {
     const double at = s / radius - 0.5 * std::numbers::pi;
     shape << (s == 0.0 ? "" : " ") << r * std::cos(at) << "," << r * std::sin(at) << ",0";
   }
-  std::string net = R"(<net version="1.9">
-  <edge id="1" from="A" to="B">
-    <lane id="1_0" index="0" speed="10" length="60" shape=")" +
-                    shape.str() + R"(">
-      <param key="odr.lane" value="-1"/>
-    </lane>
-    <param key="odr.road" value="1"/>
-  </edge>
-</net>
-)";
+  std::string net = one_lane_net(shape.str(), length);
   (void)drape_sumo_net(net, model, "steep.net.xml");
   EXPECT_EQ(check_sumo_net(net, model, "steep.net.xml").height_steps, 1u);
   EXPECT_EQ(check_sumo_net(net, model, "steep.net.xml", {0.35}).height_steps, 1u);
