@@ -15,6 +15,7 @@
 
 #include "export/sumo_lane_locator.h"
 #include "relief/core/errors.h"
+#include "relief/roads/road_model_checks.h"
 #include "relief/roads/road_surface.h"
 
 namespace relief {
@@ -73,19 +74,9 @@ SumoNetCheck check_sumo_net(std::string_view net_xml, const RoadModel& model, co
   LaneLocator locator(net, model);
   // The least grade of a step on each road: kStepOverCap over its cap, at least kStepMinGrade
   // (a connecting road: the larger cap of the roads it joins).
-  const auto cap_of = [&](std::size_t i) {
-    return i < grade_caps.size() && grade_caps[i] >= 0.0 ? grade_caps[i] : -1.0;
-  };
   std::vector<double> step_grade(model.roads.size(), kStepMinGrade);
   for (std::size_t i = 0; i < model.roads.size(); ++i) {
-    double cap = grade_caps.empty() ? kStreetGradeCap : cap_of(i);
-    if (cap < 0.0) {
-      for (const auto& link : {model.roads[i].predecessor, model.roads[i].successor}) {
-        if (!link || link->element != RoadLink::Element::road) continue;
-        const int k = model.road_index(link->id);
-        if (k >= 0) cap = std::max(cap, cap_of(static_cast<std::size_t>(k)));
-      }
-    }
+    const double cap = grade_caps.empty() ? kStreetGradeCap : linked_grade_cap(model, grade_caps, i);
     step_grade[i] = std::max(kStepMinGrade, std::max(cap, kStreetGradeCap) + kStepOverCap);
   }
   std::unordered_map<std::string, double> lane_step_grade;  // lane id -> its road's

@@ -282,22 +282,23 @@ ModelDeviation compare_models(const RoadModel& a, const RoadModel& b, double ste
   return d;
 }
 
+double linked_grade_cap(const RoadModel& model, const std::vector<double>& cap, std::size_t index) {
+  const auto given = [&](std::size_t i) { return i < cap.size() && cap[i] >= 0.0; };
+  if (given(index)) return cap[index];
+  double c = 0.0;
+  for (const auto& link : {model.roads[index].predecessor, model.roads[index].successor}) {
+    if (!link || link->element != RoadLink::Element::road) continue;
+    const int k = model.road_index(link->id);
+    if (k >= 0 && given(static_cast<std::size_t>(k))) c = std::max(c, cap[static_cast<std::size_t>(k)]);
+  }
+  return c;
+}
+
 ModelGrades check_grades(const RoadModel& model, const std::vector<double>& cap, double tolerance,
                          double step_m, double cross_slope_over) {
   if (cap.size() != model.roads.size()) throw InvalidInput("check_grades: one cap per road is required");
   if (!(step_m > 0.0)) throw InvalidInput("check_grades: the step must be > 0 m");
-  // A connecting road's cap: the larger cap of the roads it joins.
-  const auto cap_of = [&](std::size_t i) {
-    if (cap[i] >= 0.0) return cap[i];
-    double c = 0.0;
-    for (const auto& link : {model.roads[i].predecessor, model.roads[i].successor}) {
-      if (!link || link->element != RoadLink::Element::road) continue;
-      const int k = model.road_index(link->id);
-      if (k >= 0 && cap[static_cast<std::size_t>(k)] >= 0.0)
-        c = std::max(c, cap[static_cast<std::size_t>(k)]);
-    }
-    return c;
-  };
+  const auto cap_of = [&](std::size_t i) { return linked_grade_cap(model, cap, i); };
   ModelGrades out;
   for (std::size_t i = 0; i < model.roads.size(); ++i) {
     const ModelRoad& road = model.roads[i];

@@ -95,6 +95,12 @@ struct ModelGrades {
   CrossSlopeCheck cross_slopes;  ///< over 8 % (`over` of check_grades)
 };
 
+/// The grade cap of the road at `index` from per-road caps (fractions; `cap` may be shorter than
+/// the roads): cap[index] where given and >= 0, else (a connecting road) the larger cap of the
+/// roads it links to, 0 when none has one.
+[[nodiscard]] double linked_grade_cap(const RoadModel& model, const std::vector<double>& cap,
+                                      std::size_t index);
+
 /// Samples every road's elevation record every `step_m` metres (the grade of each chord) and
 /// compares it with `cap[i]` for the road at index i (a connecting road: the largest cap of the
 /// two roads it joins, when given as a negative number the cap is taken from its links). Roads
