@@ -316,6 +316,9 @@ BuildResult build(const BuildOptions& options, Diagnostics& diagnostics, const P
   std::size_t signals_mid_road = 0;
   const bool scene_needed = options.outputs.contains(Output::mesh) ||
                             options.outputs.contains(Output::sight) || options.outputs.contains(Output::view);
+  // Each model road's grade cap (-1 for a connecting road: the larger of the roads it joins), for
+  // the elevation records' check and the SUMO net's height steps.
+  std::vector<double> model_caps;
   if (options.outputs.contains(Output::xodr) || options.outputs.contains(Output::sumo) || scene_needed) {
     built = timer.run("build road model", [&] {
       // The junction planes of relief's fit tilt the lanes at junctions onto them; the other
@@ -341,22 +344,21 @@ BuildResult build(const BuildOptions& options, Diagnostics& diagnostics, const P
       j.traffic_signal = signalled.contains(j.id) || options.sumo.signalled_junctions.contains(j.id);
     // The elevation records' grades against the caps the fit applied (connecting roads: the
     // steeper road's they join).
-    report.model_grades = timer.run("check road model grades", [&] {
-      std::vector<double> cap(built->model.roads.size(), -1.0);
-      for (std::size_t i = 0; i < built->model.roads.size(); ++i) {
-        const int source = built->model.roads[i].source_road;
-        if (source >= 0) cap[i] = grade_limit(options.fit, network.roads[source].attributes);
-      }
-      return check_grades(built->model, cap);
-    });
+    model_caps.assign(built->model.roads.size(), -1.0);
+    for (std::size_t i = 0; i < built->model.roads.size(); ++i) {
+      const int source = built->model.roads[i].source_road;
+      if (source >= 0) model_caps[i] = grade_limit(options.fit, network.roads[source].attributes);
+    }
+    report.model_grades =
+        timer.run("check road model grades", [&] { return check_grades(built->model, model_caps); });
   }
   // netconvert is the longest chain of the build (SUMO network, netconvert, its check): it
   // starts first and runs in the background while the other outputs are written.
   std::optional<SumoStageInput> sumo_in;
   std::optional<SumoJob> sumo;
   if (options.outputs.contains(Output::sumo)) {
-    sumo_in.emplace(
-        SumoStageInput{options, loaded, built->model, report.name, diagnostics, signals_mid_road});
+    sumo_in.emplace(SumoStageInput{options, loaded, built->model, report.name, diagnostics, signals_mid_road,
+                                   model_caps});
     if (signals_mid_road > 0) {
       diagnostics.report(Severity::info, codes::kSumoSignalMidRoad,
                          std::to_string(signals_mid_road) + " traffic signals are more than " +

@@ -12,7 +12,6 @@
 #include "relief/export/sumo_mapping.h"
 #include "relief/export/sumo_plain_xml.h"
 #include "relief/geometry/polyline.h"
-#include "relief/roads/profile_fit.h"
 
 namespace relief {
 namespace {}  // namespace
@@ -59,13 +58,7 @@ SumoJob start_sumo(const SumoStageInput& in) {
   job.scratch = std::make_unique<ScratchDir>(in.options.out_dir);
   // Each road's grade cap, for the check's height steps (a footway's 100 % is no street's).
   SumoOptions sumo = in.options.sumo;
-  sumo.grade_caps.assign(in.model.roads.size(), -1.0);
-  for (std::size_t i = 0; i < in.model.roads.size(); ++i) {
-    const int source = in.model.roads[i].source_road;
-    if (source >= 0)
-      sumo.grade_caps[i] =
-          grade_limit(in.options.fit, in.loaded.network.roads[static_cast<std::size_t>(source)].attributes);
-  }
+  sumo.grade_caps = in.grade_caps;
   job.netconvert = std::async(std::launch::async, [sumo = std::move(sumo), &model = in.model,
                                                    dir = job.scratch->path(), name = in.name] {
     NetconvertResult r;

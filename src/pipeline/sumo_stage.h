@@ -25,6 +25,9 @@ struct SumoStageInput {
   const std::string& name;
   Diagnostics& diagnostics;
   std::size_t signals_mid_road = 0;  ///< OSM signals controlling no junction (signalled_junctions)
+  /// Per model road, its grade cap (SumoOptions::grade_caps): the net's height steps are judged
+  /// against it.
+  std::vector<double> grade_caps;
 };
 
 /// What the SUMO thread makes (export/sumo_net_build.h), with its diagnostics (every one) kept
