@@ -313,11 +313,12 @@ std::vector<Vec3> surface_grid(const std::vector<Vec2>& outline, const std::vect
   return points;
 }
 
-std::string build_junction_surface(const RoadModel& model, const JunctionModel& junction,
-                                   std::vector<JunctionEnd> ends, const std::vector<int>& connecting_roads,
-                                   const RoadMeshOptions& options, MeshBuilder& mesh) {
+JunctionSurfaceResult build_junction_surface(const RoadModel& model, const JunctionModel& junction,
+                                             std::vector<JunctionEnd> ends,
+                                             const std::vector<int>& connecting_roads,
+                                             const RoadMeshOptions& options, MeshBuilder& mesh) {
   std::erase_if(ends, [](const JunctionEnd& e) { return e.vertices.size() < 2; });
-  if (ends.empty()) return "no road ends";
+  if (ends.empty()) return {"no road ends", {}};
   const auto& vertices = mesh.mesh.vertices;
   const auto midpoint = [&](const JunctionEnd& e) -> Vec2 {
     return 0.5 * (vertices[e.vertices.front()].head<2>() + vertices[e.vertices.back()].head<2>());
@@ -375,7 +376,7 @@ std::string build_junction_surface(const RoadModel& model, const JunctionModel& 
   const std::vector<Vec3> grid = surface_grid(extent, interior, surface);
   interior.insert(interior.end(), grid.begin(), grid.end());
   std::string failed = triangulate_junction(sorted, gaps, junction.id, mesh, interior, &surface);
-  if (failed.empty()) return failed;
+  if (failed.empty()) return {};
   // Straight sides (along the roads' edges where a road runs along one; if even that is not a
   // simple outline, plain) for the ends in `order`.
   const auto straight = [&](const std::vector<JunctionEnd>& order, bool follow_edges) {
@@ -388,20 +389,46 @@ std::string build_junction_surface(const RoadModel& model, const JunctionModel& 
                                                  mesh, interior, &surface)
                                 .empty());
   };
-  // A kerb line that cuts across a neighbouring road end (a sharp fork): straight gaps instead.
-  if (straight(sorted, true)) return {};
-  // Ends reaching past one another (a joined junction, a road end across a neighbour's): the
-  // ends in another order around the junction, one whose outline is simple.
-  std::vector<Polyline2> chains;
-  for (const JunctionEnd& e : sorted) {
-    Polyline2& chain = chains.emplace_back();
-    for (const std::uint32_t v : e.vertices) chain.push_back(vertices[v].head<2>());
+  // A kerb line that cuts across a neighbouring road end (a sharp fork): straight gaps instead;
+  // where even that is not simple (ends reaching past one another: a joined junction, a road end
+  // across a neighbour's), the ends in another order around the junction, one whose outline is.
+  const auto straight_or_reordered = [&](const std::vector<JunctionEnd>& set) {
+    if (straight(set, true)) return true;
+    std::vector<Polyline2> chains;
+    for (const JunctionEnd& e : set) {
+      Polyline2& chain = chains.emplace_back();
+      for (const std::uint32_t v : e.vertices) chain.push_back(vertices[v].head<2>());
+    }
+    const std::optional<std::vector<std::size_t>> simple = simple_outline_order(chains);
+    if (!simple) return false;
+    std::vector<JunctionEnd> reordered;
+    for (const std::size_t k : *simple) reordered.push_back(set[k]);
+    return straight(reordered, true);
+  };
+  if (straight_or_reordered(sorted)) return {};
+  // No order makes one simple outline of all the ends: one end lies across the others (on a
+  // neighbouring road's pavement, where bad data put two roads' ends on each other). The
+  // junction is built without one end, so that its area is paved and the rest of its ends
+  // joined; tried first are the ends whose edge's midpoint lies behind another end's edge (over
+  // that road), then the narrowest.
+  if (sorted.size() < 3) return {failed, {}};
+  std::vector<std::pair<std::pair<bool, double>, std::size_t>> candidates;
+  for (std::size_t k = 0; k < sorted.size(); ++k) {
+    const JunctionEnd& e = sorted[k];
+    const Vec3 mid = 0.5 * (vertices[e.vertices.front()] + vertices[e.vertices.back()]);
+    bool behind = false;
+    for (std::size_t i = 0; i < sorted.size() && !behind; ++i) behind = i != k && over_end(sorted[i], mid);
+    const double width = (vertices[e.vertices.back()] - vertices[e.vertices.front()]).head<2>().norm();
+    candidates.push_back({{!behind, width}, k});
   }
-  const std::optional<std::vector<std::size_t>> simple = simple_outline_order(chains);
-  if (!simple) return failed;
-  std::vector<JunctionEnd> reordered;
-  for (const std::size_t k : *simple) reordered.push_back(sorted[k]);
-  return straight(reordered, true) ? std::string() : failed;
+  std::sort(candidates.begin(), candidates.end());
+  for (const auto& [order, k] : candidates) {
+    std::vector<JunctionEnd> rest;
+    for (std::size_t i = 0; i < sorted.size(); ++i)
+      if (i != k) rest.push_back(sorted[i]);
+    if (straight_or_reordered(rest)) return {{}, {{sorted[k].road_index, sorted[k].at_start}}};
+  }
+  return {failed, {}};
 }
 
 OutlineGap along_road_edges(const JunctionEnd& a, const JunctionEnd& b, const std::vector<Vec3>& vertices) {

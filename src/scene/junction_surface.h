@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "relief/roads/junction_height.h"
@@ -31,17 +32,28 @@ struct OutlineGap {
   std::vector<std::uint32_t> vertices;
 };
 
+/// What build_junction_surface made of a junction.
+struct JunctionSurfaceResult {
+  std::string problem;  ///< empty: the surface is built; else what is wrong (nothing is added then)
+  /// Road ends (road index, at its start) the surface leaves out: each lay across the others,
+  /// and no outline joining all the ends was simple.
+  std::vector<std::pair<int, bool>> left_out;
+};
+
 /// Orders the ends counter-clockwise (junction_end_order: by a point ahead along each road, the
 /// order netconvert's node outlines take too), closes the gap
 /// between consecutive ends with the outermost lane border of a connecting road (of
 /// `connecting_roads`, indices into model.roads) that joins those two road ends, else a straight
-/// segment, and triangulates the outline (triangulate_junction); when that outline is not simple
-/// (a kerb line cutting across a neighbouring road end at a sharp fork), straight gaps instead.
-/// Returns an empty string on success, else what is wrong (with the kerb lines).
-[[nodiscard]] std::string build_junction_surface(const RoadModel& model, const JunctionModel& junction,
-                                                 std::vector<JunctionEnd> ends,
-                                                 const std::vector<int>& connecting_roads,
-                                                 const RoadMeshOptions& options, MeshBuilder& mesh);
+/// segment, and triangulates the outline (triangulate_junction). When that outline is not simple
+/// (a kerb line cutting across a neighbouring road end at a sharp fork), straight gaps instead;
+/// then the ends in another order (simple_outline_order); and last, where one end lies across the
+/// others (on a neighbouring road's pavement), the outline of all the ends but one: first one
+/// whose edge lies behind another end's, then the narrowest.
+[[nodiscard]] JunctionSurfaceResult build_junction_surface(const RoadModel& model,
+                                                           const JunctionModel& junction,
+                                                           std::vector<JunctionEnd> ends,
+                                                           const std::vector<int>& connecting_roads,
+                                                           const RoadMeshOptions& options, MeshBuilder& mesh);
 
 /// The straight side of an outline from a's left corner P to b's right corner Q, where a road
 /// leaving at a or b runs along it at a few degrees (a joined junction's long side, or one with

@@ -283,15 +283,27 @@ RoadMeshes build_road_meshes(const RoadModel& model, const RoadMeshOptions& opti
       corners += e.vertices.size();
     }
     if (corners > 0) centre /= static_cast<double>(corners);
-    const std::string problem =
+    const detail::JunctionSurfaceResult built =
         detail::build_junction_surface(model, junction, std::move(ends), connecting[j], options, road);
+    const std::string& problem = built.problem;
+    char at[96];
+    std::snprintf(at, sizeof at, " at (%.1f, %.1f, %.2f)", centre.x(), centre.y(), centre.z());
+    const std::string place = "junction " + std::to_string(junction.id) + (corners > 0 ? at : "");
+    for (const auto& [index, at_start] : built.left_out) {
+      const ModelRoad& left_out = model.roads[static_cast<std::size_t>(index)];
+      const std::string way = left_out.osm_way_ids.empty()
+                                  ? std::string()
+                                  : " (OSM way " + std::to_string(left_out.osm_way_ids.front()) + ")";
+      diagnostics.report(Severity::warning, codes::kMeshJunctionEndLeftOut,
+                         place + ": the " + (at_start ? "start" : "end") + " of road " +
+                             std::to_string(left_out.id) + way +
+                             " lies across the junction's other road ends (two roads' ends on each other?); "
+                             "the junction's surface is built without it and that end stays open");
+    }
     if (problem.empty()) {
       ++out.junctions_meshed;
     } else {
       ++out.junctions_failed;
-      char at[96];
-      std::snprintf(at, sizeof at, " at (%.1f, %.1f, %.2f)", centre.x(), centre.y(), centre.z());
-      const std::string place = "junction " + std::to_string(junction.id) + (corners > 0 ? at : "");
       if (out.first_failed_junction.empty()) out.first_failed_junction = place;
       if (corners > 0) out.failed_junctions.push_back({junction.id, centre});
       diagnostics.report(Severity::warning, codes::kMeshJunctionFailed,

@@ -53,7 +53,7 @@ TEST(JunctionSurface, CrossingOfFourRoadEndsIsItsOctagon) {
   }
   JunctionModel junction;
   junction.id = 7;
-  const std::string failed = build_junction_surface(model, junction, ends, {}, {}, mesh);
+  const std::string failed = build_junction_surface(model, junction, ends, {}, {}, mesh).problem;
   EXPECT_EQ(failed, "");
   EXPECT_EQ(mesh.mesh.vertices.size(), 32u);
   for (const Vec3& v : mesh.mesh.vertices) EXPECT_NEAR(v.z(), 2.0, 1e-12);
@@ -61,6 +61,51 @@ TEST(JunctionSurface, CrossingOfFourRoadEndsIsItsOctagon) {
   EXPECT_NEAR(mesh_area(mesh.mesh), 100.0 - 4.0 * 2.0, 1e-9);
   EXPECT_EQ(mesh.owner, std::vector<int>(46, -8));
   EXPECT_TRUE(all_facing_up(mesh.mesh));
+}
+
+// The octagon's crossing with a fifth road end lying across the east one (bad data: a way's end
+// drawn onto another road's pavement): its edge, (4.5, -2) to (6, 2), crosses the east end's
+// edge at (5, -0.67), so no outline joining all five ends is simple, in any order. Before, the
+// junction was left open; now it is the octagon of the other four (92 m2, as without the fifth),
+// that end is named as left out, and none of its vertices is in a triangle.
+TEST(JunctionSurface, AnEndLyingAcrossAnotherIsLeftOutAndTheRestIsPaved) {
+  RoadModel model;
+  for (int k = 0; k < 4; ++k) {
+    const double heading = k * std::numbers::pi / 2.0;
+    const Vec2 dir(std::cos(heading), std::sin(heading));
+    model.roads.push_back(test::straight_road(k + 1, 5.0 * dir, heading, 50.0, 2.0, 0.0));
+  }
+  model.roads.push_back(test::straight_road(5, Vec2(5.25, 0.0), std::atan2(-1.5, 4.0), 50.0, 2.0, 0.0));
+  MeshBuilder mesh;
+  std::vector<JunctionEnd> ends;
+  for (int k = 0; k < 4; ++k) {
+    const double heading = k * std::numbers::pi / 2.0;
+    const Vec2 dir(std::cos(heading), std::sin(heading));
+    const Vec2 left(-dir.y(), dir.x());
+    std::vector<Vec3> points;
+    for (const double t : {-3.0, 0.0, 3.0}) {
+      const Vec2 xy = 5.0 * dir + t * left;
+      points.emplace_back(xy.x(), xy.y(), 2.0);
+    }
+    ends.push_back(add_end(mesh, k, points));
+  }
+  ends.push_back(add_end(mesh, 4, {Vec3(4.5, -2.0, 2.0), Vec3(6.0, 2.0, 2.0)}));
+  JunctionModel junction;
+  junction.id = 7;
+  const JunctionSurfaceResult built = build_junction_surface(model, junction, ends, {}, {}, mesh);
+  EXPECT_EQ(built.problem, "");
+  EXPECT_EQ(built.left_out, (std::vector<std::pair<int, bool>>{{4, true}}));
+  EXPECT_NEAR(mesh_area(mesh.mesh), 100.0 - 4.0 * 2.0, 1e-9);
+  EXPECT_TRUE(all_facing_up(mesh.mesh));
+  for (const auto& t : mesh.mesh.triangles)
+    for (const std::uint32_t v : t) EXPECT_TRUE(v < 12 || v > 13) << "vertex " << v << " of the fifth end";
+
+  // The same five ends as one outline, in the junction's order and with straight sides: CGAL
+  // finds the crossing.
+  std::vector<JunctionEnd> sorted{ends[0], ends[4], ends[1], ends[2], ends[3]};
+  MeshBuilder copy = mesh;
+  EXPECT_NE(triangulate_junction(sorted, std::vector<OutlineGap>(5), 7, copy).find("not simple"),
+            std::string::npos);
 }
 
 // Four roads 6 m wide starting 5 m from the centre, east, north, west and south, at 2 m: the
@@ -95,7 +140,7 @@ TEST(JunctionSurface, ThePatchBetweenTheEndsFollowsTheJunctionsHeightSurface) {
   const JunctionHeight surface(planes);
   JunctionModel junction;
   junction.id = 7;
-  ASSERT_EQ(build_junction_surface(model, junction, ends, {}, {}, mesh), "");
+  ASSERT_EQ(build_junction_surface(model, junction, ends, {}, {}, mesh).problem, "");
   ASSERT_EQ(mesh.mesh.vertices.size(), 32u);
   for (std::size_t v = 12; v < mesh.mesh.vertices.size(); ++v) {
     const Vec3& p = mesh.mesh.vertices[v];
@@ -218,7 +263,7 @@ TEST(JunctionSurface, InteriorPointsFollowTheConnectingRoadsLanesAndMergeWhereTh
 TEST(JunctionSurface, EndsWithoutAnEdgeAreNoSurface) {
   MeshBuilder mesh;
   const std::vector<JunctionEnd> ends{add_end(mesh, 0, {Vec3(0.0, 0.0, 0.0)})};
-  EXPECT_EQ(build_junction_surface(RoadModel{}, JunctionModel{}, ends, {}, {}, mesh), "no road ends");
+  EXPECT_EQ(build_junction_surface(RoadModel{}, JunctionModel{}, ends, {}, {}, mesh).problem, "no road ends");
   EXPECT_TRUE(mesh.mesh.triangles.empty());
 }
 

@@ -112,6 +112,9 @@ inline constexpr DiagnosticCode kMeshWeldUnmatched{
     "mesh.weld_unmatched", "vertices of linked road ends have no partner within 5 mm (lane counts differ)"};
 inline constexpr DiagnosticCode kMeshJunctionFailed{
     "mesh.junction_failed", "a junction surface could not be built; its area is open"};
+inline constexpr DiagnosticCode kMeshJunctionEndLeftOut{
+    "mesh.junction_end_left_out",
+    "a road end lying across a junction's other ends is left out of its surface; that end stays open"};
 inline constexpr DiagnosticCode kMeshRoadSelfIntersections{
     "mesh.road_self_intersections", "road surface triangles intersect each other (Road_Road pairs)"};
 inline constexpr DiagnosticCode kMeshRoadsOverlapInPlan{
@@ -198,6 +201,7 @@ inline constexpr std::array kAll{kDemDatumGridMissing,
                                  kMeshRoadFailed,
                                  kMeshWeldUnmatched,
                                  kMeshJunctionFailed,
+                                 kMeshJunctionEndLeftOut,
                                  kMeshRoadSelfIntersections,
                                  kMeshRoadsOverlapInPlan,
                                  kMeshStructureTerrainIntersections,
