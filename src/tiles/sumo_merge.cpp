@@ -9,6 +9,15 @@
 
 namespace relief::detail {
 
+std::vector<double> model_grade_caps(const RoadModel& model, const ProfileFitOptions& fit) {
+  std::vector<double> caps(model.roads.size(), -1.0);
+  for (std::size_t i = 0; i < model.roads.size(); ++i) {
+    const ModelRoad& road = model.roads[i];
+    if (road.junction < 0 && road.highway) caps[i] = grade_limit(fit, *road.highway);
+  }
+  return caps;
+}
+
 nlohmann::json merge_sumo_net(const RoadModel& model, const SumoOptions& options, const GateThresholds& gates,
                               const std::filesystem::path& dir, const std::string& name, OutputSet& files,
                               std::vector<std::filesystem::path>& written,

@@ -14,9 +14,16 @@
 #include "relief/core/diagnostics.h"
 #include "relief/export/quality_gates.h"
 #include "relief/export/sumo_network.h"
+#include "relief/roads/profile_fit.h"
 #include "relief/roads/road_model.h"
 
 namespace relief::detail {
+
+/// Each road's grade cap under `fit` (grade_limit by its highway class), -1 for a road without
+/// one (a connecting road: the larger cap of the roads it joins, linked_grade_cap). A build
+/// also lowers a tunnel's cap; the .xodr does not say which roads are tunnels, so a tunnel here
+/// keeps its class's cap and its steps are judged a little more leniently.
+[[nodiscard]] std::vector<double> model_grade_caps(const RoadModel& model, const ProfileFitOptions& fit);
 
 /// Writes NAME.net.xml, NAME.{nod,edg,con}.xml and NAME.sumo_mapping.json of `model` into
 /// `files` under `dir` (netconvert works in a scratch folder there); appends them to `written`

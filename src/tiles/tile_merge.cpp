@@ -240,8 +240,10 @@ TileMergeResult merge_tiles(const std::filesystem::path& dir, const TileMergeOpt
                                {"worst_road", c.deviation.worst_road}};
     }
     if (options.sumo_net) {
-      report["sumo"] = detail::merge_sumo_net(m.model, options.sumo, options.gates, merged, manifest.name,
-                                              files, result.written, result.failed_gates, diagnostics);
+      SumoOptions sumo = options.sumo;
+      sumo.grade_caps = detail::model_grade_caps(m.model, options.fit);
+      report["sumo"] = detail::merge_sumo_net(m.model, sumo, options.gates, merged, manifest.name, files,
+                                              result.written, result.failed_gates, diagnostics);
     }
     const std::filesystem::path xodr = merged / (manifest.name + ".xodr");
     std::ostringstream xodr_text;

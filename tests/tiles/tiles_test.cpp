@@ -33,6 +33,7 @@
 #include "support/test_data.h"
 #include "tiles/scene_lod.h"
 #include "tiles/scene_seams.h"
+#include "tiles/sumo_merge.h"
 #include "tiles/tileset_writer.h"
 
 namespace relief {
@@ -385,6 +386,27 @@ TEST(SceneSeams, AVertexWithinTheToleranceIsWeldedAndOneFartherLeftApartAndCount
   EXPECT_EQ(apart.vertices, 1u);
   EXPECT_NEAR(apart.max_m, 0.017, 1e-12);
   EXPECT_EQ(apart.at, Vec3(10.0, 0.0, 6.017));
+}
+
+// The merged SUMO net's height steps are judged against each road's cap, as in a build: the
+// merged model's roads carry their highway class (read back from the tiles' .xodr), a
+// connecting road or one without a class has none of its own (-1: the larger of its links').
+TEST(TileSumo, EachRoadsGradeCapFollowsItsClass) {
+  RoadModel model;
+  for (const std::optional<HighwayClass> cls :
+       {std::optional(HighwayClass::residential), std::optional(HighwayClass::footway),
+        std::optional(HighwayClass::motorway), std::optional<HighwayClass>(),
+        std::optional(HighwayClass::steps)}) {
+    ModelRoad& road = model.roads.emplace_back();
+    road.id = static_cast<int>(model.roads.size());
+    road.highway = cls;
+  }
+  model.roads[4].junction = 0;  // a connecting road keeps no class of its own
+  ProfileFitOptions fit;
+  fit.fidelity_foot_max_grade_percent = 80.0;
+  EXPECT_EQ(detail::model_grade_caps(model, fit), (std::vector<double>{0.35, 0.80, 0.10, -1.0, -1.0}));
+  fit.fidelity_max_grade_percent = 25.0;
+  EXPECT_DOUBLE_EQ(detail::model_grade_caps(model, fit)[0], 0.25);
 }
 
 TEST(Tileset, CoarseTilesRefineByReplacementAndBoxesHoldTheirContent) {

@@ -213,6 +213,7 @@ int run_merge(const TilesArgs& a) {
     const BuildCommandArgs parsed = parse_build_args(read_manifest(a.dir).build_args);
     options.sumo = parsed.options.sumo;
     options.gates = parsed.options.gates;
+    options.fit = parsed.options.fit;
   }
   options.sumo_net = !a.no_sumo;
   print_diagnostics_live(diagnostics, /*quiet=*/true);

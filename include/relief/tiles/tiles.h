@@ -145,10 +145,12 @@ struct TileMergeOptions {
   double lod_cell_m = 0.0;
   /// The region's SUMO network from the merged model (netconvert over its plain XML), checked by
   /// the build's SUMO gates with `gates`' thresholds. `sumo` and `gates` are the tiles' options
-  /// (the plan's build options).
+  /// (the plan's build options); so is `fit`, whose grade caps (by each road's highway class)
+  /// the net's height steps are judged against, as in a build (SumoOptions::grade_caps).
   bool sumo_net = true;
   SumoOptions sumo;
   GateThresholds gates;
+  ProfileFitOptions fit;
 };
 
 struct TileMergeResult {
