@@ -348,18 +348,23 @@ JunctionSurfaceResult build_junction_surface(const RoadModel& model, const Junct
     const double along = edge.dot(q) / length, inward = (edge.x() * q.y() - edge.y() * q.x()) / length;
     return inward < kKerbCornerGap && along > -kKerbCornerGap && along < length + kKerbCornerGap;
   };
-  std::vector<OutlineGap> gaps(sorted.size());
-  for (std::size_t k = 0; k < sorted.size(); ++k) {
-    const JunctionEnd& a = sorted[k];
-    const JunctionEnd& b = sorted[(k + 1) % sorted.size()];
-    gaps[k].points = kerb_between(model, connecting_roads, end_key(a.road_index, a.at_start),
-                                  end_key(b.road_index, b.at_start), centre, vertices[a.vertices.back()],
-                                  vertices[b.vertices.front()], options);
-    // A kerb point behind the edge of either end (a tight turn's border bulging back over the
-    // road it leaves) lies over that road's mesh: the two surfaces would cross there.
-    std::erase_if(gaps[k].points, [&](const Vec3& p) { return over_end(a, p) || over_end(b, p); });
-    if (gaps[k].points.empty()) gaps[k] = along_road_edges(a, b, vertices);
-  }
+  // The kerb lines between consecutive ends of `order`.
+  const auto kerb_gaps = [&](const std::vector<JunctionEnd>& order) {
+    std::vector<OutlineGap> gaps(order.size());
+    for (std::size_t k = 0; k < order.size(); ++k) {
+      const JunctionEnd& a = order[k];
+      const JunctionEnd& b = order[(k + 1) % order.size()];
+      gaps[k].points = kerb_between(model, connecting_roads, end_key(a.road_index, a.at_start),
+                                    end_key(b.road_index, b.at_start), centre, vertices[a.vertices.back()],
+                                    vertices[b.vertices.front()], options);
+      // A kerb point behind the edge of either end (a tight turn's border bulging back over the
+      // road it leaves) lies over that road's mesh: the two surfaces would cross there.
+      std::erase_if(gaps[k].points, [&](const Vec3& p) { return over_end(a, p) || over_end(b, p); });
+      if (gaps[k].points.empty()) gaps[k] = along_road_edges(a, b, vertices);
+    }
+    return gaps;
+  };
+  const std::vector<OutlineGap> gaps = kerb_gaps(sorted);
   // The junction's height surface (relief/roads/junction_height.h): the one its connecting roads
   // take their heights from.
   std::vector<EndPlane> planes;
@@ -377,6 +382,14 @@ JunctionSurfaceResult build_junction_surface(const RoadModel& model, const Junct
   interior.insert(interior.end(), grid.begin(), grid.end());
   std::string failed = triangulate_junction(sorted, gaps, junction.id, mesh, interior, &surface);
   if (failed.empty()) return {};
+  // One kerb line crossing another or an end (at a hairpin's tip the inner kerb reaches round
+  // to the outer one): that gap straight, the other kerbs kept.
+  for (std::size_t k = 0; k < sorted.size(); ++k) {
+    if (gaps[k].points.empty() || !gaps[k].vertices.empty()) continue;  // not a kerb line
+    std::vector<OutlineGap> one = gaps;
+    one[k] = along_road_edges(sorted[k], sorted[(k + 1) % sorted.size()], vertices);
+    if (triangulate_junction(sorted, one, junction.id, mesh, interior, &surface).empty()) return {};
+  }
   // Straight sides (along the roads' edges where a road runs along one; if even that is not a
   // simple outline, plain) for the ends in `order`.
   const auto straight = [&](const std::vector<JunctionEnd>& order, bool follow_edges) {
@@ -426,7 +439,11 @@ JunctionSurfaceResult build_junction_surface(const RoadModel& model, const Junct
     std::vector<JunctionEnd> rest;
     for (std::size_t i = 0; i < sorted.size(); ++i)
       if (i != k) rest.push_back(sorted[i]);
-    if (straight_or_reordered(rest)) return {{}, {{sorted[k].road_index, sorted[k].at_start}}};
+    // Its kerb lines first: straight sides across a joined junction's notches would pave
+    // over the roads that lie in them.
+    if (triangulate_junction(rest, kerb_gaps(rest), junction.id, mesh, interior, &surface).empty() ||
+        straight_or_reordered(rest))
+      return {{}, {{sorted[k].road_index, sorted[k].at_start}}};
   }
   return {failed, {}};
 }

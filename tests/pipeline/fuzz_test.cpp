@@ -237,10 +237,10 @@ TEST(Fuzz, RandomNetworksOnRandomTerrainBuildAndCheckThemselves) {
 // passes, seed 1's 48 self-intersecting pairs are 5, and seed 75, which passed with its decks
 // through each other, now leaves that separation's clearance violated (reported: the fit finds
 // no room for 5 m there under its higher-priority limits) with 9 pairs: still 61 (measured
-// 2026-11-29, 9 fits by the method of multipliers). The others fail sumo_height_steps 17, ground_vs_dem_rmse_m 16 (the
-// steepest terrains, as without the errors), connecting_road_grade_over_cap_percent 13,
-// fit_limits_violated 10, road_self_intersections 7, junctions_open 2, ground_holes 1 (known,
-// not fixed).
+// 2026-11-29, 9 fits by the method of multipliers). The others fail sumo_height_steps 17,
+// ground_vs_dem_rmse_m 16 (the steepest terrains, as without the errors),
+// connecting_road_grade_over_cap_percent 13, fit_limits_violated 10, road_self_intersections 7,
+// junctions_open 2, ground_holes 1 (known, not fixed).
 TEST(Fuzz, RandomNetworksWithOsmDataErrorsBuildAndCheckThemselves) {
   build_and_check_seeds(true, 17);  // measured 17 of 30 (11 before ways folding onto themselves)
 }
@@ -300,6 +300,30 @@ TEST(Fuzz, ConnectingRoadsBetweenRolledLaneEndsKeepTheirCap) {
     }
     EXPECT_EQ(checked, 2);
     EXPECT_EQ(result.report.junctions.max_gap_m, 0.0);
+  }
+}
+
+// OSM-error seeds with a road end drawn across a neighbour's (55: its edge 2 m inside the other
+// road's pavement; 94: two road ends crossing): no outline joining all the junction's ends was
+// simple and the junction was left open (junctions_open 1). It is now paved without that end,
+// which is reported, and nothing intersects.
+TEST(Fuzz, AJunctionWithAnEndLyingAcrossTheOthersIsPavedWithoutIt) {
+  for (const unsigned seed : {55u, 94u}) {
+    SCOPED_TRACE("seed " + std::to_string(seed));
+    FuzzCase c;
+    Diagnostics d;
+    BuildResult result;
+    ASSERT_NO_THROW(result = build_seed(seed, c, d, true));
+    EXPECT_EQ(d.count("mesh.junction_end_left_out"), 1u);
+    EXPECT_EQ(d.count("mesh.junction_failed"), 0u);
+    int checked = 0;
+    for (const Gate& g : result.report.gates) {
+      if (g.name != "junctions_open" && g.name != "road_self_intersections" && g.name != "ground_holes")
+        continue;
+      EXPECT_EQ(g.value, 0.0) << g.name << " " << g.where;
+      ++checked;
+    }
+    EXPECT_EQ(checked, 3);
   }
 }
 

@@ -242,5 +242,25 @@ TEST(Regions, PathThroughAnSrtmVoidOnACliff) {
   EXPECT_TRUE(filled) << "the path's samples near the void are not reported as filled";
 }
 
+// A track (OSM way 125947376) and a path (125947383) meeting at node 1397493884 (lon 9.504, lat
+// 47.081) and turning back there, a hairpin: a two-end junction whose connecting road turns round
+// the tip. The kerb lines of both gaps ran round the tip through one point ("two outline
+// vertices at the same position") and the junction was left open, failing junctions_open. One gap straight,
+// the other's kerb kept, is a simple outline: the tip is paved and every gate passes.
+TEST(Regions, AHairpinsTwoEndJunctionIsPaved) {
+  RELIEF_REQUIRE_SHARED_DATA();
+  BuildOptions o;
+  o.osm_path = test::shared_data("liechtenstein/liechtenstein-latest.osm.pbf");
+  o.dem_paths = {"/vsizip/" + test::shared_data("liechtenstein/N47E009.hgt.zip").string() + "/N47E009.hgt"};
+  o.osm.bbox = LonLatBox{9.501067, 47.079012, 9.507067, 47.083012};
+  o.osm.include_non_motor = true;
+  Diagnostics d;
+  const BuildResult result = build_region(o, "liechtenstein_hairpin_junction", 2.52, d);
+  expect_gates(result.report, {});
+  ASSERT_TRUE(result.report.mesh);
+  EXPECT_EQ(result.report.mesh->junctions_failed, 0u);
+  EXPECT_EQ(d.count(codes::kMeshJunctionEndLeftOut.code), 0u);
+}
+
 }  // namespace
 }  // namespace relief
