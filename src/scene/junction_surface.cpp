@@ -49,6 +49,7 @@ using Cdt = CGAL::Constrained_Delaunay_triangulation_2<Kernel, Tds, CGAL::Exact_
 
 constexpr double kKerbCornerGap = 0.01;     // kerb points this close to a corner are dropped (m)
 constexpr double kKerbMinAngle = 1e-6;      // kerb points must advance this much around the centre (rad)
+constexpr double kOnRoadDepth = 5.0;        // an end this far behind another's edge may lie on its road (m)
 constexpr double kEdgeTurnedAway = 1.0;     // a road edge this far outside a straight side has left it (m)
 constexpr double kInteriorSpacing = 2.0;    // interior points along a connecting road's lanes (m)
 constexpr double kInteriorEndGap = 1.0;     // none this close to a connecting road's ends (m)
@@ -348,6 +349,19 @@ JunctionSurfaceResult build_junction_surface(const RoadModel& model, const Junct
     const double along = edge.dot(q) / length, inward = (edge.x() * q.y() - edge.y() * q.x()) / length;
     return inward < kKerbCornerGap && along > -kKerbCornerGap && along < length + kKerbCornerGap;
   };
+  const auto end_width = [&](const JunctionEnd& e) {
+    return (vertices[e.vertices.back()] - vertices[e.vertices.front()]).head<2>().norm();
+  };
+  // Whether p lies on the road of end e: behind its edge (over_end), by at most the edge's
+  // width and kOnRoadDepth.
+  const auto lies_behind = [&](const JunctionEnd& e, const Vec3& p) {
+    if (!over_end(e, p)) return false;
+    const Vec2 right = vertices[e.vertices.front()].head<2>(),
+               edge = vertices[e.vertices.back()].head<2>() - right;
+    const Vec2 q = p.head<2>() - right;
+    const double behind = -(edge.x() * q.y() - edge.y() * q.x()) / edge.norm();
+    return behind <= std::max(edge.norm(), kOnRoadDepth);
+  };
   // The kerb lines between consecutive ends of `order`.
   const auto kerb_gaps = [&](const std::vector<JunctionEnd>& order) {
     std::vector<OutlineGap> gaps(order.size());
@@ -380,16 +394,6 @@ JunctionSurfaceResult build_junction_surface(const RoadModel& model, const Junct
     for (const Vec3& p : gap.points) extent.emplace_back(p.head<2>());
   const std::vector<Vec3> grid = surface_grid(extent, interior, surface);
   interior.insert(interior.end(), grid.begin(), grid.end());
-  std::string failed = triangulate_junction(sorted, gaps, junction.id, mesh, interior, &surface);
-  if (failed.empty()) return {};
-  // One kerb line crossing another or an end (at a hairpin's tip the inner kerb reaches round
-  // to the outer one): that gap straight, the other kerbs kept.
-  for (std::size_t k = 0; k < sorted.size(); ++k) {
-    if (gaps[k].points.empty() || !gaps[k].vertices.empty()) continue;  // not a kerb line
-    std::vector<OutlineGap> one = gaps;
-    one[k] = along_road_edges(sorted[k], sorted[(k + 1) % sorted.size()], vertices);
-    if (triangulate_junction(sorted, one, junction.id, mesh, interior, &surface).empty()) return {};
-  }
   // Straight sides (along the roads' edges where a road runs along one; if even that is not a
   // simple outline, plain) for the ends in `order`.
   const auto straight = [&](const std::vector<JunctionEnd>& order, bool follow_edges) {
@@ -418,6 +422,48 @@ JunctionSurfaceResult build_junction_surface(const RoadModel& model, const Junct
     for (const std::size_t k : *simple) reordered.push_back(set[k]);
     return straight(reordered, true);
   };
+  // Ends lying on another end's road are left out (lies_behind) where the rest make a
+  // simple outline: reaching round to them, the outline ran over that road's pavement and into
+  // the neighbouring junction's (Liechtenstein's footways along a main road, 27 pairs crossing).
+  std::vector<bool> on_another(sorted.size(), false);
+  {
+    std::vector<std::size_t> by_width(sorted.size());
+    for (std::size_t k = 0; k < sorted.size(); ++k) by_width[k] = k;
+    std::stable_sort(by_width.begin(), by_width.end(), [&](std::size_t a, std::size_t b) {
+      return end_width(sorted[a]) < end_width(sorted[b]);
+    });
+    for (const std::size_t k : by_width) {
+      const JunctionEnd& e = sorted[k];
+      const Vec3 mid = 0.5 * (vertices[e.vertices.front()] + vertices[e.vertices.back()]);
+      for (std::size_t i = 0; i < sorted.size() && !on_another[k]; ++i)
+        on_another[k] = i != k && !on_another[i] && lies_behind(sorted[i], mid);
+    }
+  }
+  if (std::count(on_another.begin(), on_another.end(), true) > 0) {
+    std::vector<JunctionEnd> own;
+    std::vector<std::pair<int, bool>> left_out;
+    for (std::size_t k = 0; k < sorted.size(); ++k) {
+      if (on_another[k]) {
+        left_out.emplace_back(sorted[k].road_index, sorted[k].at_start);
+      } else {
+        own.push_back(sorted[k]);
+      }
+    }
+    if (own.size() >= 2 &&
+        (triangulate_junction(own, kerb_gaps(own), junction.id, mesh, interior, &surface).empty() ||
+         straight_or_reordered(own)))
+      return {{}, left_out};
+  }
+  std::string failed = triangulate_junction(sorted, gaps, junction.id, mesh, interior, &surface);
+  if (failed.empty()) return {};
+  // One kerb line crossing another or an end (at a hairpin's tip the inner kerb reaches round
+  // to the outer one): that gap straight, the other kerbs kept.
+  for (std::size_t k = 0; k < sorted.size(); ++k) {
+    if (gaps[k].points.empty() || !gaps[k].vertices.empty()) continue;  // not a kerb line
+    std::vector<OutlineGap> one = gaps;
+    one[k] = along_road_edges(sorted[k], sorted[(k + 1) % sorted.size()], vertices);
+    if (triangulate_junction(sorted, one, junction.id, mesh, interior, &surface).empty()) return {};
+  }
   if (straight_or_reordered(sorted)) return {};
   // No order makes one simple outline of all the ends: one end lies across the others (on a
   // neighbouring road's pavement, where bad data put two roads' ends on each other). The
@@ -431,8 +477,7 @@ JunctionSurfaceResult build_junction_surface(const RoadModel& model, const Junct
     const Vec3 mid = 0.5 * (vertices[e.vertices.front()] + vertices[e.vertices.back()]);
     bool behind = false;
     for (std::size_t i = 0; i < sorted.size() && !behind; ++i) behind = i != k && over_end(sorted[i], mid);
-    const double width = (vertices[e.vertices.back()] - vertices[e.vertices.front()]).head<2>().norm();
-    candidates.push_back({{!behind, width}, k});
+    candidates.push_back({{!behind, end_width(e)}, k});
   }
   std::sort(candidates.begin(), candidates.end());
   for (const auto& [order, k] : candidates) {

@@ -35,8 +35,8 @@ struct OutlineGap {
 /// What build_junction_surface made of a junction.
 struct JunctionSurfaceResult {
   std::string problem;  ///< empty: the surface is built; else what is wrong (nothing is added then)
-  /// Road ends (road index, at its start) the surface leaves out: each lay across the others,
-  /// and no outline joining all the ends was simple.
+  /// Road ends (road index, at its start) the surface leaves out: each lay on another end's
+  /// road, or across the others where no outline joining all the ends was simple.
   std::vector<std::pair<int, bool>> left_out;
 };
 
@@ -44,11 +44,13 @@ struct JunctionSurfaceResult {
 /// order netconvert's node outlines take too), closes the gap
 /// between consecutive ends with the outermost lane border of a connecting road (of
 /// `connecting_roads`, indices into model.roads) that joins those two road ends, else a straight
-/// segment, and triangulates the outline (triangulate_junction). When that outline is not simple
-/// (a kerb line cutting across a neighbouring road end at a sharp fork), straight gaps instead;
-/// then the ends in another order (simple_outline_order); and last, where one end lies across the
-/// others (on a neighbouring road's pavement), the outline of all the ends but one: first one
-/// whose edge lies behind another end's, then the narrowest.
+/// segment, and triangulates the outline (triangulate_junction). An end lying on another end's
+/// road (its edge's midpoint behind that end's edge, by at most the edge's width or 5 m) is left
+/// out first, where the others make a simple outline. When the outline is not simple (a kerb
+/// line cutting across a neighbouring road end at a sharp fork), one gap straight; then all
+/// straight; then the ends in another order (simple_outline_order); and last, where one end lies
+/// across the others, the outline of all the ends but one: first one whose edge lies behind
+/// another end's, then the narrowest.
 [[nodiscard]] JunctionSurfaceResult build_junction_surface(const RoadModel& model,
                                                            const JunctionModel& junction,
                                                            std::vector<JunctionEnd> ends,

@@ -294,11 +294,11 @@ RoadMeshes build_road_meshes(const RoadModel& model, const RoadMeshOptions& opti
       const std::string way = left_out.osm_way_ids.empty()
                                   ? std::string()
                                   : " (OSM way " + std::to_string(left_out.osm_way_ids.front()) + ")";
-      diagnostics.report(Severity::warning, codes::kMeshJunctionEndLeftOut,
-                         place + ": the " + (at_start ? "start" : "end") + " of road " +
-                             std::to_string(left_out.id) + way +
-                             " lies across the junction's other road ends (two roads' ends on each other?); "
-                             "the junction's surface is built without it and that end stays open");
+      diagnostics.report(
+          Severity::warning, codes::kMeshJunctionEndLeftOut,
+          place + ": the " + (at_start ? "start" : "end") + " of road " + std::to_string(left_out.id) + way +
+              " lies on another of its roads or across its other ends (two roads' ends on "
+              "each other?); the junction's surface is built without it and that end stays open");
     }
     if (problem.empty()) {
       ++out.junctions_meshed;

@@ -108,6 +108,43 @@ TEST(JunctionSurface, AnEndLyingAcrossAnotherIsLeftOutAndTheRestIsPaved) {
             std::string::npos);
 }
 
+// The octagon's crossing with a fifth road end, 2 m wide, 2 m behind the east end's edge and
+// facing the same way: it lies on the east road (footways drawn along a main road, their ends
+// still overlapping it after trimming). An outline reaching round to it would pave over the
+// east road's pavement; the junction is the octagon of the other four, that end left out.
+TEST(JunctionSurface, AnEndLyingOnAnotherEndsRoadIsLeftOut) {
+  RoadModel model;
+  for (int k = 0; k < 4; ++k) {
+    const double heading = k * std::numbers::pi / 2.0;
+    const Vec2 dir(std::cos(heading), std::sin(heading));
+    model.roads.push_back(test::straight_road(k + 1, 5.0 * dir, heading, 50.0, 2.0, 0.0));
+  }
+  model.roads.push_back(test::straight_road(5, Vec2(7.0, 1.5), 0.0, 50.0, 2.0, 0.0));
+  MeshBuilder mesh;
+  std::vector<JunctionEnd> ends;
+  for (int k = 0; k < 4; ++k) {
+    const double heading = k * std::numbers::pi / 2.0;
+    const Vec2 dir(std::cos(heading), std::sin(heading));
+    const Vec2 left(-dir.y(), dir.x());
+    std::vector<Vec3> points;
+    for (const double t : {-3.0, 0.0, 3.0}) {
+      const Vec2 xy = 5.0 * dir + t * left;
+      points.emplace_back(xy.x(), xy.y(), 2.0);
+    }
+    ends.push_back(add_end(mesh, k, points));
+  }
+  ends.push_back(add_end(mesh, 4, {Vec3(7.0, 0.5, 2.0), Vec3(7.0, 2.5, 2.0)}));
+  JunctionModel junction;
+  junction.id = 7;
+  const JunctionSurfaceResult built = build_junction_surface(model, junction, ends, {}, {}, mesh);
+  EXPECT_EQ(built.problem, "");
+  EXPECT_EQ(built.left_out, (std::vector<std::pair<int, bool>>{{4, true}}));
+  EXPECT_NEAR(mesh_area(mesh.mesh), 100.0 - 4.0 * 2.0, 1e-9);
+  for (const auto& t : mesh.mesh.triangles)
+    for (const std::uint32_t v : t) EXPECT_LE(mesh.mesh.vertices[v].x(), 5.0 + 1e-9) << "over the east road";
+  EXPECT_TRUE(all_facing_up(mesh.mesh));
+}
+
 // Four roads 6 m wide starting 5 m from the centre, east, north, west and south, at 2 m: the
 // east and west ones climb 12 % away from it, the north and south ones are level.
 RoadModel crossing_in_a_valley() {

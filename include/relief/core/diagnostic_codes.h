@@ -114,7 +114,7 @@ inline constexpr DiagnosticCode kMeshJunctionFailed{
     "mesh.junction_failed", "a junction surface could not be built; its area is open"};
 inline constexpr DiagnosticCode kMeshJunctionEndLeftOut{
     "mesh.junction_end_left_out",
-    "a road end lying across a junction's other ends is left out of its surface; that end stays open"};
+    "a road end lying on another of a junction's roads or across its other ends is left out of its surface"};
 inline constexpr DiagnosticCode kMeshRoadSelfIntersections{
     "mesh.road_self_intersections", "road surface triangles intersect each other (Road_Road pairs)"};
 inline constexpr DiagnosticCode kMeshRoadsOverlapInPlan{
