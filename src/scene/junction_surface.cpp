@@ -6,6 +6,7 @@
 #include <deque>
 #include <limits>
 #include <numbers>
+#include <numeric>
 #include <optional>
 #include <string>
 #include <unordered_map>
@@ -321,11 +322,11 @@ JunctionSurfaceResult build_junction_surface(const RoadModel& model, const Junct
   std::erase_if(ends, [](const JunctionEnd& e) { return e.vertices.size() < 2; });
   if (ends.empty()) return {"no road ends", {}};
   const auto& vertices = mesh.mesh.vertices;
-  const auto midpoint = [&](const JunctionEnd& e) -> Vec2 {
-    return 0.5 * (vertices[e.vertices.front()].head<2>() + vertices[e.vertices.back()].head<2>());
+  const auto midpoint = [&](const JunctionEnd& e) -> Vec3 {
+    return 0.5 * (vertices[e.vertices.front()] + vertices[e.vertices.back()]);
   };
   Vec2 centre = Vec2::Zero();
-  for (const JunctionEnd& e : ends) centre += midpoint(e);
+  for (const JunctionEnd& e : ends) centre += midpoint(e).head<2>();
   centre /= static_cast<double>(ends.size());
   // The same order as the node outlines given to netconvert (junction_end_order).
   std::vector<PlanEnd> plan_ends;
@@ -340,27 +341,27 @@ JunctionSurfaceResult build_junction_surface(const RoadModel& model, const Junct
   sorted.reserve(ends.size());
   for (const std::size_t k : junction_end_order(plan_ends)) sorted.push_back(std::move(ends[k]));
 
-  // Whether p lies behind an end's edge (outside the junction), across from the edge itself.
-  const auto over_end = [&](const JunctionEnd& e, const Vec3& p) {
-    const Vec2 right = vertices[e.vertices.front()].head<2>(), left = vertices[e.vertices.back()].head<2>();
-    const Vec2 edge = left - right, q = p.head<2>() - right;
-    const double length = edge.norm();
-    if (!(length > 0.0)) return false;
-    const double along = edge.dot(q) / length, inward = (edge.x() * q.y() - edge.y() * q.x()) / length;
-    return inward < kKerbCornerGap && along > -kKerbCornerGap && along < length + kKerbCornerGap;
-  };
   const auto end_width = [&](const JunctionEnd& e) {
     return (vertices[e.vertices.back()] - vertices[e.vertices.front()]).head<2>().norm();
   };
-  // Whether p lies on the road of end e: behind its edge (over_end), by at most the edge's
-  // width and kOnRoadDepth.
-  const auto lies_behind = [&](const JunctionEnd& e, const Vec3& p) {
-    if (!over_end(e, p)) return false;
-    const Vec2 right = vertices[e.vertices.front()].head<2>(),
-               edge = vertices[e.vertices.back()].head<2>() - right;
-    const Vec2 q = p.head<2>() - right;
-    const double behind = -(edge.x() * q.y() - edge.y() * q.x()) / edge.norm();
-    return behind <= std::max(edge.norm(), kOnRoadDepth);
+  // How far p lies behind an end's edge (outside the junction), across from the edge itself
+  // (more than -kKerbCornerGap where it does); NaN where p is beside the edge.
+  const auto behind_edge = [&](const JunctionEnd& e, const Vec3& p) {
+    const Vec2 right = vertices[e.vertices.front()].head<2>(), left = vertices[e.vertices.back()].head<2>();
+    const Vec2 edge = left - right, q = p.head<2>() - right;
+    const double length = edge.norm();
+    const double along = edge.dot(q) / length;
+    if (!(length > 0.0) || !(along > -kKerbCornerGap && along < length + kKerbCornerGap))
+      return std::numeric_limits<double>::quiet_NaN();
+    return -(edge.x() * q.y() - edge.y() * q.x()) / length;
+  };
+  const auto over_end = [&](const JunctionEnd& e, const Vec3& p) {
+    return behind_edge(e, p) > -kKerbCornerGap;
+  };
+  // Whether p lies on the road of end e: behind its edge by at most its width or kOnRoadDepth.
+  const auto on_road_of = [&](const JunctionEnd& e, const Vec3& p) {
+    const double behind = behind_edge(e, p);
+    return behind > -kKerbCornerGap && behind <= std::max(end_width(e), kOnRoadDepth);
   };
   // The kerb lines between consecutive ends of `order`.
   const auto kerb_gaps = [&](const std::vector<JunctionEnd>& order) {
@@ -422,24 +423,19 @@ JunctionSurfaceResult build_junction_surface(const RoadModel& model, const Junct
     for (const std::size_t k : *simple) reordered.push_back(set[k]);
     return straight(reordered, true);
   };
-  // Ends lying on another end's road are left out (lies_behind) where the rest make a
+  // Ends lying on another end's road are left out (on_road_of) where the rest make a
   // simple outline: reaching round to them, the outline ran over that road's pavement and into
   // the neighbouring junction's (Liechtenstein's footways along a main road, 27 pairs crossing).
+  // Narrowest first: of two ends lying on each other's roads (crossing), the narrower goes.
   std::vector<bool> on_another(sorted.size(), false);
-  {
-    std::vector<std::size_t> by_width(sorted.size());
-    for (std::size_t k = 0; k < sorted.size(); ++k) by_width[k] = k;
-    std::stable_sort(by_width.begin(), by_width.end(), [&](std::size_t a, std::size_t b) {
-      return end_width(sorted[a]) < end_width(sorted[b]);
-    });
-    for (const std::size_t k : by_width) {
-      const JunctionEnd& e = sorted[k];
-      const Vec3 mid = 0.5 * (vertices[e.vertices.front()] + vertices[e.vertices.back()]);
-      for (std::size_t i = 0; i < sorted.size() && !on_another[k]; ++i)
-        on_another[k] = i != k && !on_another[i] && lies_behind(sorted[i], mid);
-    }
-  }
-  if (std::count(on_another.begin(), on_another.end(), true) > 0) {
+  std::vector<std::size_t> by_width(sorted.size());
+  std::iota(by_width.begin(), by_width.end(), std::size_t{0});
+  std::stable_sort(by_width.begin(), by_width.end(),
+                   [&](std::size_t a, std::size_t b) { return end_width(sorted[a]) < end_width(sorted[b]); });
+  for (const std::size_t k : by_width)
+    for (std::size_t i = 0; i < sorted.size() && !on_another[k]; ++i)
+      on_another[k] = i != k && !on_another[i] && on_road_of(sorted[i], midpoint(sorted[k]));
+  if (std::find(on_another.begin(), on_another.end(), true) != on_another.end()) {
     std::vector<JunctionEnd> own;
     std::vector<std::pair<int, bool>> left_out;
     for (std::size_t k = 0; k < sorted.size(); ++k) {
@@ -473,11 +469,10 @@ JunctionSurfaceResult build_junction_surface(const RoadModel& model, const Junct
   if (sorted.size() < 3) return {failed, {}};
   std::vector<std::pair<std::pair<bool, double>, std::size_t>> candidates;
   for (std::size_t k = 0; k < sorted.size(); ++k) {
-    const JunctionEnd& e = sorted[k];
-    const Vec3 mid = 0.5 * (vertices[e.vertices.front()] + vertices[e.vertices.back()]);
     bool behind = false;
-    for (std::size_t i = 0; i < sorted.size() && !behind; ++i) behind = i != k && over_end(sorted[i], mid);
-    candidates.push_back({{!behind, end_width(e)}, k});
+    for (std::size_t i = 0; i < sorted.size() && !behind; ++i)
+      behind = i != k && over_end(sorted[i], midpoint(sorted[k]));
+    candidates.push_back({{!behind, end_width(sorted[k])}, k});
   }
   std::sort(candidates.begin(), candidates.end());
   for (const auto& [order, k] : candidates) {

@@ -262,5 +262,28 @@ TEST(Regions, AHairpinsTwoEndJunctionIsPaved) {
   EXPECT_EQ(d.count(codes::kMeshJunctionEndLeftOut.code), 0u);
 }
 
+// A box south of Vaduz's centre with its footways (OSM way 239350669 and others drawn along the main road
+// past three junctions a few metres apart): footway ends 2 m onto the main road's short pieces between the
+// junctions made each junction's outline reach round to them, over that road and into the next junction's
+// surface: 27 Road_Road pairs crossing (junction 35 x 34, 35 x 4). An end lying on another end's road is now
+// left out of its junction's surface; 7 pairs are left (junction 35 x the footway itself, which runs on over
+// its pavement), no holes.
+TEST(Regions, FootwayEndsOnAMainRoadDoNotPaveItsJunctionsOverEachOther) {
+  RELIEF_REQUIRE_SHARED_DATA();
+  BuildOptions o;
+  o.osm_path = test::shared_data("liechtenstein/liechtenstein-latest.osm.pbf");
+  o.dem_paths = {"/vsizip/" + test::shared_data("liechtenstein/N47E009.hgt.zip").string() + "/N47E009.hgt"};
+  o.osm.bbox = LonLatBox{9.510, 47.112, 9.538, 47.131};
+  o.osm.include_non_motor = true;
+  o.outputs = {Output::report, Output::mesh};
+  Diagnostics d;
+  const BuildResult result = build_region(o, "liechtenstein_vaduz_footways", 48.10, d);
+  const RunReport& r = result.report;
+  EXPECT_LE(gate(r, "road_self_intersections").value, 7.0);  // measured 7 (27 before)
+  EXPECT_TRUE(gate(r, "junctions_open").passed);
+  EXPECT_TRUE(gate(r, "ground_holes").passed);
+  EXPECT_GE(d.count(codes::kMeshJunctionEndLeftOut.code), 3u);  // measured 3
+}
+
 }  // namespace
 }  // namespace relief
