@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <functional>
 #include <limits>
 #include <unordered_map>
@@ -249,6 +250,21 @@ SumoPlainNetwork build_sumo_network(const RoadModel& model, const std::vector<Su
   for (std::size_t r = 0; r < model.roads.size(); ++r) {
     const ModelRoad& road = model.roads[r];
     if (road.junction >= 0 || road.sections.empty()) continue;
+    const bool dead_end = node_of.at(static_cast<int>(r), 0).starts_with('D') ||
+                          node_of.at(static_cast<int>(r), 1).starts_with('D');
+    if (dead_end && road.length() < options.min_dead_end_length_m) {
+      split[r] = 2;
+      char length[32];
+      std::snprintf(length, sizeof length, "%.2f", road.length());
+      diagnostics.report(
+          {Severity::info, std::string(codes::kSumoDeadEndSkipped),
+           "road " + std::to_string(road.id) +
+               (road.osm_way_ids.empty() ? std::string()
+                                         : " (OSM way " + std::to_string(road.osm_way_ids.front()) + ")") +
+               " is a dead end of " + length + " m beside its junction; SUMO gets no edge for it",
+           std::nullopt, std::nullopt, road.id});
+      continue;
+    }
     if (node_of.at(static_cast<int>(r), 0) != node_of.at(static_cast<int>(r), 1)) continue;
     if (road.length() < options.min_loop_length_m) {
       split[r] = 2;  // a turning loop too short to split into two edges that netconvert keeps whole

@@ -107,6 +107,21 @@ TEST(SumoNetwork, ConnectingRoadBecomesAConnectionWithItsShape) {
   EXPECT_EQ(net.stats.internal_lanes_by_netconvert, 0u);
 }
 
+// A dead end shorter than min_dead_end_length_m gets no edge and no connection, and is said:
+// the ramp's two 100 m roads under a 150 m minimum (the default, 2 m, keeps them).
+TEST(SumoNetwork, ADeadEndShorterThanTheMinimumGetsNoEdge) {
+  SumoOptions options;
+  options.min_dead_end_length_m = 150.0;
+  Diagnostics diagnostics;
+  const SumoPlainNetwork net = build_sumo_network(ramp_model(), {}, options, diagnostics);
+  EXPECT_TRUE(net.edges.empty());
+  EXPECT_TRUE(net.connections.empty());
+  EXPECT_EQ(diagnostics.count(codes::kSumoDeadEndSkipped.code), 2u);
+  Diagnostics none;
+  EXPECT_EQ(build_sumo_network(ramp_model(), {}, SumoOptions{}, none).edges.size(), 3u);
+  EXPECT_EQ(none.count(codes::kSumoDeadEndSkipped.code), 0u);
+}
+
 // Classes are kept off lanes steeper than their limit: the 10 % ramp is too steep for a
 // 5 % class on every edge and within a 20 % one.
 TEST(SumoNetwork, ClassesOverTheirGradeAreDisallowed) {

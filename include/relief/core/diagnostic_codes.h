@@ -128,6 +128,9 @@ inline constexpr DiagnosticCode kMeshFarFromOrigin{
 // SUMO network (export/sumo_network.h) and its stage.
 inline constexpr DiagnosticCode kSumoLoopSkipped{
     "sumo.loop_skipped", "a road looping back to its own junction is too short to split; SUMO gets no edge"};
+inline constexpr DiagnosticCode kSumoDeadEndSkipped{
+    "sumo.dead_end_skipped",
+    "a dead end shorter than 2 m (its junction's room used it up) gets no SUMO edge"};
 inline constexpr DiagnosticCode kSumoSignalWithoutNode{"sumo.signal_without_node",
                                                        "a junction with a traffic signal has no SUMO node"};
 inline constexpr DiagnosticCode kSumoSignalMidRoad{
@@ -210,6 +213,7 @@ inline constexpr std::array kAll{kDemDatumGridMissing,
                                  kTilesLinkUnresolved,
                                  kTilesHaloGate,
                                  kSumoLoopSkipped,
+                                 kSumoDeadEndSkipped,
                                  kSumoSignalWithoutNode,
                                  kSumoSignalMidRoad,
                                  kSumoUnmappedLanePoints,

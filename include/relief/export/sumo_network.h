@@ -37,6 +37,10 @@ struct SumoOptions {
   /// A road that loops back to its own junction becomes two edges per direction (SUMO has no
   /// self-loops); one shorter than this is left out (turning circles) and reported.
   double min_loop_length_m = 30.0;
+  /// A dead-end road shorter than this (a stub its junction's room used up) gets no edge, and
+  /// is reported: netconvert drew the lane of a 1 m one on past the road's end, off the
+  /// OpenDRIVE surface (0.18 m below it), where no vehicle fits anyway.
+  double min_dead_end_length_m = 2.0;
   /// Vehicle classes kept off lanes steeper than a grade (percent): written as `disallow`.
   std::map<std::string, double> max_grade_percent = {
       {"truck", 15.0}, {"trailer", 10.0}, {"bus", 20.0}, {"coach", 15.0}};
