@@ -256,13 +256,10 @@ SumoPlainNetwork build_sumo_network(const RoadModel& model, const std::vector<Su
       split[r] = 2;
       char length[32];
       std::snprintf(length, sizeof length, "%.2f", road.length());
-      diagnostics.report(
-          {Severity::info, std::string(codes::kSumoDeadEndSkipped),
-           "road " + std::to_string(road.id) +
-               (road.osm_way_ids.empty() ? std::string()
-                                         : " (OSM way " + std::to_string(road.osm_way_ids.front()) + ")") +
-               " is a dead end of " + length + " m beside its junction; SUMO gets no edge for it",
-           std::nullopt, std::nullopt, road.id});
+      diagnostics.report({Severity::info, std::string(codes::kSumoDeadEndSkipped),
+                          "road " + std::to_string(road.id) + osm_way_note(road) + " is a dead end of " +
+                              length + " m beside its junction; SUMO gets no edge for it",
+                          std::nullopt, std::nullopt, road.id});
       continue;
     }
     if (node_of.at(static_cast<int>(r), 0) != node_of.at(static_cast<int>(r), 1)) continue;

@@ -1,5 +1,7 @@
 #include "relief/roads/road_model.h"
 
+#include <string>
+
 namespace relief {
 
 int RoadModel::road_index(int id) const {
@@ -12,6 +14,11 @@ int RoadModel::road_index(int id) const {
     if (roads[i].id == id) return static_cast<int>(i);
   }
   return -1;
+}
+
+std::string osm_way_note(const ModelRoad& road) {
+  return road.osm_way_ids.empty() ? std::string()
+                                  : " (OSM way " + std::to_string(road.osm_way_ids.front()) + ")";
 }
 
 }  // namespace relief

@@ -48,10 +48,12 @@ using FaceBase = CGAL::Constrained_triangulation_face_base_2<Kernel, FaceBaseInf
 using Tds = CGAL::Triangulation_data_structure_2<VertexBase, FaceBase>;
 using Cdt = CGAL::Constrained_Delaunay_triangulation_2<Kernel, Tds, CGAL::Exact_intersections_tag>;
 
-constexpr double kKerbCornerGap = 0.01;     // kerb points this close to a corner are dropped (m)
-constexpr double kKerbMinAngle = 1e-6;      // kerb points must advance this much around the centre (rad)
-constexpr double kOnRoadDepth = 5.0;        // an end this far behind another's edge may lie on its road (m)
-constexpr double kEdgeTurnedAway = 1.0;     // a road edge this far outside a straight side has left it (m)
+constexpr double kKerbCornerGap = 0.01;  // kerb points this close to a corner are dropped (m)
+constexpr double kKerbMinAngle = 1e-6;   // kerb points must advance this much around the centre (rad)
+constexpr double kLeftOutReach = 30.0;   // a left-out road's edges this far from its end may not be paved (m)
+constexpr double kLeftOutStep = 0.5;     // probed this often (m)
+constexpr double kOnRoadDepth = 5.0;     // an end this far behind another's edge may lie on its road (m)
+constexpr double kEdgeTurnedAway = 1.0;  // a road edge this far outside a straight side has left it (m)
 constexpr double kInteriorSpacing = 2.0;    // interior points along a connecting road's lanes (m)
 constexpr double kInteriorEndGap = 1.0;     // none this close to a connecting road's ends (m)
 constexpr double kInteriorMerge = 1.0;      // interior points this close are merged (m)
@@ -203,6 +205,45 @@ double distance_to_outline(const std::vector<OutlineVertex>& outline, const Vec2
     best = std::min(best, (a + t * ab - p).norm());
   }
   return best;
+}
+
+// Whether the triangles of `mesh` from `first` on cover a point of the roads at `ends` within
+// kLeftOutReach of their ends: along each road's outer edges and its end, every
+// kLeftOutStep, a point more than kKerbCornerGap inside one of them.
+bool patch_covers(const MeshBuilder& mesh, std::size_t first, const std::vector<JunctionEnd>& ends) {
+  const auto& v = mesh.mesh.vertices;
+  std::vector<Vec2> probes;
+  const auto sample = [&](const Vec2& a, const Vec2& b) {
+    const int n = std::max(1, static_cast<int>(std::ceil((b - a).norm() / kLeftOutStep)));
+    for (int i = 0; i <= n; ++i) probes.push_back(a + (b - a) * (static_cast<double>(i) / n));
+  };
+  for (const JunctionEnd& e : ends) {
+    for (std::size_t i = 1; i < e.vertices.size(); ++i)
+      sample(v[e.vertices[i - 1]].head<2>(), v[e.vertices[i]].head<2>());
+    for (const std::vector<std::uint32_t>* edge : {&e.left_edge, &e.right_edge}) {
+      double along = 0.0;
+      for (std::size_t i = 1; i < edge->size() && along < kLeftOutReach; ++i) {
+        const Vec2 a = v[(*edge)[i - 1]].head<2>(), b = v[(*edge)[i]].head<2>();
+        sample(a, b);
+        along += (b - a).norm();
+      }
+    }
+  }
+  for (std::size_t t = first; t < mesh.mesh.triangles.size(); ++t) {
+    const auto& tri = mesh.mesh.triangles[t];
+    const Vec2 a = v[tri[0]].head<2>(), b = v[tri[1]].head<2>(), c = v[tri[2]].head<2>();
+    for (const Vec2& p : probes) {
+      // Signed distances to the three sides (counter-clockwise: inside is positive).
+      const auto side = [&](const Vec2& s0, const Vec2& s1) {
+        const Vec2 d = s1 - s0;
+        const double length = d.norm();
+        return length > 0.0 ? (d.x() * (p.y() - s0.y()) - d.y() * (p.x() - s0.x())) / length : -1.0;
+      };
+      if (side(a, b) > kKerbCornerGap && side(b, c) > kKerbCornerGap && side(c, a) > kKerbCornerGap)
+        return true;
+    }
+  }
+  return false;
 }
 
 }  // namespace
@@ -436,19 +477,28 @@ JunctionSurfaceResult build_junction_surface(const RoadModel& model, const Junct
     for (std::size_t i = 0; i < sorted.size() && !on_another[k]; ++i)
       on_another[k] = i != k && !on_another[i] && on_road_of(sorted[i], midpoint(sorted[k]));
   if (std::find(on_another.begin(), on_another.end(), true) != on_another.end()) {
-    std::vector<JunctionEnd> own;
+    std::vector<JunctionEnd> own, others;
     std::vector<std::pair<int, bool>> left_out;
     for (std::size_t k = 0; k < sorted.size(); ++k) {
       if (on_another[k]) {
         left_out.emplace_back(sorted[k].road_index, sorted[k].at_start);
+        others.push_back(sorted[k]);
       } else {
         own.push_back(sorted[k]);
       }
     }
+    const std::size_t vertices_before = mesh.mesh.vertices.size(),
+                      triangles_before = mesh.mesh.triangles.size();
     if (own.size() >= 2 &&
         (triangulate_junction(own, kerb_gaps(own), junction.id, mesh, interior, &surface).empty() ||
-         straight_or_reordered(own)))
-      return {{}, left_out};
+         straight_or_reordered(own))) {
+      if (!patch_covers(mesh, triangles_before, others)) return {{}, left_out};
+      // A left-out road running through the junction to its end: the patch would pave over it.
+      mesh.mesh.vertices.resize(vertices_before);
+      mesh.mesh.uvs.resize(vertices_before);
+      mesh.mesh.triangles.resize(triangles_before);
+      mesh.owner.resize(triangles_before);
+    }
   }
   std::string failed = triangulate_junction(sorted, gaps, junction.id, mesh, interior, &surface);
   if (failed.empty()) return {};

@@ -291,12 +291,10 @@ RoadMeshes build_road_meshes(const RoadModel& model, const RoadMeshOptions& opti
     const std::string place = "junction " + std::to_string(junction.id) + (corners > 0 ? at : "");
     for (const auto& [index, at_start] : built.left_out) {
       const ModelRoad& left_out = model.roads[static_cast<std::size_t>(index)];
-      const std::string way = left_out.osm_way_ids.empty()
-                                  ? std::string()
-                                  : " (OSM way " + std::to_string(left_out.osm_way_ids.front()) + ")";
       diagnostics.report(
           Severity::warning, codes::kMeshJunctionEndLeftOut,
-          place + ": the " + (at_start ? "start" : "end") + " of road " + std::to_string(left_out.id) + way +
+          place + ": the " + (at_start ? "start" : "end") + " of road " + std::to_string(left_out.id) +
+              osm_way_note(left_out) +
               " lies on another of its roads or across its other ends (two roads' ends on "
               "each other?); the junction's surface is built without it and that end stays open");
     }

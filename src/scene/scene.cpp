@@ -36,8 +36,8 @@ std::string triangle_owner(int owner, const RoadModel& model) {
     const ModelRoad& road = model.roads[static_cast<std::size_t>(index)];
     if (road.junction != -1) {
       text += " (connecting, junction " + std::to_string(road.junction) + ")";
-    } else if (!road.osm_way_ids.empty()) {
-      text += " (OSM way " + std::to_string(road.osm_way_ids.front()) + ")";
+    } else {
+      text += osm_way_note(road);
     }
   }
   return text;

@@ -285,5 +285,23 @@ TEST(Regions, FootwayEndsOnAMainRoadDoNotPaveItsJunctionsOverEachOther) {
   EXPECT_GE(d.count(codes::kMeshJunctionEndLeftOut.code), 3u);  // measured 3
 }
 
+// A box north of Vaduz (lon 9.518-9.540, lat 47.160-47.175) with its paths: road 126's end
+// (OSM way 318492084) lies on another road of junction 47, but the road runs through the junction
+// to get there. Left out of the junction's outline, the patch paved over it: 15 Road_Road pairs
+// crossing. An end is left out only where the patch then covers none of its road within 30 m.
+TEST(Regions, AnEndWhoseRoadRunsThroughItsJunctionIsNotPavedOver) {
+  RELIEF_REQUIRE_SHARED_DATA();
+  BuildOptions o;
+  o.osm_path = test::shared_data("liechtenstein/liechtenstein-latest.osm.pbf");
+  o.dem_paths = {"/vsizip/" + test::shared_data("liechtenstein/N47E009.hgt.zip").string() + "/N47E009.hgt"};
+  o.osm.bbox = LonLatBox{9.518, 47.160, 9.540, 47.175};
+  o.osm.include_non_motor = true;
+  o.outputs = {Output::report, Output::mesh};
+  Diagnostics d;
+  const BuildResult result = build_region(o, "liechtenstein_path_through_junction", 22.05, d);
+  EXPECT_EQ(gate(result.report, "road_self_intersections").value, 0.0);
+  EXPECT_TRUE(gate(result.report, "junctions_open").passed);
+}
+
 }  // namespace
 }  // namespace relief

@@ -99,4 +99,8 @@ struct RoadModel {
   [[nodiscard]] int road_index(int id) const;
 };
 
+/// " (OSM way W)", W the first OSM way the road was drawn from, or "" for a road with none: for
+/// messages naming a road.
+[[nodiscard]] std::string osm_way_note(const ModelRoad& road);
+
 }  // namespace relief
