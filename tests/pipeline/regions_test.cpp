@@ -48,6 +48,17 @@ BuildResult build_region(BuildOptions o, const std::string& name, double length_
   return result;
 }
 
+// Liechtenstein's OSM on SRTM 3" (shared data), clipped to `box` if given, with its paths,
+// footways and tracks.
+BuildOptions liechtenstein_paths(const LonLatBox& box) {
+  BuildOptions o;
+  o.osm_path = test::shared_data("liechtenstein/liechtenstein-latest.osm.pbf");
+  o.dem_paths = {"/vsizip/" + test::shared_data("liechtenstein/N47E009.hgt.zip").string() + "/N47E009.hgt"};
+  o.osm.bbox = box;
+  o.osm.include_non_motor = true;
+  return o;
+}
+
 // Liechtenstein, a whole Alpine country (409 km of roads, hairpins, tunnels) on SRTM 3": every
 // gate but one passes. (It failed sumo_height_steps on the inner lanes of tight bends of steep roads
 // until the fit took its grade limits along the inner lane.)
@@ -228,11 +239,7 @@ TEST(Regions, SurfaceModelWithBuildingsAndVoids) {
 // the path, and every gate passes.
 TEST(Regions, PathThroughAnSrtmVoidOnACliff) {
   RELIEF_REQUIRE_SHARED_DATA();
-  BuildOptions o;
-  o.osm_path = test::shared_data("liechtenstein/liechtenstein-latest.osm.pbf");
-  o.dem_paths = {"/vsizip/" + test::shared_data("liechtenstein/N47E009.hgt.zip").string() + "/N47E009.hgt"};
-  o.osm.bbox = LonLatBox{9.535, 47.138, 9.565, 47.158};
-  o.osm.include_non_motor = true;
+  BuildOptions o = liechtenstein_paths(LonLatBox{9.535, 47.138, 9.565, 47.158});
   Diagnostics d;
   const BuildResult result = build_region(o, "liechtenstein_void_path", 17.65, d);
   expect_gates(result.report, {});
@@ -249,11 +256,7 @@ TEST(Regions, PathThroughAnSrtmVoidOnACliff) {
 // the other's kerb kept, is a simple outline: the tip is paved and every gate passes.
 TEST(Regions, AHairpinsTwoEndJunctionIsPaved) {
   RELIEF_REQUIRE_SHARED_DATA();
-  BuildOptions o;
-  o.osm_path = test::shared_data("liechtenstein/liechtenstein-latest.osm.pbf");
-  o.dem_paths = {"/vsizip/" + test::shared_data("liechtenstein/N47E009.hgt.zip").string() + "/N47E009.hgt"};
-  o.osm.bbox = LonLatBox{9.501067, 47.079012, 9.507067, 47.083012};
-  o.osm.include_non_motor = true;
+  BuildOptions o = liechtenstein_paths(LonLatBox{9.501067, 47.079012, 9.507067, 47.083012});
   Diagnostics d;
   const BuildResult result = build_region(o, "liechtenstein_hairpin_junction", 2.52, d);
   expect_gates(result.report, {});
@@ -270,11 +273,7 @@ TEST(Regions, AHairpinsTwoEndJunctionIsPaved) {
 // its pavement), no holes.
 TEST(Regions, FootwayEndsOnAMainRoadDoNotPaveItsJunctionsOverEachOther) {
   RELIEF_REQUIRE_SHARED_DATA();
-  BuildOptions o;
-  o.osm_path = test::shared_data("liechtenstein/liechtenstein-latest.osm.pbf");
-  o.dem_paths = {"/vsizip/" + test::shared_data("liechtenstein/N47E009.hgt.zip").string() + "/N47E009.hgt"};
-  o.osm.bbox = LonLatBox{9.510, 47.112, 9.538, 47.131};
-  o.osm.include_non_motor = true;
+  BuildOptions o = liechtenstein_paths(LonLatBox{9.510, 47.112, 9.538, 47.131});
   o.outputs = {Output::report, Output::mesh};
   Diagnostics d;
   const BuildResult result = build_region(o, "liechtenstein_vaduz_footways", 48.10, d);
@@ -291,11 +290,7 @@ TEST(Regions, FootwayEndsOnAMainRoadDoNotPaveItsJunctionsOverEachOther) {
 // crossing. An end is left out only where the patch then covers none of its road within 30 m.
 TEST(Regions, AnEndWhoseRoadRunsThroughItsJunctionIsNotPavedOver) {
   RELIEF_REQUIRE_SHARED_DATA();
-  BuildOptions o;
-  o.osm_path = test::shared_data("liechtenstein/liechtenstein-latest.osm.pbf");
-  o.dem_paths = {"/vsizip/" + test::shared_data("liechtenstein/N47E009.hgt.zip").string() + "/N47E009.hgt"};
-  o.osm.bbox = LonLatBox{9.518, 47.160, 9.540, 47.175};
-  o.osm.include_non_motor = true;
+  BuildOptions o = liechtenstein_paths(LonLatBox{9.518, 47.160, 9.540, 47.175});
   o.outputs = {Output::report, Output::mesh};
   Diagnostics d;
   const BuildResult result = build_region(o, "liechtenstein_path_through_junction", 22.05, d);

@@ -24,6 +24,32 @@ JunctionEnd add_end(MeshBuilder& mesh, int road_index, const std::vector<Vec3>& 
   return end;
 }
 
+// Four roads 6 m wide start 5 m from the centre, east, north, west and south (road k heading
+// k x 90 degrees), level at 2 m.
+RoadModel four_roads() {
+  RoadModel model;
+  for (int k = 0; k < 4; ++k) {
+    const double heading = k * std::numbers::pi / 2.0;
+    const Vec2 dir(std::cos(heading), std::sin(heading));
+    model.roads.push_back(test::straight_road(k + 1, 5.0 * dir, heading, 50.0, 2.0, 0.0));
+  }
+  return model;
+}
+
+// The end of four_roads' road k, its vertices new in `mesh`: looking out along the road, its
+// right is the road's own right, t = -3, 0, +3.
+JunctionEnd four_roads_end(MeshBuilder& mesh, int k) {
+  const double heading = k * std::numbers::pi / 2.0;
+  const Vec2 dir(std::cos(heading), std::sin(heading));
+  const Vec2 left(-dir.y(), dir.x());
+  std::vector<Vec3> points;
+  for (const double t : {-3.0, 0.0, 3.0}) {
+    const Vec2 xy = 5.0 * dir + t * left;
+    points.emplace_back(xy.x(), xy.y(), 2.0);
+  }
+  return add_end(mesh, k, points);
+}
+
 // Four roads 6 m wide (3 m each side of the reference line) start 5 m from the centre, east,
 // north, west and south: the outline is the 10 m square less four corner triangles of legs 2 m,
 // 92 m2, with the ends given in any order. Its 12 end vertices, a point on the height surface
@@ -31,26 +57,10 @@ JunctionEnd add_end(MeshBuilder& mesh, int road_index, const std::vector<Vec3>& 
 // 1, 3: 16 points) make 32 vertices, all at the roads' height 2 m, and 16 - 2 + 2 x 16 = 46
 // triangles.
 TEST(JunctionSurface, CrossingOfFourRoadEndsIsItsOctagon) {
-  RoadModel model;
-  for (int k = 0; k < 4; ++k) {
-    const double heading = k * std::numbers::pi / 2.0;
-    const Vec2 dir(std::cos(heading), std::sin(heading));
-    model.roads.push_back(test::straight_road(k + 1, 5.0 * dir, heading, 50.0, 2.0, 0.0));
-  }
+  const RoadModel model = four_roads();
   MeshBuilder mesh;
   std::vector<JunctionEnd> ends;
-  for (const int k : {2, 0, 3, 1}) {
-    // Looking out along the road, its right is the road's own right: t = -3, 0, +3.
-    const double heading = k * std::numbers::pi / 2.0;
-    const Vec2 dir(std::cos(heading), std::sin(heading));
-    const Vec2 left(-dir.y(), dir.x());
-    std::vector<Vec3> points;
-    for (const double t : {-3.0, 0.0, 3.0}) {
-      const Vec2 xy = 5.0 * dir + t * left;
-      points.emplace_back(xy.x(), xy.y(), 2.0);
-    }
-    ends.push_back(add_end(mesh, k, points));
-  }
+  for (const int k : {2, 0, 3, 1}) ends.push_back(four_roads_end(mesh, k));
   JunctionModel junction;
   junction.id = 7;
   const std::string failed = build_junction_surface(model, junction, ends, {}, {}, mesh).problem;
@@ -63,86 +73,53 @@ TEST(JunctionSurface, CrossingOfFourRoadEndsIsItsOctagon) {
   EXPECT_TRUE(all_facing_up(mesh.mesh));
 }
 
-// The octagon's crossing with a fifth road end lying across the east one (bad data: a way's end
-// drawn onto another road's pavement): its edge, (4.5, -2) to (6, 2), crosses the east end's
-// edge at (5, -0.67), so no outline joining all five ends is simple, in any order. Before, the
-// junction was left open; now it is the octagon of the other four (92 m2, as without the fifth),
-// that end is named as left out, and none of its vertices is in a triangle.
-TEST(JunctionSurface, AnEndLyingAcrossAnotherIsLeftOutAndTheRestIsPaved) {
-  RoadModel model;
-  for (int k = 0; k < 4; ++k) {
-    const double heading = k * std::numbers::pi / 2.0;
-    const Vec2 dir(std::cos(heading), std::sin(heading));
-    model.roads.push_back(test::straight_road(k + 1, 5.0 * dir, heading, 50.0, 2.0, 0.0));
-  }
-  model.roads.push_back(test::straight_road(5, Vec2(5.25, 0.0), std::atan2(-1.5, 4.0), 50.0, 2.0, 0.0));
-  MeshBuilder mesh;
-  std::vector<JunctionEnd> ends;
-  for (int k = 0; k < 4; ++k) {
-    const double heading = k * std::numbers::pi / 2.0;
-    const Vec2 dir(std::cos(heading), std::sin(heading));
-    const Vec2 left(-dir.y(), dir.x());
-    std::vector<Vec3> points;
-    for (const double t : {-3.0, 0.0, 3.0}) {
-      const Vec2 xy = 5.0 * dir + t * left;
-      points.emplace_back(xy.x(), xy.y(), 2.0);
+// The octagon's crossing with a fifth road end lying on the east road (bad data: a way's end drawn
+// onto another road's pavement; footways along a main road whose ends still overlap it after
+// trimming). Across the east end's edge, (4.5, -2) to (6, 2), crossing it at (5, -0.67), no
+// outline joining all five ends is simple in any order, and the junction was left open; 2 m
+// behind that edge and facing the same way, an outline reaching round to it paved over the east
+// road. Now the junction is the octagon of the other four (92 m2, as without the fifth), that end
+// is named as left out, none of its vertices is in a triangle and nothing lies past x = 5.
+TEST(JunctionSurface, AnEndLyingAcrossOrOnAnotherEndsRoadIsLeftOut) {
+  struct Fifth {
+    Vec2 start;
+    double heading;
+    Vec3 right, left;
+  };
+  for (const Fifth& f :
+       {Fifth{Vec2(5.25, 0.0), std::atan2(-1.5, 4.0), Vec3(4.5, -2.0, 2.0), Vec3(6.0, 2.0, 2.0)},
+        Fifth{Vec2(7.0, 1.5), 0.0, Vec3(7.0, 0.5, 2.0), Vec3(7.0, 2.5, 2.0)}}) {
+    SCOPED_TRACE("fifth end at " + std::to_string(f.start.x()));
+    RoadModel model = four_roads();
+    model.roads.push_back(test::straight_road(5, f.start, f.heading, 50.0, 2.0, 0.0));
+    MeshBuilder mesh;
+    std::vector<JunctionEnd> ends;
+    for (int k = 0; k < 4; ++k) ends.push_back(four_roads_end(mesh, k));
+    ends.push_back(add_end(mesh, 4, {f.right, f.left}));
+    JunctionModel junction;
+    junction.id = 7;
+    const JunctionSurfaceResult built = build_junction_surface(model, junction, ends, {}, {}, mesh);
+    EXPECT_EQ(built.problem, "");
+    EXPECT_EQ(built.left_out, (std::vector<std::pair<int, bool>>{{4, true}}));
+    EXPECT_NEAR(mesh_area(mesh.mesh), 100.0 - 4.0 * 2.0, 1e-9);
+    EXPECT_TRUE(all_facing_up(mesh.mesh));
+    for (const auto& t : mesh.mesh.triangles) {
+      for (const std::uint32_t v : t) {
+        EXPECT_TRUE(v < 12 || v > 13) << "vertex " << v << " of the fifth end";
+        EXPECT_LE(mesh.mesh.vertices[v].x(), 5.0 + 1e-9) << "over the east road";
+      }
     }
-    ends.push_back(add_end(mesh, k, points));
   }
-  ends.push_back(add_end(mesh, 4, {Vec3(4.5, -2.0, 2.0), Vec3(6.0, 2.0, 2.0)}));
-  JunctionModel junction;
-  junction.id = 7;
-  const JunctionSurfaceResult built = build_junction_surface(model, junction, ends, {}, {}, mesh);
-  EXPECT_EQ(built.problem, "");
-  EXPECT_EQ(built.left_out, (std::vector<std::pair<int, bool>>{{4, true}}));
-  EXPECT_NEAR(mesh_area(mesh.mesh), 100.0 - 4.0 * 2.0, 1e-9);
-  EXPECT_TRUE(all_facing_up(mesh.mesh));
-  for (const auto& t : mesh.mesh.triangles)
-    for (const std::uint32_t v : t) EXPECT_TRUE(v < 12 || v > 13) << "vertex " << v << " of the fifth end";
 
-  // The same five ends as one outline, in the junction's order and with straight sides: CGAL
+  // The first five ends as one outline, in the junction's order and with straight sides: CGAL
   // finds the crossing.
-  std::vector<JunctionEnd> sorted{ends[0], ends[4], ends[1], ends[2], ends[3]};
-  MeshBuilder copy = mesh;
-  EXPECT_NE(triangulate_junction(sorted, std::vector<OutlineGap>(5), 7, copy).find("not simple"),
-            std::string::npos);
-}
-
-// The octagon's crossing with a fifth road end, 2 m wide, 2 m behind the east end's edge and
-// facing the same way: it lies on the east road (footways drawn along a main road, their ends
-// still overlapping it after trimming). An outline reaching round to it would pave over the
-// east road's pavement; the junction is the octagon of the other four, that end left out.
-TEST(JunctionSurface, AnEndLyingOnAnotherEndsRoadIsLeftOut) {
-  RoadModel model;
-  for (int k = 0; k < 4; ++k) {
-    const double heading = k * std::numbers::pi / 2.0;
-    const Vec2 dir(std::cos(heading), std::sin(heading));
-    model.roads.push_back(test::straight_road(k + 1, 5.0 * dir, heading, 50.0, 2.0, 0.0));
-  }
-  model.roads.push_back(test::straight_road(5, Vec2(7.0, 1.5), 0.0, 50.0, 2.0, 0.0));
   MeshBuilder mesh;
   std::vector<JunctionEnd> ends;
-  for (int k = 0; k < 4; ++k) {
-    const double heading = k * std::numbers::pi / 2.0;
-    const Vec2 dir(std::cos(heading), std::sin(heading));
-    const Vec2 left(-dir.y(), dir.x());
-    std::vector<Vec3> points;
-    for (const double t : {-3.0, 0.0, 3.0}) {
-      const Vec2 xy = 5.0 * dir + t * left;
-      points.emplace_back(xy.x(), xy.y(), 2.0);
-    }
-    ends.push_back(add_end(mesh, k, points));
-  }
-  ends.push_back(add_end(mesh, 4, {Vec3(7.0, 0.5, 2.0), Vec3(7.0, 2.5, 2.0)}));
-  JunctionModel junction;
-  junction.id = 7;
-  const JunctionSurfaceResult built = build_junction_surface(model, junction, ends, {}, {}, mesh);
-  EXPECT_EQ(built.problem, "");
-  EXPECT_EQ(built.left_out, (std::vector<std::pair<int, bool>>{{4, true}}));
-  EXPECT_NEAR(mesh_area(mesh.mesh), 100.0 - 4.0 * 2.0, 1e-9);
-  for (const auto& t : mesh.mesh.triangles)
-    for (const std::uint32_t v : t) EXPECT_LE(mesh.mesh.vertices[v].x(), 5.0 + 1e-9) << "over the east road";
-  EXPECT_TRUE(all_facing_up(mesh.mesh));
+  for (int k = 0; k < 4; ++k) ends.push_back(four_roads_end(mesh, k));
+  ends.push_back(add_end(mesh, 4, {Vec3(4.5, -2.0, 2.0), Vec3(6.0, 2.0, 2.0)}));
+  const std::vector<JunctionEnd> sorted{ends[0], ends[4], ends[1], ends[2], ends[3]};
+  EXPECT_NE(triangulate_junction(sorted, std::vector<OutlineGap>(5), 7, mesh).find("not simple"),
+            std::string::npos);
 }
 
 // Four roads 6 m wide starting 5 m from the centre, east, north, west and south, at 2 m: the
