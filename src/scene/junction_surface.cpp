@@ -215,7 +215,7 @@ bool patch_covers(const MeshBuilder& mesh, std::size_t first, const std::vector<
   std::vector<Vec2> probes;
   const auto sample = [&](const Vec2& a, const Vec2& b) {
     const int n = std::max(1, static_cast<int>(std::ceil((b - a).norm() / kLeftOutStep)));
-    for (int i = 0; i <= n; ++i) probes.push_back(a + (b - a) * (static_cast<double>(i) / n));
+    for (int i = 0; i <= n; ++i) probes.emplace_back(a + (b - a) * (static_cast<double>(i) / n));
   };
   for (const JunctionEnd& e : ends) {
     for (std::size_t i = 1; i < e.vertices.size(); ++i)

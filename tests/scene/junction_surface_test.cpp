@@ -94,6 +94,7 @@ TEST(JunctionSurface, AnEndLyingAcrossOrOnAnotherEndsRoadIsLeftOut) {
     model.roads.push_back(test::straight_road(5, f.start, f.heading, 50.0, 2.0, 0.0));
     MeshBuilder mesh;
     std::vector<JunctionEnd> ends;
+    ends.reserve(5);
     for (int k = 0; k < 4; ++k) ends.push_back(four_roads_end(mesh, k));
     ends.push_back(add_end(mesh, 4, {f.right, f.left}));
     JunctionModel junction;
@@ -115,6 +116,7 @@ TEST(JunctionSurface, AnEndLyingAcrossOrOnAnotherEndsRoadIsLeftOut) {
   // finds the crossing.
   MeshBuilder mesh;
   std::vector<JunctionEnd> ends;
+  ends.reserve(5);
   for (int k = 0; k < 4; ++k) ends.push_back(four_roads_end(mesh, k));
   ends.push_back(add_end(mesh, 4, {Vec3(4.5, -2.0, 2.0), Vec3(6.0, 2.0, 2.0)}));
   const std::vector<JunctionEnd> sorted{ends[0], ends[4], ends[1], ends[2], ends[3]};
