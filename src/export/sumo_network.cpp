@@ -161,6 +161,7 @@ SumoPlainNetwork build_sumo_network(const RoadModel& model, const std::vector<Su
 
   // Nodes: one per junction, one per road-to-road link, one per dead end.
   NodeTable node_of;
+  std::vector<std::uint8_t> at_dead_end(model.roads.size(), 0);  // a road with an end at no junction
   std::unordered_map<std::string, std::size_t> node_index;
   std::vector<int> node_points;  // how many road ends were averaged into each node
   const auto add_to_node = [&](const std::string& id, const Vec3& p, const std::string& type, int junction) {
@@ -197,6 +198,7 @@ SumoPlainNetwork build_sumo_network(const RoadModel& model, const std::vector<Su
           node.shape = thin_outline(cross_section(road, s), outward(road, end), 0.01, 0.01);
       } else {
         id = "D" + std::to_string(road.id) + (end == 0 ? "s" : "e");
+        at_dead_end[r] = 1;
         add_to_node(id, p, "dead_end", -1);
         net.nodes[node_index.at(id)].shape =
             thin_outline(cross_section(road, s), outward(road, end), 0.0, 0.1);
@@ -250,9 +252,7 @@ SumoPlainNetwork build_sumo_network(const RoadModel& model, const std::vector<Su
   for (std::size_t r = 0; r < model.roads.size(); ++r) {
     const ModelRoad& road = model.roads[r];
     if (road.junction >= 0 || road.sections.empty()) continue;
-    const bool dead_end = node_of.at(static_cast<int>(r), 0).starts_with('D') ||
-                          node_of.at(static_cast<int>(r), 1).starts_with('D');
-    if (dead_end && road.length() < options.min_dead_end_length_m) {
+    if (at_dead_end[r] && road.length() < options.min_dead_end_length_m) {
       split[r] = 2;
       char length[32];
       std::snprintf(length, sizeof length, "%.2f", road.length());

@@ -286,14 +286,17 @@ RoadMeshes build_road_meshes(const RoadModel& model, const RoadMeshOptions& opti
     const detail::JunctionSurfaceResult built =
         detail::build_junction_surface(model, junction, std::move(ends), connecting[j], options, road);
     const std::string& problem = built.problem;
-    char at[96];
-    std::snprintf(at, sizeof at, " at (%.1f, %.1f, %.2f)", centre.x(), centre.y(), centre.z());
-    const std::string place = "junction " + std::to_string(junction.id) + (corners > 0 ? at : "");
+    // Where it is, for the messages (only a junction that has one is named).
+    const auto place = [&] {
+      char at[96];
+      std::snprintf(at, sizeof at, " at (%.1f, %.1f, %.2f)", centre.x(), centre.y(), centre.z());
+      return "junction " + std::to_string(junction.id) + (corners > 0 ? at : "");
+    };
     for (const auto& [index, at_start] : built.left_out) {
       const ModelRoad& left_out = model.roads[static_cast<std::size_t>(index)];
       diagnostics.report(
           Severity::warning, codes::kMeshJunctionEndLeftOut,
-          place + ": the " + (at_start ? "start" : "end") + " of road " + std::to_string(left_out.id) +
+          place() + ": the " + (at_start ? "start" : "end") + " of road " + std::to_string(left_out.id) +
               osm_way_note(left_out) +
               " lies on another of its roads or across its other ends (two roads' ends on "
               "each other?); the junction's surface is built without it and that end stays open");
@@ -302,10 +305,10 @@ RoadMeshes build_road_meshes(const RoadModel& model, const RoadMeshOptions& opti
       ++out.junctions_meshed;
     } else {
       ++out.junctions_failed;
-      if (out.first_failed_junction.empty()) out.first_failed_junction = place;
+      if (out.first_failed_junction.empty()) out.first_failed_junction = place();
       if (corners > 0) out.failed_junctions.push_back({junction.id, centre});
       diagnostics.report(Severity::warning, codes::kMeshJunctionFailed,
-                         place + ": " + problem + "; its area is left open");
+                         place() + ": " + problem + "; its area is left open");
     }
   }
 
