@@ -20,13 +20,16 @@ std::filesystem::path fixture(const std::string& relative) {
   return std::filesystem::path(RELIEF_SOURCE_DIR) / "fixtures" / relative;
 }
 
+std::filesystem::path test_scratch_root(const ::testing::TestInfo& info) {
+  return std::filesystem::path(RELIEF_TEST_TMP_DIR) /
+         (std::string(info.test_suite_name()) + "." + info.name());
+}
+
 std::filesystem::path scratch_dir(const std::string& name) {
   // Under the running test's own folder: ctest runs the tests of one binary side by side, and
   // helpers shared by several tests ask for the same name.
-  std::filesystem::path dir = RELIEF_TEST_TMP_DIR;
-  if (const ::testing::TestInfo* info = ::testing::UnitTest::GetInstance()->current_test_info()) {
-    dir /= std::string(info->test_suite_name()) + "." + info->name();
-  }
+  const ::testing::TestInfo* info = ::testing::UnitTest::GetInstance()->current_test_info();
+  std::filesystem::path dir = info != nullptr ? test_scratch_root(*info) : RELIEF_TEST_TMP_DIR;
   dir /= name;
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);

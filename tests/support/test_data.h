@@ -5,6 +5,10 @@
 #include <filesystem>
 #include <string>
 
+namespace testing {
+class TestInfo;
+}
+
 namespace relief::test {
 
 /// ../shared/data/<relative> next to the source tree (or $RELIEF_SHARED_DATA/<relative>).
@@ -17,6 +21,9 @@ namespace relief::test {
 /// folder named for the running test (<tmp>/<Suite.Test>/<name>), so tests running side by side
 /// never share one.
 [[nodiscard]] std::filesystem::path scratch_dir(const std::string& name);
+/// The folder that holds a test's scratch directories (<tmp>/<Suite.Test>); the test main removes
+/// it when the test passes, unless RELIEF_KEEP_TEST_OUTPUT=1.
+[[nodiscard]] std::filesystem::path test_scratch_root(const ::testing::TestInfo& info);
 
 }  // namespace relief::test
 
