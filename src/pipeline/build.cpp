@@ -244,7 +244,7 @@ BuildResult build(const BuildOptions& options, Diagnostics& diagnostics, const P
       // Where the road model will cut the roads for their junctions (plan only), so that the
       // fit bounds the grades across each junction there.
       return fit_profiles(network, raw, fit_options, diagnostics,
-                          junction_end_trims(network, raw, options.road_model));
+                          junction_cuts(network, raw, options.road_model));
     });
     fit_seconds = timer.timings().back().second;
     FitSummary summary;

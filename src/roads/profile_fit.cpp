@@ -591,7 +591,7 @@ struct Place {
 
 ProfileFitResult fit_profiles(const RoadNetwork& network, const std::vector<RoadProfile>& raw,
                               const ProfileFitOptions& options, Diagnostics& diagnostics,
-                              const std::vector<std::array<double, 2>>& end_trims) {
+                              const JunctionCuts& cuts) {
   if (raw.size() != network.roads.size())
     throw InvalidInput("fit_profiles: one profile per road is required");
   if (!(options.max_ground_departure_m >= 0.0) || !(options.clearance_m >= 0.0) ||
@@ -793,7 +793,7 @@ ProfileFitResult fit_profiles(const RoadNetwork& network, const std::vector<Road
   // Across a junction the connecting roads run from one road's trimmed end to another's, and
   // those ends can lie much closer together than their paths through the junction's centre (the
   // two legs of a hairpin meeting a side road): between every two road ends, where the model
-  // cuts the roads (end_trims; else the junction's widest half-width plus 2 m), the height
+  // cuts the roads (cuts.end_trims; else the junction's widest half-width plus 2 m), the height
   // difference of their lane centres stays within a share of the steeper road's cap over their
   // plan distance, a lower bound of the connecting road's length. The stations either side of
   // the cuts (and the next, as curvature rows span three) go to the elimination order's block.
@@ -808,15 +808,16 @@ ProfileFitResult fit_profiles(const RoadNetwork& network, const std::vector<Road
   // left normal there.
   struct Cut {
     int road;
+    int junction;  // the (member) junction the road ends at
     std::size_t a;
     double t;
     Vec2 xy, normal;
   };
-  const auto cut_at = [&](int road, std::size_t a, double s_cut) {
+  const auto cut_at = [&](int road, int junction, std::size_t a, double s_cut) {
     const RoadProfile& p = raw[road];
     const Vec2 d = p.xy[a + 1] - p.xy[a];
     const double t = std::clamp((s_cut - p.s[a]) / (p.s[a + 1] - p.s[a]), 0.0, 1.0);
-    return Cut{road, a, t, p.xy[a] + t * d, Vec2(-d.y(), d.x()) / std::max(d.norm(), 1e-9)};
+    return Cut{road, junction, a, t, p.xy[a] + t * d, Vec2(-d.y(), d.x()) / std::max(d.norm(), 1e-9)};
   };
   // The offsets of a road's outermost lane centres from its reference line, and its middle.
   const auto lane_offsets = [&](int road) {
@@ -824,19 +825,41 @@ ProfileFitResult fit_profiles(const RoadNetwork& network, const std::vector<Road
     const double t = std::max(half_width(road) - 0.5 * a.lane_width_m, 0.0);
     return t > 0.0 ? std::vector<double>{-t, 0.0, t} : std::vector<double>{0.0};
   };
-  for (const Junction& j : network.junctions) {
+  // The junctions the model builds: a joined junction's connecting roads run between the ends of
+  // all its members but the roads inside it (Fuzz seed 18: two junctions 3 m apart, each end
+  // within its own junction's rows, and a connecting road from one to the other at 44 % under a
+  // 35 % cap).
+  std::vector<std::vector<int>> members(network.junctions.size());
+  for (const Junction& j : network.junctions)
+    members[cuts.joined_into.empty() ? j.id : cuts.joined_into[j.id]].push_back(j.id);
+  const auto inside_joined = [&](int road) { return !cuts.absorbed.empty() && cuts.absorbed[road] != 0; };
+  // An intersection's (three ends or more) road ends roll with its plane; tan(roll) = n . S G, S
+  // the share of the plane its roads determine (junction_planes.h).
+  const auto rolled = [&](int junction) { return network.junctions[junction].ends.size() >= 3; };
+  std::vector<Eigen::Matrix2d> share(network.junctions.size(), Eigen::Matrix2d::Zero());
+  for (const Junction& j : network.junctions)
+    if (rolled(j.id)) share[j.id] = detail::determined_share(network, j);
+  for (const std::vector<int>& group : members) {
+    if (group.empty()) continue;
+    std::vector<std::pair<RoadEnd, int>> ends;  // the end and its member junction
+    for (const int m : group)
+      for (const RoadEnd& e : network.junctions[m].ends)
+        if (!inside_joined(e.road)) ends.emplace_back(e, m);
     // Two ends: where one road continues the other their own grade rows hold; where a transition
     // road bends from one to the other it cuts the corner (a sharp node: at 90 degrees 1.27 times
     // the polyline's grade), and the rows between their cut ends hold it.
-    if (j.ends.size() < 2 || (j.ends.size() == 2 && !detail::needs_transition(network, j))) continue;
+    const Junction& first = network.junctions[group.front()];
+    if (ends.size() < 2 ||
+        (group.size() == 1 && ends.size() == 2 && !detail::needs_transition(network, first)))
+      continue;
     double room = 0.0;
-    for (const RoadEnd& e : j.ends) room = std::max(room, half_width(e.road) + kJunctionRoomMargin_m);
+    for (const auto& [e, m] : ends) room = std::max(room, half_width(e.road) + kJunctionRoomMargin_m);
     std::vector<Cut> leaving;
-    for (const RoadEnd& e : j.ends) {
+    for (const auto& [e, m] : ends) {
       const RoadProfile& p = raw[e.road];
       if (!p.has_height || p.size() < 5) continue;
       std::size_t k = 0;
-      const double cut = end_trims.empty() ? room : end_trims[e.road][e.at_start ? 0 : 1];
+      const double cut = cuts.end_trims.empty() ? room : cuts.end_trims[e.road][e.at_start ? 0 : 1];
       if (e.at_start) {
         k = static_cast<std::size_t>(std::lower_bound(p.s.begin(), p.s.end(), cut) - p.s.begin());
       } else {
@@ -845,14 +868,13 @@ ProfileFitResult fit_profiles(const RoadNetwork& network, const std::vector<Road
       }
       if (k < 1 || k + 2 >= p.size()) continue;  // no interior station that far out
       const std::size_t a = e.at_start ? k - 1 : k;
-      leaving.push_back(cut_at(e.road, a, e.at_start ? cut : p.s.back() - cut));
+      leaving.push_back(cut_at(e.road, m, a, e.at_start ? cut : p.s.back() - cut));
       block_stations[e.road].push_back(a);
       block_stations[e.road].push_back(a + 1);
       block_stations[e.road].push_back(e.at_start ? a + 2 : a - 1);
     }
     // The rows hold between the lane centres at the cuts. At an intersection the model tilts
-    // each road's cross-section there by the roll of the junction's plane, tan(roll) = n . S G
-    // (S the share of the plane its roads determine, junction_planes.h), and the connecting
+    // each road's cross-section there by the roll of its junction's plane, and the connecting
     // roads join those lane centres: every pair of them (outermost either side and the middle)
     // gets a row with its rolls. At the station beyond the cut and on the reference lines alone
     // the rows did not bound the connecting roads: the roads may climb at their cap over that
@@ -863,9 +885,6 @@ ProfileFitResult fit_profiles(const RoadNetwork& network, const std::vector<Road
     // the plane to meet it, rolling the roads' ends more and their outer lanes past the cap
     // where the roll eases (RoadModelBuilder.ATransitionRoadCuttingASharpCorner: 36.8 % under
     // 35 %): one row on the reference lines, over the nearest lane centres' distance.
-    const bool rolled = j.ends.size() >= 3;
-    const Eigen::Matrix2d share = rolled ? detail::determined_share(network, j) : Eigen::Matrix2d::Zero();
-    const std::size_t gx = vars.gradient(j.id);
     for (std::size_t x = 0; x < leaving.size(); ++x) {
       for (std::size_t y = x + 1; y < leaving.size(); ++y) {
         const Cut& ca = leaving[x];
@@ -875,42 +894,49 @@ ProfileFitResult fit_profiles(const RoadNetwork& network, const std::vector<Road
         const double g = kPairGradeShare * std::max(grade_limit(options, network.roads[ca.road].attributes),
                                                     grade_limit(options, network.roads[cb.road].attributes));
         const FitRows::Tag tag{FitLimit::junction_grade, ca.road, static_cast<std::uint32_t>(ca.a)};
-        double share_of_pair = 1.0;
-        const auto add_row = [&](const Vec2& tilt, double d) {
-          d = std::max(d, kMinCurvatureSpacing);
-          pair_rows[rows.size()] = {d, g};
-          const std::size_t a0 = vars.of(ca.road, ca.a, na), a1 = vars.of(ca.road, ca.a + 1, na);
-          const std::size_t b0 = vars.of(cb.road, cb.a, nb), b1 = vars.of(cb.road, cb.a + 1, nb);
-          if (!rolled) {
-            rows.add({{b0, 1.0 - cb.t}, {b1, cb.t}, {a0, ca.t - 1.0}, {a1, -ca.t}}, -g * d, g * d, tag);
-            return;
-          }
-          rows.add({{b0, 1.0 - cb.t},
-                    {b1, cb.t},
-                    {a0, ca.t - 1.0},
-                    {a1, -ca.t},
-                    {gx, tilt.x()},
-                    {gx + 1, tilt.y()}},
-                   -g * d, g * d, tag, false, share_of_pair);
-        };
+        const std::size_t a0 = vars.of(ca.road, ca.a, na), a1 = vars.of(ca.road, ca.a + 1, na);
+        const std::size_t b0 = vars.of(cb.road, cb.a, nb), b1 = vars.of(cb.road, cb.a + 1, nb);
         const auto lane_point = [](const Cut& c, double t) { return Vec2(c.xy + t * c.normal); };
-        if (!rolled) {
+        if (!rolled(ca.junction) && !rolled(cb.junction)) {
           double d = kInf;
           for (const double ta : lane_offsets(ca.road))
             for (const double tb : lane_offsets(cb.road))
               d = std::min(d, (lane_point(cb, tb) - lane_point(ca, ta)).norm());
-          add_row(Vec2::Zero(), d);
+          d = std::max(d, kMinCurvatureSpacing);
+          pair_rows[rows.size()] = {d, g};
+          rows.add({{b0, 1.0 - cb.t}, {b1, cb.t}, {a0, ca.t - 1.0}, {a1, -ca.t}}, -g * d, g * d, tag);
           continue;
         }
-        const Vec2 roll_a = share * ca.normal, roll_b = share * cb.normal;  // tan(roll) = roll . G
+        const Vec2 roll_a = share[ca.junction] * ca.normal, roll_b = share[cb.junction] * cb.normal;
+        // The plane's columns (dz/dx, dz/dy); a junction without a plane that rolls its ends
+        // has roll 0, its terms put on the end's own columns.
+        const auto plane = [&](const Cut& c, std::size_t z0, std::size_t z1) {
+          return rolled(c.junction) ? std::pair{vars.gradient(c.junction), vars.gradient(c.junction) + 1}
+                                    : std::pair{z0, z1};
+        };
+        const auto [gax, gay] = plane(ca, a0, a1);
+        const auto [gbx, gby] = plane(cb, b0, b1);
         // The pair's rows together weigh like the one row a pair had: 9 rows per pair at a 4-way
         // crossing at the full price outweighed the ground departure above them (a conflict
         // case left a road 2.7 m off the DEM under a 0.5 m bound to spare junction grades).
-        share_of_pair =
+        const double share_of_pair =
             1.0 / static_cast<double>(lane_offsets(ca.road).size() * lane_offsets(cb.road).size());
-        for (const double ta : lane_offsets(ca.road))
-          for (const double tb : lane_offsets(cb.road))
-            add_row(tb * roll_b - ta * roll_a, (lane_point(cb, tb) - lane_point(ca, ta)).norm());
+        for (const double ta : lane_offsets(ca.road)) {
+          for (const double tb : lane_offsets(cb.road)) {
+            const double d = std::max((lane_point(cb, tb) - lane_point(ca, ta)).norm(), kMinCurvatureSpacing);
+            pair_rows[rows.size()] = {d, g};
+            // A junction's plane variables appear once per end; one plane, their terms add.
+            rows.add({{b0, 1.0 - cb.t},
+                      {b1, cb.t},
+                      {a0, ca.t - 1.0},
+                      {a1, -ca.t},
+                      {gbx, tb * roll_b.x()},
+                      {gby, tb * roll_b.y()},
+                      {gax, -ta * roll_a.x()},
+                      {gay, -ta * roll_a.y()}},
+                     -g * d, g * d, tag, false, share_of_pair);
+          }
+        }
       }
     }
   }

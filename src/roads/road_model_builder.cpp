@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <utility>
 #include <vector>
 
 #include "relief/core/errors.h"
@@ -91,6 +92,8 @@ RoadModelBuild build_model(const RoadNetwork& network, const std::vector<RoadPro
   detail::report_joined_junctions(trimmed, diagnostics, out.stats);
   detail::trim_stray_ends(trimmed, /*report=*/!trims_only, diagnostics, out.stats);
   out.end_trims = trimmed.trim;
+  out.joined_into = trimmed.clusters.representative;
+  out.absorbed = trimmed.clusters.absorbed;
   if (trims_only) return out;
 
   // Roads between their trims, then the links and junctions between them.
@@ -138,11 +141,11 @@ RoadModelBuild build_road_model(const RoadNetwork& network, const std::vector<Ro
   return build_model(network, profiles, options, diagnostics, junction_gradient, false);
 }
 
-std::vector<std::array<double, 2>> junction_end_trims(const RoadNetwork& network,
-                                                      const std::vector<RoadProfile>& profiles,
-                                                      const RoadModelOptions& options) {
+JunctionCuts junction_cuts(const RoadNetwork& network, const std::vector<RoadProfile>& profiles,
+                           const RoadModelOptions& options) {
   Diagnostics ignored;  // build_road_model reports the same findings
-  return build_model(network, profiles, options, ignored, {}, true).end_trims;
+  RoadModelBuild trims = build_model(network, profiles, options, ignored, {}, true);
+  return JunctionCuts{std::move(trims.end_trims), std::move(trims.joined_into), std::move(trims.absorbed)};
 }
 
 }  // namespace relief

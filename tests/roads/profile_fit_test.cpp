@@ -137,8 +137,9 @@ TEST(ProfileFit, RoadEndsAcrossAJunctionKeepTheCapOverTheirDistance) {
   const RoadNetwork net = test::make_network({{{0, 0}, {200, 0}}, {{0, 0}, {200, 20}}, {{0, 0}, {-200, 0}}});
   const auto raw = drape(net, [](const Vec2& p) { return 0.3 * p.x() - 6.0 * p.y(); });
   Diagnostics d;
-  const std::vector<std::array<double, 2>> trims(net.roads.size(), {10.0, 10.0});
-  const ProfileFitResult fit = fit_profiles(net, raw, {}, d, trims);
+  JunctionCuts cuts;
+  cuts.end_trims.assign(net.roads.size(), {10.0, 10.0});
+  const ProfileFitResult fit = fit_profiles(net, raw, {}, d, cuts);
   ASSERT_TRUE(fit.converged) << fit.solver_status;
   EXPECT_TRUE(fit.violations.empty());
   // The stations where the model cuts the two legs (the first at 10 m or more).

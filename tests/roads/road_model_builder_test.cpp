@@ -82,7 +82,7 @@ TEST(RoadModelBuilder, TJunctionOnASlope) {
   EXPECT_LT(b.stats.max_elevation_deviation_m, 1e-6);
   // The trims alone, as the fit asks for them before the model exists: the junction's radius
   // (3 m widest half-width + 2 m margin) at the junction end, nothing at the dead ends.
-  const std::vector<std::array<double, 2>> trims = junction_end_trims(net, drape(net), {});
+  const std::vector<std::array<double, 2>> trims = junction_cuts(net, drape(net), {}).end_trims;
   ASSERT_EQ(trims.size(), b.end_trims.size());
   for (std::size_t r = 0; r < trims.size(); ++r) {
     EXPECT_EQ(trims[r], b.end_trims[r]) << r;
@@ -250,7 +250,8 @@ TEST(RoadModelBuilder, ARoadEndingBetweenTwoOthersIsTrimmedOutOfTheirConnectingR
   // grows in steps of 0.5 m from the radius; the east end, passed by the diagonal's corner, grows
   // and the south end, between the west end and the diagonal's, a little too. The west end,
   // which no other end's connecting roads pass, stays at the radius.
-  const std::vector<std::array<double, 2>> trims = junction_end_trims(net, test::drape(net, bowl), options);
+  const std::vector<std::array<double, 2>> trims =
+      junction_cuts(net, test::drape(net, bowl), options).end_trims;
   EXPECT_NEAR(trims[0][1], 11.0, 1e-9);
   EXPECT_GE(trims[3][0], 14.5 - 1e-9);
   for (const int r : {1, 2, 3}) EXPECT_LE(trims[r][0], 20.0 + 1e-9) << r;
@@ -740,7 +741,7 @@ TEST(RoadModelBuilder, ATransitionRoadCuttingASharpCornerKeepsTheGradeCap) {
   const std::vector<RoadProfile> raw = test::drape(net, [](const Vec2& p) { return 0.45 * (p.x() + p.y()); });
   const RoadModelOptions options;
   Diagnostics d;
-  const ProfileFitResult fit = fit_profiles(net, raw, {}, d, junction_end_trims(net, raw, options));
+  const ProfileFitResult fit = fit_profiles(net, raw, {}, d, junction_cuts(net, raw, options));
   ASSERT_TRUE(fit.converged) << fit.solver_status;
   const RoadModelBuild b = build_road_model(net, fit.profiles, options, d, fit.junction_gradient);
   ASSERT_EQ(b.stats.transition_roads, 1u);
@@ -748,6 +749,45 @@ TEST(RoadModelBuilder, ATransitionRoadCuttingASharpCornerKeepsTheGradeCap) {
   const double steepest = steepest_lane_grade(b.model);
   std::cout << "corner: steepest lane grade " << 100.0 * steepest << " % (cap " << 100.0 * cap << " %)\n";
   EXPECT_LE(steepest, cap + 0.01);
+}
+
+TEST(RoadModelBuilder, ConnectingRoadsAcrossAJoinedJunctionKeepTheGradeCap) {
+  // Two crossings 3 m apart on a 45 % slope, joined into one junction: a street climbs north into
+  // the first and east out of the second (capped at 35 %), and a connecting road from one to the
+  // other runs between ends of two different network junctions. Fuzz seed 18: with the fit's rows
+  // per network junction only, such a connecting road climbed 44 % under a 35 % cap; the fit
+  // takes the joined junction's ends together (JunctionCuts::joined_into).
+  const RoadNetwork net = test::make_network(
+      {{{0, -60}, {0, 0}}, {{0, 0}, {3, 0}}, {{3, 0}, {60, 0}}, {{0, 0}, {-60, 0}}, {{3, 0}, {3, 60}}},
+      {street(1, 1), street(1, 1), street(1, 1), street(1, 1), street(1, 1)});
+  const std::vector<RoadProfile> raw = test::drape(net, [](const Vec2& p) { return 0.45 * (p.x() + p.y()); });
+  const RoadModelOptions options;
+  const JunctionCuts cuts = junction_cuts(net, raw, options);
+  ASSERT_EQ(cuts.joined_into.size(), net.junctions.size());
+  ASSERT_EQ(cuts.absorbed.size(), net.roads.size());
+  EXPECT_EQ(cuts.absorbed[1], 1u);  // the 3 m road between the two crossings
+  const double cap = grade_limit(ProfileFitOptions{}, net.roads[0].attributes);
+  const auto steepest_connection = [&](const JunctionCuts& c) {
+    Diagnostics d;
+    const ProfileFitResult fit = fit_profiles(net, raw, {}, d, c);
+    EXPECT_TRUE(fit.converged) << fit.solver_status;
+    const RoadModelBuild b = build_road_model(net, fit.profiles, options, d, fit.junction_gradient);
+    EXPECT_EQ(b.stats.junctions_joined, 1u);
+    RoadModel connections;
+    for (const ModelRoad& road : b.model.roads)
+      if (road.junction >= 0) connections.roads.push_back(road);
+    EXPECT_EQ(connections.roads.size(), 12u);  // 4 ends, 3 movements each
+    return steepest_lane_grade(connections);
+  };
+  const double joined = steepest_connection(cuts);
+  JunctionCuts apart = cuts;  // as before: rows within each network junction only
+  apart.joined_into.clear();
+  apart.absorbed.clear();
+  const double separate = steepest_connection(apart);
+  std::cout << "joined junction: steepest connecting lane " << 100.0 * joined
+            << " % (rows per network junction: " << 100.0 * separate << " %, cap " << 100.0 * cap << " %)\n";
+  EXPECT_LE(joined, cap + 0.02);
+  EXPECT_GT(separate, cap + 0.02);  // the case attacks what the joined rows fix
 }
 
 TEST(RoadModelBuilder, ATransitionRoadWhoseInnerLaneClimbsPastTheCapIsAJunction) {
@@ -760,7 +800,7 @@ TEST(RoadModelBuilder, ATransitionRoadWhoseInnerLaneClimbsPastTheCapIsAJunction)
   const std::vector<RoadProfile> raw =
       test::drape(net, [](const Vec2& p) { return 0.12 * p.y() + 0.05 * p.x(); });
   Diagnostics d;
-  const ProfileFitResult fit = fit_profiles(net, raw, {}, d, junction_end_trims(net, raw, {}));
+  const ProfileFitResult fit = fit_profiles(net, raw, {}, d, junction_cuts(net, raw, {}));
   ASSERT_TRUE(fit.converged) << fit.solver_status;
   for (const double cap : {1.0, 0.0}) {
     SCOPED_TRACE("cap " + std::to_string(cap));

@@ -89,6 +89,19 @@ struct ProfileFitOptions {
   FitHolds holds;
 };
 
+/// Where the road model will cut the roads for their junctions (plan only): the fit bounds the
+/// grades across each junction between those cuts (junction_cuts in road_model_builder.h).
+struct JunctionCuts {
+  /// Per road: the length cut off its start and its end. Empty: each junction's widest
+  /// half-width plus 2 m.
+  std::vector<std::array<double, 2>> end_trims;
+  /// Per junction: the junction that stands for the joined junction it is part of (itself when
+  /// not joined), whose connecting roads run between the ends of all its members. Empty: none.
+  std::vector<int> joined_into;
+  /// Per road: 1 where the road lies inside a joined junction (it has no end of its own there).
+  std::vector<std::uint8_t> absorbed;
+};
+
 /// The limits of the fit, in their order of priority.
 enum class FitLimit { ground_departure, grade, junction_grade, clearance, vertical_curve };
 [[nodiscard]] std::string_view to_string(FitLimit limit);
@@ -142,13 +155,13 @@ struct ProfileFitResult {
 /// (one per road and limit, with the place) when limits conflict, e.g. a clearance that no
 /// grade-limited ramp can reach.
 ///
-/// `end_trims` (per road, or empty): the length the road model cuts off each road's ends for its
-/// junctions (RoadModelBuild::end_trims of a first pass on the raw profiles). The connecting
-/// roads across a junction run between those cut ends, and the fit keeps every two of them
+/// `cuts`: where the road model cuts each road's ends for its junctions and which junctions it
+/// joins (junction_cuts, a first pass on the raw profiles). The connecting roads across a
+/// junction, a joined one too, run between those cut ends, and the fit keeps every two of them
 /// within the steeper road's grade cap over their plan distance; without trims it takes the
 /// junction's widest half-width plus 2 m.
 [[nodiscard]] ProfileFitResult fit_profiles(const RoadNetwork& network, const std::vector<RoadProfile>& raw,
                                             const ProfileFitOptions& options, Diagnostics& diagnostics,
-                                            const std::vector<std::array<double, 2>>& end_trims = {});
+                                            const JunctionCuts& cuts = {});
 
 }  // namespace relief

@@ -45,10 +45,12 @@
 // - Elevation: C1 cubic pieces through the fitted profile within elevation_tolerance_m.
 
 #include <array>
+#include <cstdint>
 #include <vector>
 
 #include "relief/core/diagnostics.h"
 #include "relief/roads/elevation_sampling.h"
+#include "relief/roads/profile_fit.h"
 #include "relief/roads/road_model.h"
 #include "relief/roads/road_network.h"
 
@@ -114,6 +116,10 @@ struct RoadModelBuild {
   /// Per network road: the length of its OSM polyline cut off at its start and at its end for
   /// the junctions there (the model road is what lies between).
   std::vector<std::array<double, 2>> end_trims;
+  /// Per network junction: the junction that stands for the joined junction it is part of
+  /// (itself when not joined); per network road: 1 where it lies inside a joined junction.
+  std::vector<int> joined_into;
+  std::vector<std::uint8_t> absorbed;
 };
 
 /// Arc length along the road as driven at each of the profile's stations, for the whole
@@ -126,11 +132,11 @@ struct RoadModelBuild {
 [[nodiscard]] std::vector<double> driven_stations(const Road& road, const RoadProfile& profile,
                                                   const RoadModelOptions& options);
 
-/// RoadModelBuild::end_trims alone: how much of each road's ends its junctions take (plan and
-/// attributes only; `profiles` say which roads have a height), without building the model.
-[[nodiscard]] std::vector<std::array<double, 2>> junction_end_trims(const RoadNetwork& network,
-                                                                    const std::vector<RoadProfile>& profiles,
-                                                                    const RoadModelOptions& options);
+/// Where the road model cuts each road for its junctions (RoadModelBuild::end_trims) and which
+/// junctions it joins, without building the model (plan and attributes only; `profiles` say
+/// which roads have a height): the fit's JunctionCuts.
+[[nodiscard]] JunctionCuts junction_cuts(const RoadNetwork& network, const std::vector<RoadProfile>& profiles,
+                                         const RoadModelOptions& options);
 
 /// `profiles` are parallel to network.roads (stations with fitted z). `junction_gradient`
 /// (parallel to network.junctions, or empty) is each junction's tangent plane
