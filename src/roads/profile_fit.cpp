@@ -857,21 +857,26 @@ ProfileFitResult fit_profiles(const RoadNetwork& network, const std::vector<Road
     std::vector<Cut> leaving;
     for (const auto& [e, m] : ends) {
       const RoadProfile& p = raw[e.road];
-      if (!p.has_height || p.size() < 5) continue;
-      std::size_t k = 0;
+      if (!p.has_height || p.size() < 2) continue;
+      // The cut lies between stations a and a + 1; on a short road a + 1 may be its other end.
+      // Fuzz seed 92: a dead end trimmed to 1 m had no station past its cut and no rows, and a
+      // connecting road from it climbed 46 % under a 35 % cap.
       const double cut = cuts.end_trims.empty() ? room : cuts.end_trims[e.road][e.at_start ? 0 : 1];
+      const double other = cuts.end_trims.empty() ? 0.0 : cuts.end_trims[e.road][e.at_start ? 1 : 0];
+      if (!(cut > 0.0) || cut + other >= p.s.back()) continue;  // the junctions take the whole road
+      std::size_t a = 0;
       if (e.at_start) {
-        k = static_cast<std::size_t>(std::lower_bound(p.s.begin(), p.s.end(), cut) - p.s.begin());
+        a = static_cast<std::size_t>(std::lower_bound(p.s.begin(), p.s.end(), cut) - p.s.begin()) - 1;
       } else {
-        const auto it = std::upper_bound(p.s.begin(), p.s.end(), p.s.back() - cut);
-        k = it == p.s.begin() ? 0 : static_cast<std::size_t>(it - p.s.begin()) - 1;
+        a = static_cast<std::size_t>(std::upper_bound(p.s.begin(), p.s.end(), p.s.back() - cut) -
+                                     p.s.begin()) -
+            1;
       }
-      if (k < 1 || k + 2 >= p.size()) continue;  // no interior station that far out
-      const std::size_t a = e.at_start ? k - 1 : k;
+      a = std::min(a, p.size() - 2);
       leaving.push_back(cut_at(e.road, m, a, e.at_start ? cut : p.s.back() - cut));
       block_stations[e.road].push_back(a);
       block_stations[e.road].push_back(a + 1);
-      block_stations[e.road].push_back(e.at_start ? a + 2 : a - 1);
+      if (e.at_start || a >= 1) block_stations[e.road].push_back(e.at_start ? a + 2 : a - 1);
     }
     // The rows hold between the lane centres at the cuts. At an intersection the model tilts
     // each road's cross-section there by the roll of its junction's plane, and the connecting

@@ -756,7 +756,8 @@ TEST(RoadModelBuilder, ConnectingRoadsAcrossAJoinedJunctionKeepTheGradeCap) {
   // the first and east out of the second (capped at 35 %), and a connecting road from one to the
   // other runs between ends of two different network junctions. Fuzz seed 18: with the fit's rows
   // per network junction only, such a connecting road climbed 44 % under a 35 % cap; the fit
-  // takes the joined junction's ends together (JunctionCuts::joined_into).
+  // takes the joined junction's ends together (JunctionCuts::joined_into). Without that, the rows
+  // on the 3 m road's own ends leave 36.8 % here (46.9 % before they were added).
   const RoadNetwork net = test::make_network(
       {{{0, -60}, {0, 0}}, {{0, 0}, {3, 0}}, {{3, 0}, {60, 0}}, {{0, 0}, {-60, 0}}, {{3, 0}, {3, 60}}},
       {street(1, 1), street(1, 1), street(1, 1), street(1, 1), street(1, 1)});
@@ -786,8 +787,8 @@ TEST(RoadModelBuilder, ConnectingRoadsAcrossAJoinedJunctionKeepTheGradeCap) {
   const double separate = steepest_connection(apart);
   std::cout << "joined junction: steepest connecting lane " << 100.0 * joined
             << " % (rows per network junction: " << 100.0 * separate << " %, cap " << 100.0 * cap << " %)\n";
-  EXPECT_LE(joined, cap + 0.02);
-  EXPECT_GT(separate, cap + 0.02);  // the case attacks what the joined rows fix
+  EXPECT_LE(joined, cap);           // measured 31.4 %
+  EXPECT_GT(separate, cap + 0.01);  // the case attacks what the joined rows fix
 }
 
 TEST(RoadModelBuilder, ATransitionRoadWhoseInnerLaneClimbsPastTheCapIsAJunction) {
