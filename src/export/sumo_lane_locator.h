@@ -220,7 +220,19 @@ class LaneLocator {
       std::vector<const ModelRoad*> next;
       bool in_junction = false;
       if (link && link->element == RoadLink::Element::road) {
-        next.push_back(road_of(link->id));
+        // On along the road links while p lies past each road's far end: a road trimmed to 1 m
+        // between a junction and a transition road leaves p on the road after it (Fuzz seed 29:
+        // an internal lane stretched 4.3 m past its connecting road, held at that road's end
+        // height, 0.51 m under the lane it hands over to).
+        const ModelRoad* n = road_of(link->id);
+        for (int hop = 0; n != nullptr && hop < kMaxLinkHops; ++hop) {
+          next.push_back(n);
+          const Projection on = projector(*n).project(p, hint(*n));
+          if (std::abs(on.beyond) <= kPastEnd_m) break;
+          const std::optional<RoadLink>& on_link = on.beyond < 0.0 ? n->predecessor : n->successor;
+          if (!on_link || on_link->element != RoadLink::Element::road || on_link->id == road->id) break;
+          n = road_of(on_link->id);
+        }
       } else if (link && link->element == RoadLink::Element::junction &&
                  std::abs(at.beyond) > kIntoJunction_m) {
         in_junction = true;
@@ -257,6 +269,7 @@ class LaneLocator {
   // offsetting, on the road's own end.
   static constexpr double kIntoJunction_m = 0.5;
   static constexpr double kOnConnectingLane_m = 2.0;  // half the widest lane (4 m), off its centre
+  static constexpr int kMaxLinkHops = 4;              // roads followed past their ends
 
   [[nodiscard]] const ModelRoad* road_of(int id) const {
     const int index = model_.road_index(id);

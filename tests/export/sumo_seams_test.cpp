@@ -6,6 +6,7 @@
 
 #include "relief/export/sumo_checks.h"
 #include "relief/export/sumo_drape.h"
+#include "relief/roads/road_surface.h"
 #include "support/sumo_ramp.h"
 
 namespace relief {
@@ -114,6 +115,44 @@ TEST(SumoSeams, ALaneDrawnOnIntoTheJunctionTakesTheConnectingRoadsHeightThere) {
   EXPECT_EQ(check.height_steps, 0u);
   EXPECT_LT(check.max_handover_step_m, 1e-9);
   EXPECT_LT(check.z_max_m, 5e-4);
+}
+
+TEST(SumoSeams, AnInternalLaneStretchedPastAOneMetreRoadTakesTheRoadAfterItsHeight) {
+  // Road 3 ends 1 m after the junction, where road 4 goes on (a dead end trimmed to 1 m before a
+  // transition road; Fuzz seed 29), and netconvert stretched the internal lane to x = 116, 5 m
+  // past road 3's end. That point lies on road 4 (z = 11.6 on the ramp): held at connecting road
+  // 2's end height (11.0), the lane stepped 0.51 m onto the lane it hands over to.
+  RoadModel model = ramp_model();
+  ModelRoad& r3 = model.roads[2];
+  ModelRoad r4 = r3;
+  PlanGeometry first, rest;
+  first.start = Vec2(110.0, 0.0);
+  first.length = 1.0;
+  rest.start = Vec2(111.0, 0.0);
+  rest.length = 99.0;
+  r3.plan = PlanView({first});
+  r3.successor = RoadLink{RoadLink::Element::road, 4, RoadLink::Contact::start};
+  r4.id = 4;
+  r4.plan = PlanView({rest});
+  r4.elevation = CubicProfile({CubicPiece{0.0, {11.1, 0.1, 0.0, 0.0}}});
+  r4.predecessor = RoadLink{RoadLink::Element::road, 3, RoadLink::Contact::end};
+  model.roads.push_back(r4);
+  std::string net = ramp_net_with("shape=\"100,-1.5,10 110,-1.5,11\"", "shape=\"100,-1.5,10 116,-1.5,11\"");
+  const std::string lane3 = "shape=\"110,-1.5,11 210,-1.5,21\"";
+  net.replace(net.find(lane3), lane3.size(), "shape=\"116,-1.5,11 210,-1.5,21\"");
+  pugi::xml_document doc;
+  ASSERT_TRUE(doc.load_string(net.c_str()));
+  detail::LaneLocator locator(doc.child("net"), model);
+  const auto at = locator.locate(":J_0_0", Vec2(116.0, -1.5));
+  ASSERT_TRUE(at.has_value());
+  EXPECT_EQ(at->road->id, 4);
+  EXPECT_NEAR(surface_z(*at->road, at->s, at->t), 11.6, 1e-9);
+  (void)drape_sumo_net(net, model, "ramp.net.xml");
+  const std::string shape = lane_of(net, ":J_0_0").first;
+  EXPECT_EQ(shape.substr(shape.rfind(' ') + 1), "116,-1.5,11.600") << shape;
+  const SumoNetCheck check = check_sumo_net(net, model, "ramp.net.xml");
+  EXPECT_EQ(check.height_steps, 0u);
+  EXPECT_LT(check.max_handover_step_m, 1e-3);
 }
 
 TEST(SumoSeams, NetconvertsOwnCentimetresAreLeftAlone) {
