@@ -4,6 +4,7 @@
 
 #include <cstdlib>
 #include <string>
+#include <string_view>
 
 namespace relief::test {
 
@@ -18,6 +19,11 @@ bool have_shared_data() {
 
 std::filesystem::path fixture(const std::string& relative) {
   return std::filesystem::path(RELIEF_SOURCE_DIR) / "fixtures" / relative;
+}
+
+bool keep_test_output() {
+  const char* keep = std::getenv("RELIEF_KEEP_TEST_OUTPUT");
+  return keep != nullptr && std::string_view(keep) != "" && std::string_view(keep) != "0";
 }
 
 std::filesystem::path test_scratch_root(const ::testing::TestInfo& info) {

@@ -21,6 +21,8 @@ namespace relief::test {
 /// folder named for the running test (<tmp>/<Suite.Test>/<name>), so tests running side by side
 /// never share one.
 [[nodiscard]] std::filesystem::path scratch_dir(const std::string& name);
+/// True when RELIEF_KEEP_TEST_OUTPUT is set (not empty, not 0): tests keep what they write.
+[[nodiscard]] bool keep_test_output();
 /// The folder that holds a test's scratch directories (<tmp>/<Suite.Test>); the test main removes
 /// it when the test passes, unless RELIEF_KEEP_TEST_OUTPUT=1.
 [[nodiscard]] std::filesystem::path test_scratch_root(const ::testing::TestInfo& info);

@@ -5,9 +5,8 @@
 
 #include <gtest/gtest.h>
 
-#include <cstdlib>
 #include <filesystem>
-#include <string_view>
+#include <system_error>
 
 #include "support/test_data.h"
 
@@ -21,16 +20,11 @@ class RemoveScratchOfPassedTests : public ::testing::EmptyTestEventListener {
   }
 };
 
-bool keep_output() {
-  const char* keep = std::getenv("RELIEF_KEEP_TEST_OUTPUT");
-  return keep != nullptr && std::string_view(keep) != "" && std::string_view(keep) != "0";
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
   ::testing::InitGoogleTest(&argc, argv);
-  if (!keep_output()) {
+  if (!relief::test::keep_test_output()) {
     ::testing::UnitTest::GetInstance()->listeners().Append(new RemoveScratchOfPassedTests);
   }
   return RUN_ALL_TESTS();
