@@ -20,6 +20,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <initializer_list>
 #include <iomanip>
 #include <iostream>
 #include <numbers>
@@ -178,6 +179,20 @@ BuildResult build_seed(unsigned seed, FuzzCase& c, Diagnostics& d, bool defects 
   return build(o, d);
 }
 
+// Builds each of `seeds` (with OSM's errors when `defects`) and hands its result and what it
+// reported to `check(seed, result, diagnostics)`.
+template <typename Check>
+void check_seeds(std::initializer_list<unsigned> seeds, bool defects, Check check) {
+  for (const unsigned seed : seeds) {
+    SCOPED_TRACE("seed " + std::to_string(seed));
+    FuzzCase c;
+    Diagnostics d;
+    BuildResult result;
+    ASSERT_NO_THROW(result = build_seed(seed, c, d, defects));
+    check(seed, result, d);
+  }
+}
+
 // Builds seeds first..last (RELIEF_FUZZ_SEEDS=N: 1..N instead, without the floor) and checks
 // each; at least `min_passed` must pass every gate (what was measured: a regression shows). A
 // seed's files are removed once checked (each seed writes about 10 MB), unless
@@ -287,12 +302,7 @@ TEST(Fuzz, RandomNetworksWithOsmDataErrorsBuildAndCheckThemselves) {
 // 234's is; seed 309's roads, with the heights fitted since the rows between road ends hold at
 // their cuts, are trimmed back far enough for a transition road whose lanes do not fold.
 TEST(Fuzz, BendsTooTightForATransitionRoadAreJunctionsThatDoNotFold) {
-  for (const unsigned seed : {234u, 309u}) {
-    SCOPED_TRACE("seed " + std::to_string(seed));
-    FuzzCase c;
-    Diagnostics d;
-    BuildResult result;
-    ASSERT_NO_THROW(result = build_seed(seed, c, d));
+  check_seeds({234u, 309u}, false, [](unsigned seed, const BuildResult& result, const Diagnostics& d) {
     const RunReport& r = result.report;
     if (seed == 234u) {
       EXPECT_GE(d.count("model.transition_as_junction"), 1u);
@@ -307,7 +317,7 @@ TEST(Fuzz, BendsTooTightForATransitionRoadAreJunctionsThatDoNotFold) {
     }
     EXPECT_EQ(checked, 2);
     EXPECT_EQ(r.junctions.max_gap_m, 0.0);
-  }
+  });
 }
 
 // Seeds whose connecting roads climbed 45 to 58 % under a 35 % cap (gate values 15.4, 22.6, 14.9
@@ -317,12 +327,7 @@ TEST(Fuzz, BendsTooTightForATransitionRoadAreJunctionsThatDoNotFold) {
 // height at the ends of a 4 m connecting road). The rows now hold between the lane centres at
 // the cuts, rolls included.
 TEST(Fuzz, ConnectingRoadsBetweenRolledLaneEndsKeepTheirCap) {
-  for (const unsigned seed : {350u, 400u, 602u, 774u}) {
-    SCOPED_TRACE("seed " + std::to_string(seed));
-    FuzzCase c;
-    Diagnostics d;
-    BuildResult result;
-    ASSERT_NO_THROW(result = build_seed(seed, c, d));
+  check_seeds({350u, 400u, 602u, 774u}, false, [](unsigned, const BuildResult& result, const Diagnostics&) {
     int checked = 0;
     for (const Gate& g : result.report.gates) {
       if (g.name == "connecting_road_grade_over_cap_percent" || g.name == "road_grade_over_cap_percent") {
@@ -336,7 +341,7 @@ TEST(Fuzz, ConnectingRoadsBetweenRolledLaneEndsKeepTheirCap) {
     }
     EXPECT_EQ(checked, 2);
     EXPECT_EQ(result.report.junctions.max_gap_m, 0.0);
-  }
+  });
 }
 
 // OSM-error seeds with dead ends the junction's room trims down to 1 m (17: a way drawn on 23 m
@@ -347,17 +352,12 @@ TEST(Fuzz, ConnectingRoadsBetweenRolledLaneEndsKeepTheirCap) {
 // now gets no SUMO edge (SumoOptions::min_dead_end_length_m), the junction's surface leaves out
 // the end lying on another road, and every gate passes.
 TEST(Fuzz, ADeadEndTrimmedTo1mGetsNoSumoEdgeAndEveryGatePasses) {
-  for (const unsigned seed : {17u, 21u, 55u, 94u}) {
-    SCOPED_TRACE("seed " + std::to_string(seed));
-    FuzzCase c;
-    Diagnostics d;
-    BuildResult result;
-    ASSERT_NO_THROW(result = build_seed(seed, c, d, true));
+  check_seeds({17u, 21u, 55u, 94u}, true, [](unsigned seed, const BuildResult& result, const Diagnostics& d) {
     EXPECT_GE(d.count("sumo.dead_end_skipped"), 1u);
     EXPECT_EQ(d.count("mesh.junction_end_left_out"), seed == 55u || seed == 94u ? 1u : 0u);
     for (const Gate& g : result.report.gates)
       EXPECT_TRUE(g.passed) << g.name << " " << g.value << " " << g.where;
-  }
+  });
 }
 
 // A bridge crossing a road a few metres from the bridge's own junction, where the 5 m clearance
@@ -367,12 +367,7 @@ TEST(Fuzz, ADeadEndTrimmedTo1mGetsNoSumoEdgeAndEveryGatePasses) {
 // grades at 41-46 % under their 31.5 % bound and connecting roads 12-23 % over the cap (seed
 // 188's worst connecting road is still 9.7 % over with the fit's rows all held: not located).
 TEST(Fuzz, AClearanceBesideAJunctionGivesWayToItsGrades) {
-  for (const unsigned seed : {64u, 188u}) {
-    SCOPED_TRACE("seed " + std::to_string(seed));
-    FuzzCase c;
-    Diagnostics d;
-    BuildResult result;
-    ASSERT_NO_THROW(result = build_seed(seed, c, d, true));
+  check_seeds({64u, 188u}, true, [](unsigned, const BuildResult& result, const Diagnostics&) {
     ASSERT_TRUE(result.report.fit);
     bool clearance = false;
     for (const FitViolation& v : result.report.fit->violations) {
@@ -381,7 +376,7 @@ TEST(Fuzz, AClearanceBesideAJunctionGivesWayToItsGrades) {
           << to_string(v.limit) << " on road " << v.road << ": " << v.value << " against " << v.bound;
     }
     EXPECT_TRUE(clearance);
-  }
+  });
 }
 
 }  // namespace

@@ -1031,15 +1031,16 @@ TEST(TilesRealData, NortheastIn500mTilesMergesLikeTheWholeBuild) {
   EXPECT_EQ(r.manifest.tiles.size(), 53u);  // one of them without a road node: a segment crosses it
 }
 
-// A mountain country in 2 km tiles: 37 tiles, 15 616 roads. Five roads (of Vordersilumstrasse's
-// kind: long climbs whose grades bind) come out 1-10 mm from the whole build (README, tiles).
+// A mountain country in 2 km tiles: 37 tiles, 15 616 roads, within 1 mm of the whole build (0.81
+// mm measured). Up to 34d9206 three to five roads (of Vordersilumstrasse's kind) came out 1-10 mm
+// apart: their elevation records broke differently at the 1 cm tolerance then.
 TEST(TilesRealData, LiechtensteinIn2kmTilesMergesLikeTheWholeBuild) {
   RELIEF_REQUIRE_SHARED_DATA();
   const Region r = tile_and_merge(
       test::shared_data("liechtenstein/liechtenstein-latest.osm.pbf"),
       "/vsizip/" + test::shared_data("liechtenstein/N47E009.hgt.zip").string() + "/N47E009.hgt", 2000.0,
       test::scratch_dir("liechtenstein"));
-  expect_like_the_whole_build(r, 0.015);
+  expect_like_the_whole_build(r);
   EXPECT_EQ(r.manifest.tiles.size(), 37u);
 }
 
