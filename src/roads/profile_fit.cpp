@@ -833,9 +833,19 @@ ProfileFitResult fit_profiles(const RoadNetwork& network, const std::vector<Road
   for (const Junction& j : network.junctions)
     members[cuts.joined_into.empty() ? j.id : cuts.joined_into[j.id]].push_back(j.id);
   const auto inside_joined = [&](int road) { return !cuts.absorbed.empty() && cuts.absorbed[road] != 0; };
-  // An intersection's (three ends or more) road ends roll with its plane; tan(roll) = n . S G, S
-  // the share of the plane its roads determine (junction_planes.h).
-  const auto rolled = [&](int junction) { return network.junctions[junction].ends.size() >= 3; };
+  // Road ends roll with their junction's plane as the model rolls them; tan(roll) = n . S G, S
+  // the share of the plane its roads determine (junction_planes.h). The rows take the rolls at an
+  // intersection (three ends or more) and at every member of a joined junction: the model rolls a
+  // two-end member's ends too, and Fuzz seed 188's 12 m bridge leaving one rolled 0.33 rad into a
+  // connecting road at 44.7 % under a 35 % cap, past rows that took it for level.
+  std::vector<std::uint8_t> in_joined(network.junctions.size(), 0);
+  for (const std::vector<int>& group : members)
+    if (group.size() > 1)
+      for (const int m : group) in_joined[m] = 1;
+  const auto rolled = [&](int junction) {
+    const std::size_t ends = network.junctions[junction].ends.size();
+    return ends >= 3 || (ends == 2 && in_joined[junction] != 0);
+  };
   std::vector<Eigen::Matrix2d> share(network.junctions.size(), Eigen::Matrix2d::Zero());
   for (const Junction& j : network.junctions)
     if (rolled(j.id)) share[j.id] = detail::determined_share(network, j);

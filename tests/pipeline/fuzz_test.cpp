@@ -364,11 +364,16 @@ TEST(Fuzz, ADeadEndTrimmedTo1mGetsNoSumoEdgeAndEveryGatePasses) {
 // conflicts with the junction's grades: grades outrank clearances, so only the clearance is
 // left violated. Before a crossing's 9 rows shared the clearance's price (as a junction's pair
 // of ends shares the grade's), they outweighed the pair rows: seeds 58, 64 and 188 left junction
-// grades at 41-46 % under their 31.5 % bound and connecting roads 12-23 % over the cap (seed
-// 188's worst connecting road is still 9.7 % over with the fit's rows all held: not located).
+// grades at 41-46 % under their 31.5 % bound and connecting roads 12-23 % over the cap. Seed
+// 188's 12 m bridge leaves a two-end member of a joined junction, whose plane the model rolls
+// it by 0.33 rad: until the fit's rows took that roll too, its connecting road climbed 44.7 %
+// under a 35 % cap (9.7 % over) with every row held (0.06 % over now; seeds 58 and 188, 12.4 and
+// 9.7 % over before, are within the 2 % gate).
 TEST(Fuzz, AClearanceBesideAJunctionGivesWayToItsGrades) {
-  check_seeds({64u, 188u}, true, [](unsigned, const BuildResult& result, const Diagnostics&) {
+  check_seeds({58u, 64u, 188u}, true, [](unsigned, const BuildResult& result, const Diagnostics&) {
     ASSERT_TRUE(result.report.fit);
+    ASSERT_TRUE(result.report.model_grades);
+    EXPECT_LE(result.report.model_grades->connecting_roads.max_excess_percent, 2.0);
     bool clearance = false;
     for (const FitViolation& v : result.report.fit->violations) {
       clearance |= v.limit == FitLimit::clearance;
