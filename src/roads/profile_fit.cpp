@@ -57,6 +57,7 @@ double price(FitLimit limit) {
       return kPriceScale * 1e3;
     case FitLimit::grade:
     case FitLimit::junction_grade:
+    case FitLimit::cross_slope:
       return kPriceScale * 1e2;
     case FitLimit::clearance:
       return kPriceScale * 1e1;
@@ -469,6 +470,8 @@ std::string_view to_string(FitLimit limit) {
       return "grade";
     case FitLimit::junction_grade:
       return "junction_grade";
+    case FitLimit::cross_slope:
+      return "cross_slope";
     case FitLimit::clearance:
       return "clearance";
     case FitLimit::vertical_curve:
@@ -789,6 +792,35 @@ ProfileFitResult fit_profiles(const RoadNetwork& network, const std::vector<Road
                {FitLimit::junction_grade, -1, static_cast<std::uint32_t>(j.id)});
     }
   }
+  // Each road end lies across its junction's plane at tan(roll) = n . S G (junction_planes.h),
+  // within its own cap (and max_cross_slope_percent): a plane as steep as the junction's
+  // steepest road would roll a motorway link meeting it by that road's grade (Fuzz seed 188: a
+  // link bridge rolled 0.33 rad under a 10 % cap).
+  std::vector<Eigen::Matrix2d> share(network.junctions.size(), Eigen::Matrix2d::Zero());
+  for (const Junction& j : network.junctions) {
+    if (j.ends.size() < 2) continue;
+    share[j.id] = detail::determined_share(network, j);
+    const std::size_t gx = vars.gradient(j.id);
+    for (const RoadEnd& e : j.ends) {
+      const RoadProfile& p = raw[e.road];
+      if (p.size() < 2) continue;
+      // The road's direction where the model cuts it, whose heading takes the roll: a road that
+      // bends within its trim leaves the node in another direction (NE: 11 % under an 8 % bound
+      // with the node's).
+      const double cut = cuts.end_trims.empty() ? 0.0 : cuts.end_trims[e.road][e.at_start ? 0 : 1];
+      const double at = std::clamp(e.at_start ? cut : p.s.back() - cut, 0.0, p.s.back());
+      const auto after = static_cast<std::size_t>(std::upper_bound(p.s.begin(), p.s.end(), at) - p.s.begin());
+      const std::size_t a = std::min(std::max<std::size_t>(after, 1) - 1, p.size() - 2);
+      const Vec2 d = p.xy[a + 1] - p.xy[a];
+      if (!(d.norm() > 0.0)) continue;
+      const Vec2 across = share[j.id].transpose() * Vec2(-d.y(), d.x()) / d.norm();
+      if (!(across.norm() > 1e-9)) continue;
+      double cap = grade_limit(options, network.roads[e.road].attributes);
+      if (options.max_cross_slope_percent > 0.0) cap = std::min(cap, options.max_cross_slope_percent / 100.0);
+      rows.add({{gx, across.x()}, {gx + 1, across.y()}}, -cap, cap,
+               {FitLimit::cross_slope, e.road, static_cast<std::uint32_t>(e.at_start ? 0 : p.size() - 1)});
+    }
+  }
 
   // Across a junction the connecting roads run from one road's trimmed end to another's, and
   // those ends can lie much closer together than their paths through the junction's centre (the
@@ -846,9 +878,6 @@ ProfileFitResult fit_profiles(const RoadNetwork& network, const std::vector<Road
     const std::size_t ends = network.junctions[junction].ends.size();
     return ends >= 3 || (ends == 2 && in_joined[junction] != 0);
   };
-  std::vector<Eigen::Matrix2d> share(network.junctions.size(), Eigen::Matrix2d::Zero());
-  for (const Junction& j : network.junctions)
-    if (rolled(j.id)) share[j.id] = detail::determined_share(network, j);
   for (const std::vector<int>& group : members) {
     if (group.empty()) continue;
     std::vector<std::pair<RoadEnd, int>> ends;  // the end and its member junction
@@ -922,7 +951,10 @@ ProfileFitResult fit_profiles(const RoadNetwork& network, const std::vector<Road
           rows.add({{b0, 1.0 - cb.t}, {b1, cb.t}, {a0, ca.t - 1.0}, {a1, -ca.t}}, -g * d, g * d, tag);
           continue;
         }
-        const Vec2 roll_a = share[ca.junction] * ca.normal, roll_b = share[cb.junction] * cb.normal;
+        const auto roll = [&](const Cut& c) {
+          return rolled(c.junction) ? Vec2(share[c.junction] * c.normal) : Vec2::Zero();
+        };
+        const Vec2 roll_a = roll(ca), roll_b = roll(cb);
         // The plane's columns (dz/dx, dz/dy); a junction without a plane that rolls its ends
         // has roll 0, its terms put on the end's own columns.
         const auto plane = [&](const Cut& c, std::size_t z0, std::size_t z1) {
@@ -1085,6 +1117,10 @@ ProfileFitResult fit_profiles(const RoadNetwork& network, const std::vector<Road
         case FitLimit::clearance:
           v.value = value;
           v.bound = qp.lower[static_cast<Eigen::Index>(r)];
+          break;
+        case FitLimit::cross_slope:
+          v.value = 100.0 * std::abs(value);
+          v.bound = 100.0 * qp.upper[static_cast<Eigen::Index>(r)];
           break;
         case FitLimit::vertical_curve: {
           const double h1 = driven(p, tag.station) - driven(p, tag.station - 1);

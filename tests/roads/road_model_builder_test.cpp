@@ -791,6 +791,42 @@ TEST(RoadModelBuilder, ConnectingRoadsAcrossAJoinedJunctionKeepTheGradeCap) {
   EXPECT_GT(separate, cap + 0.01);  // the case attacks what the joined rows fix
 }
 
+TEST(RoadModelBuilder, ARoadEndLiesAcrossItsJunctionsPlaneWithinItsOwnCap) {
+  // A motorway link leaves a street that climbs north at 25 %, along the contour to the east.
+  // The junction's plane follows the street, and the link's end lies across it: rolled by the
+  // street's 25 % grade, 2.5 times the links' 10 % cap, until the fit bounded each end's cross
+  // slope by its own cap (Fuzz seed 188: a link bridge rolled 0.33 rad). Now the street gives
+  // way near the junction instead; --max-cross-slope lowers the bound for every road.
+  WayAttributes link;
+  link.highway = HighwayClass::motorway_link;
+  link.lanes_forward = 1;
+  link.lanes_backward = 0;
+  link.oneway = true;
+  link.lane_width_m = 3.5;
+  const RoadNetwork net = test::make_network({{{0, -80}, {0, 0}}, {{0, 0}, {0, 80}}, {{0, 0}, {80, 0}}},
+                                             {street(1, 1), street(1, 1), link});
+  const std::vector<RoadProfile> raw = test::drape(net, [](const Vec2& p) { return 0.25 * p.y(); });
+  const auto end_roll = [&](double max_cross_slope_percent) {
+    ProfileFitOptions fit_options;
+    fit_options.max_cross_slope_percent = max_cross_slope_percent;
+    Diagnostics d;
+    const ProfileFitResult fit = fit_profiles(net, raw, fit_options, d, junction_cuts(net, raw, {}));
+    EXPECT_TRUE(fit.converged) << fit.solver_status;
+    EXPECT_TRUE(fit.violations.empty());
+    const RoadModelBuild b = build_road_model(net, fit.profiles, {}, d, fit.junction_gradient);
+    const ModelRoad& road = b.model.roads[b.model_road_of[2]];
+    return std::tan(std::abs(road.superelevation.value(0.0)));
+  };
+  const double cap = grade_limit(ProfileFitOptions{}, link);
+  const double own_cap = end_roll(0.0), lowered = end_roll(6.0);
+  std::cout << "link end's cross slope " << 100.0 * own_cap << " % (cap " << 100.0 * cap << " %), "
+            << 100.0 * lowered << " % under --max-cross-slope 6\n";
+  EXPECT_NEAR(cap, 0.10, 1e-12);
+  EXPECT_LE(own_cap, cap + 1e-3);
+  EXPECT_GT(own_cap, 0.09);  // the bound binds: the street climbs at 25 %
+  EXPECT_LE(lowered, 0.06 + 1e-3);
+}
+
 TEST(RoadModelBuilder, ATransitionRoadWhoseInnerLaneClimbsPastTheCapIsAJunction) {
   // Two streets (two lanes each way) meet at a node in a right-angle turn on a 13 % slope. The
   // transition road's lanes are shorter on the inside of the bend than its reference line, and

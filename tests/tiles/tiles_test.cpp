@@ -1033,16 +1033,19 @@ TEST(TilesRealData, NortheastIn500mTilesMergesLikeTheWholeBuild) {
   EXPECT_EQ(r.manifest.tiles.size(), 53u);  // one of them without a road node: a segment crosses it
 }
 
-// A mountain country in 2 km tiles: 37 tiles, 15 616 roads, within 1 mm of the whole build (0.81
-// mm measured). Up to 34d9206 three to five roads (of Vordersilumstrasse's kind) came out 1-10 mm
-// apart: their elevation records broke differently at the 1 cm tolerance then.
+// A mountain country in 2 km tiles: 37 tiles, 15 616 roads, within 1.1 mm of the whole build.
+// 0.81 mm measured until the fit bounded each road end's cross slope on its junction's plane;
+// since, 1.03 mm on one road (15 573 within 1 mm): a 9.3 m transition road after a 2.3 m road,
+// whose fitted heights in its tile's window lie 0.6 mm from the whole build's (the window's
+// optimum, not the 0.4 mm records). Up to 34d9206 three to five roads (of Vordersilumstrasse's
+// kind) came out 1-10 mm apart: their elevation records broke differently at 1 cm then.
 TEST(TilesRealData, LiechtensteinIn2kmTilesMergesLikeTheWholeBuild) {
   RELIEF_REQUIRE_SHARED_DATA();
   const Region r = tile_and_merge(
       test::shared_data("liechtenstein/liechtenstein-latest.osm.pbf"),
       "/vsizip/" + test::shared_data("liechtenstein/N47E009.hgt.zip").string() + "/N47E009.hgt", 2000.0,
       test::scratch_dir("liechtenstein"));
-  expect_like_the_whole_build(r);
+  expect_like_the_whole_build(r, 1.1e-3);
   EXPECT_EQ(r.manifest.tiles.size(), 37u);
 }
 

@@ -90,6 +90,11 @@ void add_build_options(CLI::App* cmd, BuildCommandArgs* args) {
                   "fidelity: grade cap for footways, paths, steps and bridleways (--include-paths), percent")
       ->capture_default_str()
       ->check(finite_positive());
+  cmd->add_option("--max-cross-slope", o.fit.max_cross_slope_percent,
+                  "fit: a road end lies across its junction's plane at most this steeply, percent (0: its "
+                  "grade cap)")
+      ->capture_default_str()
+      ->check(finite_non_negative());
   cmd->add_option("--clearance", o.fit.clearance_m,
                   "minimum vertical clearance where roads on different layers cross, m")
       ->capture_default_str()

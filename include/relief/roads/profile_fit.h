@@ -72,6 +72,13 @@ struct ProfileFitOptions {
   /// approach road at its own grade, instead of carrying that grade hundreds of metres into the
   /// mountain (a 3 km base tunnel humped 18 m over its portals with the deck's stiffness).
   double structure_cutoff_wavelength_m = 200.0;
+  /// A road's cross slope where its junction's plane rolls it: at most its own grade cap, and at
+  /// most this (percent; 0: only the cap). A junction's plane follows its steepest road, and a
+  /// through street would otherwise lie across it at that road's grade (35 % where a San
+  /// Francisco hill street crosses). 12 % is the highest superelevation rate road design uses
+  /// (AASHTO's e_max): a steeper street flattens over the junction instead, as San Francisco's
+  /// do, and a street crossing a 10 % avenue still lies on the plane they share.
+  double max_cross_slope_percent = 12.0;
   double max_curvature_per_m = 0.05;  ///< physical |z''| bound of every road (1/m); 0 disables it
   /// Roads of these classes (motorway ... the class named here, in HighwayClass order) keep the
   /// minimum crest and sag curves of their design speed (maxspeed, else the class default);
@@ -102,8 +109,9 @@ struct JunctionCuts {
   std::vector<std::uint8_t> absorbed;
 };
 
-/// The limits of the fit, in their order of priority.
-enum class FitLimit { ground_departure, grade, junction_grade, clearance, vertical_curve };
+/// The limits of the fit, in their order of priority. cross_slope: a road end's roll, the slope
+/// of its junction's plane across it.
+enum class FitLimit { ground_departure, grade, junction_grade, cross_slope, clearance, vertical_curve };
 [[nodiscard]] std::string_view to_string(FitLimit limit);
 
 /// A limit left violated on one road (the worst place of that road and limit).
