@@ -283,5 +283,44 @@ TEST(JunctionPlanes, ADeadEndKeepsTheRollItsStubCannotEaseOff) {
   EXPECT_EQ(end_rolls(10.0, std::nullopt, std::nullopt).value(5.0), 0.0);
 }
 
+// Two roads that left the surface in opposite directions, 1 m apart (one 1 m above it, one 1 m
+// under): between them the surface falls 2 m within a metre, and a road crossing from one to the
+// other lay across it at up to tan(roll) 5.6 (Fuzz seed 31). Across, a road now lies no steeper
+// than its grade limit (or its ends' rolls, which it keeps exactly); the lane centre stays on
+// the surface. Without a limit, the surface's own roll.
+TEST(JunctionHeight, ARoadLiesAcrossTheSurfaceNoSteeperThanItsLimit) {
+  const Vec2 g(0.05, 0.0);
+  const JunctionHeight s({end_on(0.0, 8.0, 10.0, g), end_on(std::numbers::pi / 2, 8.0, 10.0, g),
+                          end_on(std::numbers::pi, 8.0, 10.0, g)});
+  std::vector<Vec3> up, down;
+  for (double y = -4.0; y <= 4.0; y += 0.5) {
+    up.emplace_back(-0.5, y, 1.0);
+    down.emplace_back(0.5, y, -1.0);
+  }
+  const JunctionHeight moved = s.with_departures({up, down});
+  PlanGeometry line;
+  line.kind = PlanGeometry::Kind::line;
+  line.start = Vec2(0.0, -12.0);
+  line.heading = std::numbers::pi / 2;
+  line.length = 24.0;
+  const PlanView along(PlanView({line}));
+  const double limit = 0.35;
+  const SurfaceProfiles bounded = surface_profiles(along, moved, limit);
+  const SurfaceProfiles free = surface_profiles(along, moved);
+  double most_bounded = 0.0, most_free = 0.0;
+  for (double t = 0.0; t <= 24.0; t += 0.05) {
+    most_bounded = std::max(most_bounded, std::abs(std::tan(bounded.superelevation.value(t))));
+    most_free = std::max(most_free, std::abs(std::tan(free.superelevation.value(t))));
+    EXPECT_NEAR(bounded.elevation.value(t), free.elevation.value(t), 1e-12) << t;
+  }
+  std::cout << "  largest tan(roll) across two opposite departures: " << most_free << " on the surface, "
+            << most_bounded << " within the limit " << limit << "\n";
+  EXPECT_GT(most_free, 1.0);
+  EXPECT_LE(most_bounded, limit + 0.01);  // the roll's cubics between its 0.5 m samples: 0.357
+  for (const double t : {0.0, 24.0}) {
+    EXPECT_NEAR(bounded.superelevation.value(t), free.superelevation.value(t), 1e-9) << t;
+  }
+}
+
 }  // namespace
 }  // namespace relief::detail
