@@ -192,6 +192,7 @@ std::string report_json(const RunReport& r) {
                        {"clearance_m", r.fit->clearance_m},
                        {"cutoff_wavelength_m", r.fit->cutoff_wavelength_m},
                        {"max_ground_departure_m", r.fit->max_ground_departure_m},
+                       {"max_cross_slope_percent", r.fit->max_cross_slope_percent},
                        {"violations", violations}};
   }
   if (r.paper) {

@@ -259,6 +259,7 @@ BuildResult build(const BuildOptions& options, Diagnostics& diagnostics, const P
     summary.clearance_m = options.fit.clearance_m;
     summary.cutoff_wavelength_m = options.fit.cutoff_wavelength_m;
     summary.max_ground_departure_m = options.fit.max_ground_departure_m;
+    summary.max_cross_slope_percent = options.fit.max_cross_slope_percent;
     summary.violations = fit->violations;
     report.fit = std::move(summary);
   }

@@ -52,6 +52,7 @@ struct FitSummary {
   double clearance_m = 0.0;
   double cutoff_wavelength_m = 0.0;
   double max_ground_departure_m = 0.0;
+  double max_cross_slope_percent = 0.0;  ///< a road end's roll on its junction's plane (0: its cap)
   std::vector<FitViolation> violations;  ///< limits left violated, worst per road and limit
 };
 
